@@ -1,0 +1,29 @@
+#pragma once
+// One error type for the whole project. User-facing errors name the file, the field
+// and what was expected; internal invariants are asserts, not Errors.
+#include <stdexcept>
+#include <string>
+
+namespace specula {
+
+class Error : public std::runtime_error {
+public:
+    Error(std::string file, std::string field, const std::string& what)
+        : std::runtime_error(compose(file, field, what)), file_(std::move(file)),
+          field_(std::move(field)) {}
+    explicit Error(const std::string& what) : std::runtime_error(what) {}
+
+    const std::string& file() const { return file_; }
+    const std::string& field() const { return field_; }
+
+private:
+    static std::string compose(const std::string& file, const std::string& field,
+                               const std::string& what) {
+        std::string s = file.empty() ? std::string() : file + ": ";
+        if (!field.empty()) s += field + ": ";
+        return s + what;
+    }
+    std::string file_, field_;
+};
+
+} // namespace specula
