@@ -31,9 +31,11 @@ public:
                  ...);
             },
             pools_);
-        // Copy: fn may add or remove components of other types while we iterate.
-        const std::vector<Entity> entities = *smallest;
-        for (Entity e : entities) {
+        // Walk backwards: removing the current entity swaps in an already-visited one, and
+        // entities added during the walk land past the end, so fn may edit the registry.
+        for (std::size_t i = smallest->size(); i-- > 0;) {
+            if (i >= smallest->size()) continue;
+            const Entity e = (*smallest)[i];
             if ((std::get<SparseSet<Ts>*>(pools_)->contains(e) && ...))
                 fn(e, std::get<SparseSet<Ts>*>(pools_)->get(e)...);
         }
