@@ -8,6 +8,7 @@
 
 // Returns (u, v, face) with u, v in [0, 1]; v = 0 is the face's first stored row.
 vec3 cubeFaceUv(vec3 dir) {
+    if (any(isnan(dir))) return vec3(0.5f, 0.5f, 0.0f);
     vec3 a = abs(dir);
     float ma;
     float sc;
@@ -29,8 +30,8 @@ vec3 cubeFaceUv(vec3 dir) {
         sc = dir.z >= 0.0f ? dir.x : -dir.x;
         tc = -dir.y;
     }
-    // NaN fails every comparison above and lands here with ma = NaN; !(ma > 0) catches it.
-    if (!(ma > 0.0f)) return vec3(0.5f, 0.5f, 0.0f);
+    if (!(ma > 0.0f)) return vec3(0.5f, 0.5f, 0.0f); // zero direction
+
     float inv = 0.5f / ma;
     return vec3(clamp(sc * inv + 0.5f, 0.0f, 1.0f), clamp(tc * inv + 0.5f, 0.0f, 1.0f), face);
 }

@@ -1,0 +1,175 @@
+#include "distance_bake.h"
+
+#include "engine/core/error.h"
+#include "engine/core/glsl_host.h"
+#include "engine/image/sampling.h"
+#include "engine/raytrace/embree_scene.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+namespace specula {
+namespace glsl {
+#include "engine/math/cube_face.glsl.h"
+#include "engine/scene/shading.glsl.h"
+} // namespace glsl
+
+namespace {
+
+constexpr float kMiss = -1.f; // marks texels with no hit until d_inf is known
+
+// Solid angle of texel (x, y) of an N x N cube face: the integral of dA cos / r^2 over the
+// texel, in closed form from the corner function atan(st / sqrt(s^2 + t^2 + 1)).
+float texelSolidAngle(int x, int y, int n) {
+    auto corner = [](float s, float t) { return std::atan2(s * t, std::sqrt(s * s + t * t + 1.f)); };
+    const float s0 = 2.f * float(x) / float(n) - 1.f, s1 = 2.f * float(x + 1) / float(n) - 1.f;
+    const float t0 = 2.f * float(y) / float(n) - 1.f, t1 = 2.f * float(y + 1) / float(n) - 1.f;
+    return corner(s1, t1) - corner(s0, t1) - corner(s1, t0) + corner(s0, t0);
+}
+
+struct LayerStats {
+    double weightedSum = 0, weight = 0;
+    float minD = std::numeric_limits<float>::max(), maxD = 0;
+};
+
+// Renders one layer's six faces against `scene`; texels that see nothing get sky (when
+// given) and kMiss in alpha.
+void bakeFaces(const EmbreeScene& scene, const DistanceBakeOptions& opt, bool withSky,
+               std::array<Image, 6>& faces, std::atomic<long>& rowsDone, long rowsTotal) {
+    const int n = opt.faceRes;
+    for (int f = 0; f < 6; ++f) {
+        faces[std::size_t(f)] = Image(n, n, 4);
+        Image& img = faces[std::size_t(f)];
+        tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+            for (int y = r.begin(); y < r.end(); ++y) {
+                if (opt.cancelled && opt.cancelled()) return;
+                for (int x = 0; x < n; ++x) {
+                    const glm::vec2 uv((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
+                    const glm::vec3 dir = glm::normalize(glsl::cubeFaceDirection(f, uv));
+                    glm::vec3 rgb(0.f);
+                    float d = kMiss;
+                    if (auto hit = scene.intersect(opt.centre, dir, 0.f)) {
+                        rgb = glsl::shadeSurface(hit->albedo, hit->normal);
+                        d = hit->t;
+                    } else if (withSky && opt.sky && !opt.sky->empty()) {
+                        rgb = glm::vec3(sampleBilinear(*opt.sky, glsl::equirectUv(dir),
+                                                       Wrap::Repeat, Wrap::Clamp));
+                    }
+                    float* p = img.at(x, y);
+                    p[0] = rgb.r, p[1] = rgb.g, p[2] = rgb.b, p[3] = d;
+                }
+                const long done = ++rowsDone;
+                if (opt.progress && done % 16 == 0) opt.progress(double(done) / double(rowsTotal));
+            }
+        });
+        if (opt.cancelled && opt.cancelled()) throw Error("bake", "", "cancelled");
+    }
+}
+
+LayerStats statsOf(const std::array<Image, 6>& faces) {
+    LayerStats s;
+    const int n = faces[0].width;
+    for (const Image& img : faces)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const float d = img.at(x, y)[3];
+                if (d == kMiss) continue;
+                const float w = texelSolidAngle(x, y, n);
+                s.weightedSum += double(w) * d;
+                s.weight += w;
+                s.minD = std::min(s.minD, d);
+                s.maxD = std::max(s.maxD, d);
+            }
+    return s;
+}
+
+void setInfinity(std::array<Image, 6>& faces, float dInf) {
+    for (Image& img : faces)
+        for (std::size_t i = 3; i < img.pixels.size(); i += 4)
+            if (img.pixels[i] == kMiss) img.pixels[i] = dInf;
+}
+
+} // namespace
+
+DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup& markup,
+                                     const DistanceBakeOptions& opt) {
+    if (opt.faceRes < 1 || opt.faceRes > 4096)
+        throw Error("", "--face-res", "expected 1 to 4096, got " + std::to_string(opt.faceRes));
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(opt.centre[i])) throw Error("", "--probe", "expected finite numbers");
+
+    const auto& mirrors = markup.mirrorEntities;
+    const EmbreeScene environment(registry, [&](ecs::Entity e) { return !mirrors.count(e); });
+    if (environment.empty()) throw Error("", "scene", "has no environment geometry to bake");
+
+    const long rowsTotal = long(opt.faceRes) * 6 * long(1 + markup.objects.size());
+    std::atomic<long> rowsDone{0};
+
+    DistanceProbeAsset asset;
+    asset.centre = opt.centre;
+    asset.faceRes = opt.faceRes;
+    if (opt.sky) asset.sky = *opt.sky;
+
+    DistanceProbeLayer composite;
+    composite.name = "composite";
+    for (const EnvironmentObject& o : markup.objects) composite.objects.push_back(o.name);
+    bakeFaces(environment, opt, true, composite.faces, rowsDone, rowsTotal);
+
+    std::vector<DistanceProbeLayer> objects;
+    for (const EnvironmentObject& o : markup.objects) {
+        std::unordered_set<ecs::Entity> members(o.meshes.begin(), o.meshes.end());
+        const EmbreeScene scene(registry, [&](ecs::Entity e) { return members.count(e) > 0; });
+        DistanceProbeLayer layer;
+        layer.name = o.name;
+        layer.objects = {o.name};
+        bakeFaces(scene, opt, false, layer.faces, rowsDone, rowsTotal);
+        objects.push_back(std::move(layer));
+    }
+
+    auto finish = [&](DistanceProbeLayer& L) {
+        const LayerStats s = statsOf(L.faces);
+        L.solidAngle = float(s.weight);
+        L.avgDistance = s.weight > 0 ? float(s.weightedSum / s.weight) : 0.f;
+        L.minDistance = s.weight > 0 ? s.minD : 0.f;
+        L.maxDistance = s.maxD;
+        L.method = L.solidAngle >= opt.rectifySolidAngle ? "bisection" : "avgdist";
+        return s;
+    };
+    const LayerStats all = finish(composite);
+    for (DistanceProbeLayer& L : objects) finish(L);
+
+    // d_inf must exceed every distance a lookup can meet; D must reach every hit from any
+    // reflector point within the reach (DESIGN §4: the hit lies within (x, x + 2D)).
+    asset.dInf = std::max(1000.f, 10.f * all.maxD);
+    asset.range = 0.5f * (all.maxD + opt.reflectorReach) * 1.05f;
+    setInfinity(composite.faces, asset.dInf);
+    for (DistanceProbeLayer& L : objects) setInfinity(L.faces, asset.dInf);
+
+    // Near to far by the nearest point of each object: the order occlusion needs.
+    std::stable_sort(objects.begin(), objects.end(),
+                     [](const DistanceProbeLayer& a, const DistanceProbeLayer& b) {
+                         return a.minDistance < b.minDistance;
+                     });
+    // An object the probe cannot see at all adds nothing but cost.
+    std::erase_if(objects, [](const DistanceProbeLayer& L) { return L.solidAngle <= 0.f; });
+
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const EnvironmentObject& o : markup.objects) {
+        lo = glm::min(lo, o.boundsMin);
+        hi = glm::max(hi, o.boundsMax);
+    }
+    asset.boxMin = lo - opt.centre;
+    asset.boxMax = hi - opt.centre;
+
+    asset.layers.push_back(std::move(composite));
+    for (DistanceProbeLayer& L : objects) asset.layers.push_back(std::move(L));
+    if (opt.progress) opt.progress(1.0);
+    return asset;
+}
+
+} // namespace specula

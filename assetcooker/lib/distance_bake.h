@@ -1,0 +1,30 @@
+#pragma once
+// Bakes a distance-cubemap probe with Embree: for every texel of every face, the ray from
+// the probe centre gives the radiance (house shading, same as the ground truth) and the
+// exact Euclidean distance. Layer 0 holds the whole environment with the sky where nothing
+// is hit; then one layer per environment object, sorted near to far.
+#include "components/reflection_probe/distance_probe_asset.h"
+#include "components/reflection_probe/scene_markup.h"
+#include "engine/ecs/registry.h"
+
+#include <functional>
+
+namespace specula {
+
+struct DistanceBakeOptions {
+    glm::vec3 centre{0.f};
+    int faceRes = 128;
+    const Image* sky = nullptr; // equirectangular; black when null
+    // Reflectors move within this distance of the centre; D must reach past them.
+    float reflectorReach = 1.f;
+    // A layer covering at least this solid angle is planned for per-pixel rectification,
+    // a smaller one for the average-distance correction (DESIGN §4).
+    float rectifySolidAngle = 0.5f;
+    std::function<void(double)> progress;     // fraction done, from the baking thread
+    std::function<bool()> cancelled;          // polled between rows; true aborts with Error
+};
+
+DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup& markup,
+                                     const DistanceBakeOptions& options);
+
+} // namespace specula

@@ -1,0 +1,100 @@
+#include "distance_lookup_config.h"
+
+#include "engine/core/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace specula {
+
+const char* toString(LookupMethod m) {
+    switch (m) {
+    case LookupMethod::Envmap: return "envmap";
+    case LookupMethod::BoxProj: return "boxproj";
+    case LookupMethod::Bisection: return "bisection";
+    case LookupMethod::Secant: return "secant";
+    case LookupMethod::AvgDist: return "avgdist";
+    case LookupMethod::Layered: return "layered";
+    }
+    return "?";
+}
+
+bool parseLookupMethod(const std::string& s, LookupMethod& out) {
+    for (LookupMethod m : {LookupMethod::Envmap, LookupMethod::BoxProj, LookupMethod::Bisection,
+                           LookupMethod::Secant, LookupMethod::AvgDist, LookupMethod::Layered}) {
+        if (s == toString(m)) {
+            out = m;
+            return true;
+        }
+    }
+    return false;
+}
+
+int methodIndex(LookupMethod m) {
+    switch (m) {
+    case LookupMethod::Envmap: return 0;
+    case LookupMethod::BoxProj: return 1;
+    case LookupMethod::Bisection: return 2;
+    case LookupMethod::Secant: return 3;
+    case LookupMethod::AvgDist: return 4;
+    case LookupMethod::Layered: return -1;
+    }
+    return 0;
+}
+
+static std::uint32_t featureOf(int method) {
+    switch (method) {
+    case 1: return kFeatureBoxProj;
+    case 2: return kFeatureBisection;
+    case 3: return kFeatureSecant;
+    case 4: return kFeatureAvgDist;
+    default: return kFeatureEnvmap;
+    }
+}
+
+int bisectionSteps(float range, float tolerance) {
+    const double ratio = 2.0 * double(range) / std::max(double(tolerance), 1e-12);
+    if (!(ratio > 1.0)) return 1;
+    return int(std::clamp(std::ceil(std::log2(ratio)), 1.0, 40.0));
+}
+
+DistanceLookupConfig makeLookupConfig(const ReflectionProbe& probe, const DistanceProbeAsset& a) {
+    DistanceLookupConfig c;
+    c.boxMin = a.boxMin;
+    c.boxMax = a.boxMax;
+    c.range = probe.range > 0.f ? probe.range : a.range;
+    c.tolerance = std::isfinite(probe.errorTolerance) && probe.errorTolerance > 0.f
+                      ? probe.errorTolerance
+                      : std::numeric_limits<float>::min();
+    c.dInf = a.dInf;
+    c.maxSteps = bisectionSteps(c.range, c.tolerance);
+    c.layerMethods.assign(a.layers.size(), 0);
+    c.layerAvgDistance.assign(a.layers.size(), 0.f);
+    for (std::size_t i = 0; i < a.layers.size(); ++i) c.layerAvgDistance[i] = a.layers[i].avgDistance;
+
+    if (probe.method != LookupMethod::Layered) {
+        c.method = methodIndex(probe.method);
+        c.features = featureOf(c.method);
+        return c;
+    }
+    if (a.objectLayerCount() < 1)
+        throw Error(probe.asset, "layers", "layered lookup needs at least one object layer");
+    c.layerCount = a.objectLayerCount();
+    c.features = kFeatureLayers;
+    for (int i = 1; i <= c.layerCount; ++i) {
+        LookupMethod m = probe.layerMethod;
+        if (m == LookupMethod::Envmap || m == LookupMethod::BoxProj ||
+            m == LookupMethod::Layered) {
+            // The cooked plan decides: a layer without a usable plan gets bisection.
+            if (!parseLookupMethod(a.layers[std::size_t(i)].method, m) ||
+                (m != LookupMethod::AvgDist && m != LookupMethod::Secant))
+                m = LookupMethod::Bisection;
+        }
+        c.layerMethods[std::size_t(i)] = methodIndex(m);
+        c.features |= featureOf(methodIndex(m));
+    }
+    return c;
+}
+
+} // namespace specula

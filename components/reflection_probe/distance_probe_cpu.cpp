@@ -1,0 +1,101 @@
+#include "distance_probe_cpu.h"
+
+#include "engine/core/glsl_host.h"
+#include "engine/image/sampling.h"
+
+
+namespace specula {
+namespace glsl {
+#include "engine/math/cube_face.glsl.h"
+#include "engine/scene/shading.glsl.h"
+#include "components/reflection_probe/shaders/distance_lookup_types.glsl.h"
+
+// The fetches a twin reads through: what the GPU reads (bilinear radiance, nearest
+// distance, clamped to the face edge).
+struct TwinFetches {
+    const DistanceProbeAsset* asset;
+    const DistanceLookupConfig* config;
+
+    const Image& face(int layer, vec3 dir, vec2& uv) const {
+        const vec3 f = cubeFaceUv(dir);
+        uv = vec2(f.x, f.y);
+        return asset->layers[std::size_t(layer)].faces[std::size_t(f.z)];
+    }
+    float fetchDistance(int layer, vec3 dir) const {
+        vec2 uv;
+        const Image& img = face(layer, dir, uv);
+        return sampleNearest(img, uv, Wrap::Clamp).a;
+    }
+    vec3 fetchRadiance(int layer, vec3 dir) const {
+        vec2 uv;
+        const Image& img = face(layer, dir, uv);
+        return vec3(sampleBilinear(img, uv, Wrap::Clamp));
+    }
+    vec3 fetchSky(vec3 dir) const {
+        if (asset->sky.empty()) return vec3(0.f);
+        return vec3(sampleBilinear(asset->sky, equirectUv(dir), Wrap::Repeat, Wrap::Clamp));
+    }
+    int layerMethod(int layer) const { return config->layerMethods[std::size_t(layer)]; }
+    float layerAvgDistance(int layer) const {
+        return config->layerAvgDistance[std::size_t(layer)];
+    }
+};
+
+// The shared lookup is included inside a struct so that its calls to fetchDistance and
+// friends bind to the members above. The GPU compiles one permutation per probe; the CPU
+// compiles every method in, once without layers and once with.
+#define HAS_ENVMAP 1
+#define HAS_BOXPROJ 1
+#define HAS_BISECTION 1
+#define HAS_SECANT 1
+#define HAS_AVGDIST 1
+
+#define HAS_LAYERS 0
+struct TwinSingle : TwinFetches {
+#include "components/reflection_probe/shaders/distance_lookup.glsl.h"
+};
+#undef HAS_LAYERS
+#undef SPECULA_DISTANCE_LOOKUP_GLSL_H
+
+#define HAS_LAYERS 1
+struct TwinLayered : TwinFetches {
+#include "components/reflection_probe/shaders/distance_lookup.glsl.h"
+};
+#undef HAS_LAYERS
+
+ProbeLookupParams toParams(const DistanceLookupConfig& c) {
+    ProbeLookupParams p;
+    p.boxMin = c.boxMin;
+    p.boxMax = c.boxMax;
+    p.range = c.range;
+    p.tolerance = c.tolerance;
+    p.dInf = c.dInf;
+    p.maxSteps = c.maxSteps;
+    p.method = c.method;
+    p.layerCount = c.layerCount;
+    return p;
+}
+
+} // namespace glsl
+
+struct CpuDistanceProbe::Twin {
+    glsl::TwinSingle single;
+    glsl::TwinLayered layered;
+    glsl::ProbeLookupParams params;
+};
+
+CpuDistanceProbe::CpuDistanceProbe(const DistanceProbeAsset& asset, DistanceLookupConfig config)
+    : twin_(std::make_unique<Twin>()), config_(std::move(config)) {
+    twin_->single.asset = twin_->layered.asset = &asset;
+    twin_->single.config = twin_->layered.config = &config_;
+    twin_->params = glsl::toParams(config_);
+}
+
+CpuDistanceProbe::~CpuDistanceProbe() = default;
+
+glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches) const {
+    if (config_.features & kFeatureLayers) return twin_->layered.probeRadiance(x, lhat, twin_->params, fetches);
+    return twin_->single.probeRadiance(x, lhat, twin_->params, fetches);
+}
+
+} // namespace specula

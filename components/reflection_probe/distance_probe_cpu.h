@@ -1,0 +1,29 @@
+#pragma once
+// The CPU twin of the distance-cubemap shader: the same lookup code
+// (shaders/distance_lookup.glsl.h), compiled as C++ over the cooked images, with texture
+// fetches that read what the GPU reads (bilinear radiance, nearest distance, clamp to the
+// face edge). Tests hold the shader to it pixel by pixel.
+#include "components/reflection_probe/distance_lookup_config.h"
+
+#include <memory>
+
+namespace specula {
+
+class CpuDistanceProbe {
+public:
+    CpuDistanceProbe(const DistanceProbeAsset& asset, DistanceLookupConfig config);
+    ~CpuDistanceProbe();
+
+    // x: probe-local reflector point, lhat: unit reflected direction. Adds the texture
+    // fetches spent to `fetches`.
+    glm::vec3 radiance(glm::vec3 x, glm::vec3 lhat, int& fetches) const;
+
+    const DistanceLookupConfig& config() const { return config_; }
+
+private:
+    struct Twin;
+    std::unique_ptr<Twin> twin_;
+    DistanceLookupConfig config_;
+};
+
+} // namespace specula

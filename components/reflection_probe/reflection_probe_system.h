@@ -1,0 +1,62 @@
+#pragma once
+// Owns the GPU side of every ReflectionProbe: cooked asset, texture array, sky, and one
+// shader permutation per distinct feature mask. Components stay plain structs: sync() sees
+// a new or edited component (compared with the copy it last built from) and rebuilds.
+#include "components/reflection_probe/distance_lookup_config.h"
+#include "components/reflection_probe/reflection_probe.h"
+#include "engine/ecs/registry.h"
+#include "engine/gpu/gl_objects.h"
+#include "engine/gpu/render_target.h"
+#include "engine/gpu/timer.h"
+#include "engine/math/camera.h"
+#include "engine/render/scene_renderer.h"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <unordered_map>
+
+namespace specula {
+
+struct ProbeFrameStats {
+    double reflectorPassMs = 0.0; // GPU time of the last render() (timer query)
+    std::size_t reflectorsDrawn = 0;
+    std::size_t probeGpuBytes = 0;          // texture memory of all probes
+    std::vector<std::string> permutations; // the compiled feature sets, e.g. "bisection"
+};
+
+class ReflectionProbeSystem {
+public:
+    ReflectionProbeSystem(); // needs a current GL 4.5 context
+    ~ReflectionProbeSystem();
+
+    // Creates, rebuilds or drops GPU state to match the ReflectionProbe components. Throws
+    // Error naming the manifest when an asset is missing or invalid.
+    void sync(ecs::Registry& registry);
+
+    // Draws every Reflector into `target` (bound, depth already holding the environment
+    // drawn by `scene`), timing the pass. `output` 1/2 write the twin's inputs instead of
+    // colour: probe-local position / reflected direction.
+    void render(ecs::Registry& registry, const CameraView& camera, SceneRenderer& scene,
+                gpu::RenderTarget& target, int output = 0);
+
+    const ProbeFrameStats& stats() const { return stats_; }
+    // The CPU-side asset and lookup configuration of a synced probe (null if none).
+    const DistanceProbeAsset* asset(ecs::Entity probe) const;
+    const DistanceLookupConfig* config(ecs::Entity probe) const;
+
+private:
+    struct ProbeGpu;
+    gpu::Program& program(std::uint32_t features, int output);
+
+    std::unordered_map<ecs::Entity, std::unique_ptr<ProbeGpu>> probes_;
+    std::map<std::uint64_t, gpu::Program> programs_; // key: features | output << 32
+    std::unordered_map<std::string, std::weak_ptr<const DistanceProbeAsset>> assetCache_;
+    std::unique_ptr<gpu::GpuTimer> timer_;
+    ProbeFrameStats stats_;
+};
+
+// Human-readable name of a feature mask, e.g. "layers+bisection+avgdist+fresnel".
+std::string featureName(std::uint32_t features);
+
+} // namespace specula

@@ -1,0 +1,147 @@
+#include "scene_markup.h"
+
+#include "engine/core/error.h"
+#include "engine/scene/components.h"
+
+#include <limits>
+#include <map>
+#include <unordered_map>
+
+namespace specula {
+
+using nlohmann::json;
+
+namespace {
+
+json extrasOf(ecs::Registry& reg, ecs::Entity e, const std::string& file) {
+    const Extras* x = reg.find<Extras>(e);
+    if (!x || x->json.empty()) return json::object();
+    try {
+        json j = json::parse(x->json);
+        return j.is_object() ? j : json::object();
+    } catch (const json::parse_error&) {
+        const Name* n = reg.find<Name>(e);
+        throw Error(file, "nodes[" + (n ? n->value : "?") + "].extras", "is not valid JSON");
+    }
+}
+
+std::string nameOf(ecs::Registry& reg, ecs::Entity e) {
+    const Name* n = reg.find<Name>(e);
+    return n && !n->value.empty() ? n->value : "node" + std::to_string(e.index);
+}
+
+} // namespace
+
+void meshWorldBounds(ecs::Registry& reg, ecs::Entity e, glm::vec3& lo, glm::vec3& hi) {
+    const Mesh* mesh = reg.find<Mesh>(e);
+    const Transform* t = reg.find<Transform>(e);
+    if (!mesh || !t) return;
+    for (const Primitive& p : mesh->primitives)
+        for (const glm::vec3& v : p.mesh->positions) {
+            const glm::vec3 w = glm::vec3(t->world * glm::vec4(v, 1.f));
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+}
+
+SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene,
+                            const std::string& file) {
+    std::unordered_map<std::uint32_t, std::vector<ecs::Entity>> children;
+    for (ecs::Entity e : scene.entities)
+        if (const Transform* t = reg.find<Transform>(e); t && !t->parent.isNull())
+            children[t->parent.index].push_back(e);
+
+    auto subtreeMeshes = [&](ecs::Entity root) {
+        std::vector<ecs::Entity> out, stack{root};
+        while (!stack.empty()) {
+            ecs::Entity e = stack.back();
+            stack.pop_back();
+            if (reg.has<Mesh>(e)) out.push_back(e);
+            for (ecs::Entity c : children[e.index]) stack.push_back(c);
+        }
+        return out;
+    };
+
+    SceneMarkup m;
+    std::unordered_set<ecs::Entity> claimed; // entities already a probe or reflector
+    for (ecs::Entity e : scene.entities) {
+        const json x = extrasOf(reg, e, file);
+        const std::string where = "nodes[" + nameOf(reg, e) + "].extras.";
+        if (x.contains("specula_probe")) {
+            const json& p = x["specula_probe"];
+            if (!p.is_object() && !p.is_boolean())
+                throw Error(file, where + "specula_probe", "expected an object or true");
+            ProbeMarkup probe;
+            probe.node = nameOf(reg, e);
+            probe.position = glm::vec3(reg.get<Transform>(e).world[3]);
+            probe.options = p.is_object() ? p : json::object();
+            m.probes.push_back(std::move(probe));
+            claimed.insert(e);
+        }
+        if (x.contains("specula_reflector")) {
+            const json& r = x["specula_reflector"];
+            ReflectorMarkup refl;
+            refl.node = nameOf(reg, e);
+            if (r.is_boolean()) {
+                if (!r.get<bool>()) continue;
+            } else if (r.is_object()) {
+                if (r.contains("f0")) {
+                    if (!r["f0"].is_number() || r["f0"].get<double>() < 0.0 ||
+                        r["f0"].get<double>() > 1.0)
+                        throw Error(file, where + "specula_reflector.f0",
+                                    "expected a number in [0, 1]");
+                    refl.f0 = r["f0"].get<float>();
+                }
+            } else {
+                throw Error(file, where + "specula_reflector", "expected true or an object");
+            }
+            refl.meshes = subtreeMeshes(e);
+            for (ecs::Entity me : refl.meshes) {
+                m.mirrorEntities.insert(me);
+                claimed.insert(me);
+            }
+            claimed.insert(e);
+            m.reflectors.push_back(std::move(refl));
+        }
+    }
+
+    // Environment objects: root subtrees, looking through mesh-less grouping roots.
+    std::vector<ecs::Entity> objectRoots;
+    for (ecs::Entity r : scene.roots) {
+        if (!reg.has<Mesh>(r) && !children[r.index].empty() && extrasOf(reg, r, file).empty())
+            for (ecs::Entity c : children[r.index]) objectRoots.push_back(c);
+        else
+            objectRoots.push_back(r);
+    }
+    std::map<std::string, std::size_t> groups;
+    for (ecs::Entity r : objectRoots) {
+        if (claimed.count(r)) continue;
+        std::vector<ecs::Entity> meshes;
+        for (ecs::Entity me : subtreeMeshes(r))
+            if (!m.mirrorEntities.count(me)) meshes.push_back(me);
+        if (meshes.empty()) continue;
+        std::string name = nameOf(reg, r);
+        const json x = extrasOf(reg, r, file);
+        if (x.contains("specula_layer")) {
+            if (!x["specula_layer"].is_string())
+                throw Error(file, "nodes[" + name + "].extras.specula_layer", "expected a string");
+            name = x["specula_layer"].get<std::string>();
+        }
+        auto [it, fresh] = groups.emplace(name, m.objects.size());
+        if (fresh) {
+            EnvironmentObject o;
+            o.name = name;
+            o.boundsMin = glm::vec3(std::numeric_limits<float>::max());
+            o.boundsMax = glm::vec3(-std::numeric_limits<float>::max());
+            m.objects.push_back(std::move(o));
+        }
+        EnvironmentObject& o = m.objects[it->second];
+        for (ecs::Entity me : meshes) {
+            o.meshes.push_back(me);
+            meshWorldBounds(reg, me, o.boundsMin, o.boundsMax);
+        }
+    }
+    return m;
+}
+
+} // namespace specula

@@ -1,0 +1,53 @@
+#pragma once
+// Reads the Specula markup of a loaded glTF scene (node `extras`, DESIGN §3):
+//   "specula_probe": {...}           a probe at the node's world position (options inside)
+//   "specula_reflector": true|{f0}   the node's meshes (and its subtree's) are mirrors
+//   "specula_layer": "name"          groups the node's subtree with others of that name
+// Every other mesh is environment. Environment objects are the root nodes' subtrees (a
+// mesh-less root that only groups children is looked through), so each object can be its
+// own probe layer.
+#include "engine/ecs/registry.h"
+#include "engine/scene/gltf_loader.h"
+
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+namespace specula {
+
+struct ProbeMarkup {
+    std::string node;
+    glm::vec3 position{0.f};
+    nlohmann::json options; // the member object of "specula_probe"
+};
+
+struct ReflectorMarkup {
+    std::string node;
+    std::vector<ecs::Entity> meshes; // mesh entities of the node's subtree
+    float f0 = -1.f;                 // < 0: perfect mirror
+};
+
+struct EnvironmentObject {
+    std::string name;
+    std::vector<ecs::Entity> meshes;
+    glm::vec3 boundsMin{0.f}, boundsMax{0.f}; // world space
+};
+
+struct SceneMarkup {
+    std::vector<ProbeMarkup> probes;
+    std::vector<ReflectorMarkup> reflectors;
+    std::vector<EnvironmentObject> objects;
+    std::unordered_set<ecs::Entity> mirrorEntities;
+};
+
+// Throws Error naming `file` and the node when markup has the wrong type.
+SceneMarkup readSceneMarkup(ecs::Registry& registry, const LoadedScene& scene,
+                            const std::string& file);
+
+// World-space bounds of an entity's mesh (through Transform::world).
+void meshWorldBounds(ecs::Registry& registry, ecs::Entity e, glm::vec3& lo, glm::vec3& hi);
+
+} // namespace specula
