@@ -3,6 +3,8 @@
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
+#include "engine/math/cube_face.h"
+#include "engine/scene/shading.h"
 #include "engine/raytrace/embree_scene.h"
 
 #include <tbb/blocked_range.h>
@@ -14,10 +16,6 @@
 #include <limits>
 
 namespace specula {
-namespace glsl {
-#include "engine/math/cube_face.glsl.h"
-#include "engine/scene/shading.glsl.h"
-} // namespace glsl
 
 namespace {
 
@@ -26,7 +24,9 @@ constexpr float kMiss = -1.f; // marks texels with no hit until d_inf is known
 // Solid angle of texel (x, y) of an N x N cube face: the integral of dA cos / r^2 over the
 // texel, in closed form from the corner function atan(st / sqrt(s^2 + t^2 + 1)).
 float texelSolidAngle(int x, int y, int n) {
-    auto corner = [](float s, float t) { return std::atan2(s * t, std::sqrt(s * s + t * t + 1.f)); };
+    auto corner = [](float s, float t) {
+        return std::atan2(s * t, std::sqrt(s * s + t * t + 1.f));
+    };
     const float s0 = 2.f * float(x) / float(n) - 1.f, s1 = 2.f * float(x + 1) / float(n) - 1.f;
     const float t0 = 2.f * float(y) / float(n) - 1.f, t1 = 2.f * float(y + 1) / float(n) - 1.f;
     return corner(s1, t1) - corner(s0, t1) - corner(s1, t0) + corner(s0, t0);
@@ -117,7 +117,8 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
 
     DistanceProbeLayer composite;
     composite.name = "composite";
-    for (const EnvironmentObject& o : markup.objects) composite.objects.push_back(o.name);
+    for (const EnvironmentObject& o : markup.objects)
+        composite.objects.push_back(o.name);
     bakeFaces(environment, opt, true, composite.faces, rowsDone, rowsTotal);
 
     std::vector<DistanceProbeLayer> objects;
@@ -141,14 +142,16 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
         return s;
     };
     const LayerStats all = finish(composite);
-    for (DistanceProbeLayer& L : objects) finish(L);
+    for (DistanceProbeLayer& L : objects)
+        finish(L);
 
     // d_inf must exceed every distance a lookup can meet; D must reach every hit from any
     // reflector point within the reach (DESIGN §4: the hit lies within (x, x + 2D)).
     asset.dInf = std::max(1000.f, 10.f * all.maxD);
     asset.range = 0.5f * (all.maxD + opt.reflectorReach) * 1.05f;
     setInfinity(composite.faces, asset.dInf);
-    for (DistanceProbeLayer& L : objects) setInfinity(L.faces, asset.dInf);
+    for (DistanceProbeLayer& L : objects)
+        setInfinity(L.faces, asset.dInf);
 
     // Near to far by the nearest point of each object: the order occlusion needs.
     std::stable_sort(objects.begin(), objects.end(),
@@ -167,7 +170,8 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
     asset.boxMax = hi - opt.centre;
 
     asset.layers.push_back(std::move(composite));
-    for (DistanceProbeLayer& L : objects) asset.layers.push_back(std::move(L));
+    for (DistanceProbeLayer& L : objects)
+        asset.layers.push_back(std::move(L));
     if (opt.progress) opt.progress(1.0);
     return asset;
 }

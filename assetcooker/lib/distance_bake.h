@@ -20,8 +20,8 @@ struct DistanceBakeOptions {
     // A layer covering at least this solid angle is planned for per-pixel rectification,
     // a smaller one for the average-distance correction (DESIGN §4).
     float rectifySolidAngle = 0.5f;
-    std::function<void(double)> progress;     // fraction done, from the baking thread
-    std::function<bool()> cancelled;          // polled between rows; true aborts with Error
+    std::function<void(double)> progress; // fraction done, from the baking thread
+    std::function<bool()> cancelled;      // polled between rows; true aborts with Error
 };
 
 DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup& markup,

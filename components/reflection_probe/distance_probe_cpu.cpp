@@ -2,12 +2,12 @@
 
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
+#include "engine/math/cube_face.h"
+#include "engine/scene/shading.h"
 
 
 namespace specula {
 namespace glsl {
-#include "engine/math/cube_face.glsl.h"
-#include "engine/scene/shading.glsl.h"
 #include "components/reflection_probe/shaders/distance_lookup_types.glsl.h"
 
 // The fetches a twin reads through: what the GPU reads (bilinear radiance, nearest

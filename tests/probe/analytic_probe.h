@@ -3,16 +3,12 @@
 // whose surface radiance is a smooth function of position, so the exact reflection of any
 // ray is known without a renderer.
 #include "components/reflection_probe/distance_probe_asset.h"
-#include "engine/core/glsl_host.h"
+#include "engine/math/cube_face.h"
 
 #include <cmath>
 
 namespace specula::test {
 
-namespace glsl_cf {
-using namespace specula::glsl;
-#include "engine/math/cube_face.glsl.h"
-} // namespace glsl_cf
 
 struct AnalyticBox {
     glm::vec3 lo{-4.f, -1.2f, -4.f}, hi{4.f, 2.8f, 4.f};
@@ -49,7 +45,7 @@ inline DistanceProbeAsset makeBoxProbe(const AnalyticBox& box, int n) {
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
                 const glm::vec2 uv((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
-                const glm::vec3 d = glm::normalize(glsl_cf::cubeFaceDirection(f, uv));
+                const glm::vec3 d = glm::normalize(glsl::cubeFaceDirection(f, uv));
                 const float t = box.exit(glm::vec3(0.f), d);
                 const glm::vec3 c = AnalyticBox::radianceAt(t * d);
                 float* p = L.faces[std::size_t(f)].at(x, y);

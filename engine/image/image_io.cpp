@@ -1,0 +1,233 @@
+#include "engine/image/image_io.h"
+
+#include "engine/core/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+namespace specula {
+
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+bool is8BitFormat(const std::string& ext) {
+    return ext == "png" || ext == "jpg" || ext == "jpeg";
+}
+
+// Integer pixel data is display-encoded unless the file says otherwise; float data is
+// scene-linear by convention (EXR, HDR).
+bool defaultSrgb(const OIIO::ImageSpec& spec) {
+    if (spec.format.is_floating_point()) return false;
+    std::string cs = spec.get_string_attribute("oiio:ColorSpace");
+    std::transform(cs.begin(), cs.end(), cs.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return cs.find("linear") == std::string::npos;
+}
+
+// Reads the first subimage of an opened input; returns an empty Image on failure and
+// leaves the reason in `error`.
+Image readOpened(OIIO::ImageInput& in, std::optional<bool> srgbToLinear, std::string& error) {
+    const OIIO::ImageSpec& spec = in.spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+        error = "image has no pixels";
+        return {};
+    }
+    const int channels = std::min(spec.nchannels, 4);
+    Image img(spec.width, spec.height, channels);
+    if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img.pixels.data())) {
+        error = in.geterror();
+        if (error.empty()) error = "cannot decode pixels";
+        return {};
+    }
+    if (srgbToLinear.value_or(defaultSrgb(spec))) {
+        const int alpha = spec.alpha_channel;
+        for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+            if (int(i % std::size_t(channels)) == alpha) continue;
+            img.pixels[i] = srgbToLinearValue(img.pixels[i]);
+        }
+    }
+    return img;
+}
+
+// The channel layout a format can store: HDR is RGB only, JPEG grey or RGB.
+int storedChannels(const std::string& ext, int channels) {
+    if (ext == "hdr" || ext == "rgbe") return 3;
+    if (ext == "jpg" || ext == "jpeg") return channels == 1 ? 1 : 3;
+    return channels;
+}
+
+// Repacks to `outChannels`: grey is replicated into RGB, alpha dropped where not stored.
+std::vector<float> repack(const Image& img, int outChannels) {
+    std::vector<float> out(std::size_t(img.width) * img.height * outChannels);
+    for (int y = 0; y < img.height; ++y) {
+        for (int x = 0; x < img.width; ++x) {
+            const float* src = img.at(x, y);
+            float* dst = &out[(std::size_t(y) * img.width + x) * outChannels];
+            for (int c = 0; c < outChannels; ++c) {
+                if (img.channels >= 3 || outChannels == img.channels)
+                    dst[c] = c < img.channels ? src[c] : 1.f;
+                else // grey (+alpha) into RGB
+                    dst[c] = src[0];
+            }
+        }
+    }
+    return out;
+}
+
+// Straight (unassociated) alpha in memory, as glTF textures are; without this OIIO would
+// premultiply PNG colour on read and divide on write.
+OIIO::ImageSpec readConfig() {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    return config;
+}
+
+} // namespace
+
+float srgbToLinearValue(float s) {
+    if (!(s > 0.f)) return 0.f;
+    return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f);
+}
+
+float linearToSrgbValue(float l) {
+    if (!(l > 0.f)) return 0.f;
+    return l <= 0.0031308f ? l * 12.92f : 1.055f * std::pow(l, 1.f / 2.4f) - 0.055f;
+}
+
+Image readImage(const std::string& path, std::optional<bool> srgbToLinear) {
+    const OIIO::ImageSpec config = readConfig();
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in) {
+        std::string why = OIIO::geterror();
+        if (!std::filesystem::exists(path)) why = "file does not exist";
+        throw Error(path, "", "cannot read image: " + why);
+    }
+    std::string error;
+    Image img = readOpened(*in, srgbToLinear, error);
+    in->close();
+    if (img.empty()) throw Error(path, "", "cannot read image: " + error);
+    return img;
+}
+
+void writeImage(const std::string& path, const Image& image, const ImageWriteOptions& options) {
+    if (image.empty() || image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
+        image.pixels.size() != std::size_t(image.width) * image.height * image.channels)
+        throw Error(path, "", "cannot write an empty or inconsistent image");
+
+    const std::string ext = lowerExtension(path);
+    // The format comes from the final name; the temporary name's extension means nothing.
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) throw Error(path, "", "no image writer for this extension: " + OIIO::geterror());
+
+    const int channels = storedChannels(ext, image.channels);
+    std::vector<float> data = repack(image, channels);
+    const bool eightBit = is8BitFormat(ext);
+    OIIO::TypeDesc fileType = OIIO::TypeDesc::FLOAT;
+    if (eightBit)
+        fileType = OIIO::TypeDesc::UINT8;
+    else if (ext == "exr" && options.halfFloat)
+        fileType = OIIO::TypeDesc::HALF;
+
+    OIIO::ImageSpec spec(image.width, image.height, channels, fileType);
+    if (channels == 2 || channels == 4) {
+        spec.alpha_channel = channels - 1;
+        spec.attribute("oiio:UnassociatedAlpha", 1);
+    }
+    std::vector<std::uint8_t> bytes;
+    const void* pixels = data.data();
+    OIIO::TypeDesc memType = OIIO::TypeDesc::FLOAT;
+    if (eightBit) {
+        spec.attribute("oiio:ColorSpace", "sRGB");
+        if (ext != "png") spec.attribute("CompressionQuality", options.jpegQuality);
+        bytes.resize(data.size());
+        for (std::size_t i = 0; i < data.size(); ++i) {
+            const bool alpha = int(i % std::size_t(channels)) == spec.alpha_channel;
+            const float v = alpha ? data[i] : linearToSrgbValue(data[i]);
+            const float c = std::isnan(v) ? 0.f : std::clamp(v, 0.f, 1.f);
+            bytes[i] = std::uint8_t(std::lround(c * 255.f));
+        }
+        pixels = bytes.data();
+        memType = OIIO::TypeDesc::UINT8;
+    }
+
+    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+    auto fail = [&](const std::string& why) {
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+        throw Error(path, "", "cannot write image: " + why);
+    };
+    if (!out->open(tmp, spec)) fail(out->geterror());
+    if (!out->write_image(memType, pixels)) {
+        const std::string why = out->geterror();
+        out->close();
+        fail(why);
+    }
+    if (!out->close()) fail(out->geterror());
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) fail(ec.message());
+}
+
+std::optional<Image> decodeImageFromMemory(const void* data, std::size_t size,
+                                           const std::string& formatHint,
+                                           std::optional<bool> srgbToLinear) {
+    if (!data || size == 0) return std::nullopt;
+    const auto* b = static_cast<const unsigned char*>(data);
+    auto startsWith = [&](const char* sig, std::size_t n) {
+        return size >= n && std::memcmp(b, sig, n) == 0;
+    };
+    // OIIO picks its reader by file extension, so name the bytes by their signature first.
+    std::string ext;
+    if (startsWith("\x89PNG", 4))
+        ext = "png";
+    else if (startsWith("\xFF\xD8\xFF", 3))
+        ext = "jpg";
+    else if (startsWith("\x76\x2F\x31\x01", 4))
+        ext = "exr";
+    else if (startsWith("#?RADIANCE", 10) || startsWith("#?RGBE", 6))
+        ext = "hdr";
+    else {
+        ext = formatHint;
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return char(std::tolower(c)); });
+        if (const auto slash = ext.find('/'); slash != std::string::npos) ext.erase(0, slash + 1);
+        if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
+        if (ext == "jpeg") ext = "jpg";
+        if (ext.empty()) return std::nullopt;
+    }
+    OIIO::Filesystem::IOMemReader reader(data, size);
+    // OIIO 2.4's readers take the proxy from the open() configuration, not from create().
+    OIIO::ImageSpec config = readConfig();
+    void* proxy = &reader;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    const std::string name = "memory." + ext;
+    auto in = OIIO::ImageInput::create(name, false, &config, &reader);
+    OIIO::ImageSpec opened;
+    if (!in || !in->open(name, opened, config)) {
+        if (in) (void)in->geterror();
+        (void)OIIO::geterror(); // consume, so it does not surface in a later unrelated call
+        return std::nullopt;
+    }
+    std::string error;
+    Image img = readOpened(*in, srgbToLinear, error);
+    in->close();
+    if (img.empty()) return std::nullopt;
+    return img;
+}
+
+} // namespace specula

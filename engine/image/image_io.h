@@ -1,0 +1,39 @@
+#pragma once
+// Image files through OpenImageIO. Images in memory are always linear float; the 8-bit
+// formats (PNG, JPG) are sRGB-encoded on disk, so reading decodes and writing encodes.
+#include "engine/image/image.h"
+
+#include <cstddef>
+#include <optional>
+#include <string>
+
+namespace specula {
+
+// Reads any format OIIO knows. srgbToLinear: decode the colour channels (never alpha) from
+// sRGB; when not given, true for integer pixel formats (PNG, JPG, ...) and false for float
+// ones (EXR, HDR). Throws Error naming the file when it cannot be read.
+Image readImage(const std::string& path, std::optional<bool> srgbToLinear = std::nullopt);
+
+struct ImageWriteOptions {
+    bool halfFloat = false; // EXR only: store half instead of float
+    int jpegQuality = 95;
+};
+
+// Writes by extension: .exr (float or half), .hdr (RGB), .png (8-bit, alpha kept), .jpg
+// (8-bit RGB). 8-bit formats get the colour channels clamped and sRGB-encoded. The file
+// appears atomically: written next to the target under a temporary name, then renamed.
+// Throws Error naming the file on failure.
+void writeImage(const std::string& path, const Image& image, const ImageWriteOptions& options = {});
+
+// Decodes an encoded image (PNG, JPG, EXR, HDR, ...) held in memory, e.g. one embedded in a
+// glTF buffer. formatHint: a file extension or MIME type ("png", "image/jpeg") used when
+// the bytes' signature is not recognised. Returns nullopt when it cannot be decoded.
+std::optional<Image> decodeImageFromMemory(const void* data, std::size_t size,
+                                           const std::string& formatHint = "",
+                                           std::optional<bool> srgbToLinear = std::nullopt);
+
+// The sRGB transfer function (IEC 61966-2-1), exposed so tests and tools agree with I/O.
+float srgbToLinearValue(float encoded);
+float linearToSrgbValue(float linear);
+
+} // namespace specula

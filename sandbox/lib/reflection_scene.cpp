@@ -1,0 +1,128 @@
+#include "reflection_scene.h"
+
+#include "engine/core/error.h"
+#include "engine/image/image_io.h"
+#include "engine/scene/components.h"
+#include "engine/scene/transform_system.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace specula {
+
+std::string defaultScenePath() { return std::string(SPECULA_SOURCE_ROOT) + "/assets/room/room.gltf"; }
+std::string defaultSkyPath() { return std::string(SPECULA_SOURCE_ROOT) + "/assets/scenes/env/field.jpg"; }
+
+ReflectionScene::ReflectionScene(const std::string& gltfPath, const std::string& skyPath)
+    : path_(gltfPath) {
+    loaded_ = loadGltf(gltfPath, registry_);
+    updateWorldTransforms(registry_);
+    markup_ = readSceneMarkup(registry_, loaded_, gltfPath);
+    if (!skyPath.empty()) sky_ = readImage(skyPath);
+    // Reflector roots: the nodes carrying the markup, found by name.
+    for (const ReflectorMarkup& r : markup_.reflectors)
+        for (ecs::Entity e : loaded_.entities)
+            if (const Name* n = registry_.find<Name>(e); n && n->value == r.node)
+                reflectorRoots_.emplace_back(e, registry_.get<Transform>(e).translation);
+}
+
+glm::vec3 ReflectionScene::probeCentre() const {
+    if (!markup_.probes.empty()) return markup_.probes.front().position;
+    if (!markup_.reflectors.empty()) {
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        auto& reg = const_cast<ecs::Registry&>(registry_);
+        for (ecs::Entity e : markup_.mirrorEntities) meshWorldBounds(reg, e, lo, hi);
+        return 0.5f * (lo + hi);
+    }
+    return 0.5f * (loaded_.boundsMin + loaded_.boundsMax);
+}
+
+float ReflectionScene::cellSize() const {
+    if (!markup_.probes.empty()) {
+        const auto& o = markup_.probes.front().options;
+        if (o.contains("cell_size") && o["cell_size"].is_number() && o["cell_size"].get<double>() > 0)
+            return o["cell_size"].get<float>();
+    }
+    return 1.5f;
+}
+
+float ReflectionScene::reflectorReach() const {
+    const glm::vec3 c = probeCentre();
+    float reach = 0.5f * std::sqrt(3.f) * cellSize();
+    auto& reg = const_cast<ecs::Registry&>(registry_);
+    for (ecs::Entity e : markup_.mirrorEntities) {
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        meshWorldBounds(reg, e, lo, hi);
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 corner((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+            reach = std::max(reach, glm::length(corner - c));
+        }
+    }
+    return reach;
+}
+
+CameraView ReflectionScene::camera(int width, int height) const {
+    auto& reg = const_cast<ecs::Registry&>(registry_);
+    for (ecs::Entity e : loaded_.entities) {
+        const Camera* cam = reg.find<Camera>(e);
+        if (!cam) continue;
+        const glm::mat4 world = reg.get<Transform>(e).world;
+        CameraView v;
+        // The camera looks down its local -Z; the view matrix is the inverse of its world.
+        v.view = glm::inverse(world);
+        v.proj = glm::perspective(cam->yfov, float(width) / float(height), cam->znear, cam->zfar);
+        v.width = width;
+        v.height = height;
+        return v;
+    }
+    return orbitCamera(width, height, 0.f, 3.5f, 0.6f);
+}
+
+CameraView ReflectionScene::orbitCamera(int width, int height, float angle, float distance,
+                                        float heightAbove) const {
+    const glm::vec3 c = probeCentre();
+    const glm::vec3 eye = c + glm::vec3(distance * std::sin(angle), heightAbove, distance * std::cos(angle));
+    return CameraView::lookAt(eye, c, glm::vec3(0, 1, 0), glm::radians(50.f), width, height);
+}
+
+ecs::Entity ReflectionScene::attachProbe(const ReflectionProbe& probe) {
+    if (!probe_.isNull()) registry_.destroy(probe_);
+    probe_ = registry_.create();
+    registry_.emplace<Name>(probe_, Name{"reflection_probe"});
+    registry_.emplace<ReflectionProbe>(probe_, probe);
+    for (const ReflectorMarkup& r : markup_.reflectors)
+        for (ecs::Entity e : r.meshes) registry_.emplace<Reflector>(e, Reflector{probe_, r.f0});
+    return probe_;
+}
+
+void ReflectionScene::setProbe(const ReflectionProbe& probe) {
+    if (probe_.isNull()) {
+        attachProbe(probe);
+        return;
+    }
+    registry_.get<ReflectionProbe>(probe_) = probe;
+}
+
+void ReflectionScene::setReflectorOffset(glm::vec3 offset) {
+    offset_ = offset;
+    for (auto& [e, authored] : reflectorRoots_) {
+        Transform& t = registry_.get<Transform>(e);
+        // The authored translation is in the parent's space; offsets are world space, which is
+        // the same for root nodes (the reflectors of our scenes).
+        t.translation = authored + offset;
+    }
+    updateWorldTransforms(registry_);
+}
+
+GroundTruthImage ReflectionScene::groundTruth(const CameraView& camera, bool environmentOnly) {
+    TraceOptions o;
+    o.environmentOnly = environmentOnly;
+    o.mirrors = markup_.mirrorEntities;
+    o.sky = sky_.empty() ? nullptr : &sky_;
+    // Probes reflect at most once; the full ground truth follows a few bounces.
+    o.maxBounces = environmentOnly ? 1 : 4;
+    GroundTruthTracer tracer(registry_, std::move(o));
+    return tracer.render(camera);
+}
+
+} // namespace specula

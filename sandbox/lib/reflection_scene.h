@@ -1,0 +1,72 @@
+#pragma once
+// A glTF scene set up for reflection work: loaded into a registry, its Specula markup read,
+// the sky panorama loaded, the camera found, and helpers to attach a probe, move the
+// reflectors and trace the ground truth. Shared by specula-sandbox and the tests.
+#include "components/reflection_probe/reflection_probe.h"
+#include "components/reflection_probe/scene_markup.h"
+#include "engine/ecs/registry.h"
+#include "engine/image/image.h"
+#include "engine/math/camera.h"
+#include "engine/raytrace/ground_truth.h"
+#include "engine/scene/gltf_loader.h"
+
+#include <string>
+
+namespace specula {
+
+std::string defaultScenePath(); // assets/room/room.gltf in the source tree
+std::string defaultSkyPath();   // assets/scenes/env/field.jpg
+
+class ReflectionScene {
+public:
+    // Throws Error naming the file on bad input. An empty skyPath means a black sky.
+    ReflectionScene(const std::string& gltfPath, const std::string& skyPath);
+
+    ecs::Registry& registry() { return registry_; }
+    const LoadedScene& loaded() const { return loaded_; }
+    const SceneMarkup& markup() const { return markup_; }
+    const Image& sky() const { return sky_; }
+    const std::string& path() const { return path_; }
+
+    // The probe position: the first `specula_probe` node, else the centre of the
+    // reflectors' bounds, else the scene's centre.
+    glm::vec3 probeCentre() const;
+    // Side of the cubic cell the reflectors move in (`cell_size` of the probe markup, else
+    // 1.5 m).
+    float cellSize() const;
+    // Largest distance from the probe centre to any reflector vertex (with the cell).
+    float reflectorReach() const;
+
+    // The scene's first camera node, or a view of the reflectors from 3.5 m.
+    CameraView camera(int width, int height) const;
+    CameraView orbitCamera(int width, int height, float angleRadians, float distance,
+                           float height_) const;
+
+    // Creates (or replaces) the probe entity and gives every reflector mesh a Reflector
+    // component pointing at it.
+    ecs::Entity attachProbe(const ReflectionProbe& probe);
+    ecs::Entity probeEntity() const { return probe_; }
+    void setProbe(const ReflectionProbe& probe);
+
+    // Moves every reflector node to its authored position + offset (world space).
+    void setReflectorOffset(glm::vec3 offset);
+    glm::vec3 reflectorOffset() const { return offset_; }
+
+    bool isMirror(ecs::Entity e) const { return markup_.mirrorEntities.count(e) > 0; }
+
+    // Ray-traced ground truth of the current state. environmentOnly: reflected rays see
+    // only the environment (what a probe represents).
+    GroundTruthImage groundTruth(const CameraView& camera, bool environmentOnly);
+
+private:
+    std::string path_;
+    ecs::Registry registry_;
+    LoadedScene loaded_;
+    SceneMarkup markup_;
+    Image sky_;
+    ecs::Entity probe_ = ecs::kNullEntity;
+    glm::vec3 offset_{0.f};
+    std::vector<std::pair<ecs::Entity, glm::vec3>> reflectorRoots_; // entity, authored position
+};
+
+} // namespace specula

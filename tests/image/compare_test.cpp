@@ -1,0 +1,133 @@
+#include "engine/core/error.h"
+#include "engine/image/compare.h"
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace specula {
+namespace {
+
+Image randomImage(int w, int h, int channels, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> dist(0.f, 1.f);
+    Image img(w, h, channels);
+    for (float& v : img.pixels)
+        v = dist(rng);
+    return img;
+}
+
+struct Direct {
+    double rmse = 0, mean = 0, max = 0, fractionOver = 0;
+    std::size_t pixels = 0;
+};
+
+// The statistics written out longhand, one pixel at a time.
+Direct directStats(const Image& a, const Image& b, const Image* mask, float threshold) {
+    Direct d;
+    double sq = 0, abs = 0;
+    std::size_t over = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            if (mask && !(mask->at(x, y)[0] > 0.5f)) continue;
+            ++d.pixels;
+            bool isOver = false;
+            for (int c = 0; c < 3; ++c) {
+                const double e = std::fabs(double(a.at(x, y)[c]) - double(b.at(x, y)[c]));
+                sq += e * e;
+                abs += e;
+                d.max = std::max(d.max, e);
+                isOver = isOver || e > threshold;
+            }
+            over += isOver ? 1 : 0;
+        }
+    d.rmse = std::sqrt(sq / double(d.pixels * 3));
+    d.mean = abs / double(d.pixels * 3);
+    d.fractionOver = double(over) / double(d.pixels);
+    return d;
+}
+
+TEST(CompareImages, IdenticalImagesGiveInfinitePsnr) {
+    const Image a = randomImage(16, 9, 4, 1);
+    const ImageStats s = compareImages(a, a);
+    EXPECT_EQ(s.rmse, 0.0);
+    EXPECT_EQ(s.maxError, 0.0);
+    EXPECT_EQ(s.fractionOver, 0.0);
+    EXPECT_EQ(s.pixels, 16u * 9u);
+    EXPECT_TRUE(std::isinf(s.psnr) && s.psnr > 0);
+}
+
+TEST(CompareImages, UnmaskedMatchesHandComputation) {
+    const Image a = randomImage(17, 11, 3, 2);
+    const Image b = randomImage(17, 11, 3, 3);
+    const ImageStats s = compareImages(a, b, nullptr, 0.3f);
+    const Direct d = directStats(a, b, nullptr, 0.3f);
+    EXPECT_EQ(s.pixels, d.pixels);
+    EXPECT_NEAR(s.rmse, d.rmse, 1e-6);
+    EXPECT_NEAR(s.meanError, d.mean, 1e-6);
+    EXPECT_NEAR(s.maxError, d.max, 1e-6);
+    EXPECT_NEAR(s.fractionOver, d.fractionOver, 1e-12);
+    EXPECT_NEAR(s.psnr, 20.0 * std::log10(1.0 / d.rmse), 1e-4);
+}
+
+TEST(CompareImages, MaskedMatchesHandComputation) {
+    const Image a = randomImage(23, 13, 4, 4);
+    Image b = randomImage(23, 13, 4, 5);
+    Image mask = randomImage(23, 13, 1, 6); // about half the pixels over 0.5
+    // Huge differences and a NaN outside the mask must not leak in.
+    for (int y = 0; y < 13; ++y)
+        for (int x = 0; x < 23; ++x)
+            if (!(mask.at(x, y)[0] > 0.5f)) b.at(x, y)[0] = 100.f;
+    for (int x = 0; x < 23; ++x)
+        if (!(mask.at(x, 0)[0] > 0.5f)) {
+            b.at(x, 0)[1] = std::numeric_limits<float>::quiet_NaN();
+            break;
+        }
+    // Alpha differences are ignored.
+    b.at(0, 0)[3] = 50.f;
+    const ImageStats s = compareImages(a, b, &mask, 0.4f);
+    const Direct d = directStats(a, b, &mask, 0.4f);
+    ASSERT_GT(d.pixels, 0u);
+    ASSERT_LT(d.pixels, 23u * 13u);
+    EXPECT_EQ(s.pixels, d.pixels);
+    EXPECT_NEAR(s.rmse, d.rmse, 1e-6);
+    EXPECT_NEAR(s.meanError, d.mean, 1e-6);
+    EXPECT_NEAR(s.maxError, d.max, 1e-6);
+    EXPECT_NEAR(s.fractionOver, d.fractionOver, 1e-12);
+    EXPECT_NEAR(s.psnr, 20.0 * std::log10(1.0 / d.rmse), 1e-4);
+}
+
+TEST(CompareImages, EmptyMaskComparesNothing) {
+    const Image a = randomImage(5, 5, 3, 7);
+    const Image b = randomImage(5, 5, 3, 8);
+    const Image mask(5, 5, 1);
+    const ImageStats s = compareImages(a, b, &mask);
+    EXPECT_EQ(s.pixels, 0u);
+    EXPECT_EQ(s.rmse, 0.0);
+}
+
+TEST(CompareImages, SizeMismatchThrows) {
+    EXPECT_THROW(compareImages(Image(4, 4, 3), Image(4, 5, 3)), Error);
+    const Image mask(3, 3, 1);
+    EXPECT_THROW(compareImages(Image(4, 4, 3), Image(4, 4, 3), &mask), Error);
+}
+
+TEST(ErrorHeatmap, RampAndMask) {
+    Image a(3, 1, 3), b(3, 1, 3);
+    b.at(1, 0)[1] = 0.1f; // full scale
+    Image mask(3, 1, 1);
+    mask.at(0, 0)[0] = mask.at(1, 0)[0] = 1.f;
+    const Image h = errorHeatmap(a, b, &mask, 0.1f);
+    ASSERT_EQ(h.channels, 3);
+    // No error: the dark blue end; full error: the red end; masked out: neutral grey.
+    EXPECT_GT(h.at(0, 0)[2], h.at(0, 0)[0]);
+    EXPECT_GT(h.at(1, 0)[0], h.at(1, 0)[1]);
+    EXPECT_GT(h.at(1, 0)[0], h.at(1, 0)[2]);
+    EXPECT_FLOAT_EQ(h.at(2, 0)[0], h.at(2, 0)[1]);
+    EXPECT_FLOAT_EQ(h.at(2, 0)[1], h.at(2, 0)[2]);
+}
+
+} // namespace
+} // namespace specula

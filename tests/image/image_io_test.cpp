@@ -1,0 +1,158 @@
+#include "engine/core/error.h"
+#include "engine/image/image_io.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+namespace specula {
+namespace {
+
+class ImageIoTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = std::filesystem::temp_directory_path() /
+               ("specula_image_io_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    std::filesystem::path dir_;
+};
+
+Image gradient(int w, int h, int channels) {
+    Image img(w, h, channels);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < channels; ++c)
+                img.at(x, y)[c] = float(x + 3 * y + 7 * c) / float(w + 3 * h + 7 * channels);
+    return img;
+}
+
+TEST_F(ImageIoTest, ExrRoundTripIsExact) {
+    Image img = gradient(13, 7, 4);
+    img.at(2, 3)[0] = 1234.5f; // HDR values survive
+    img.at(4, 1)[2] = -0.25f;
+    writeImage(path("a.exr"), img);
+    const Image back = readImage(path("a.exr"));
+    ASSERT_EQ(back.width, img.width);
+    ASSERT_EQ(back.height, img.height);
+    ASSERT_EQ(back.channels, img.channels);
+    EXPECT_EQ(back.pixels, img.pixels);
+}
+
+TEST_F(ImageIoTest, ExrHalfIsCloseAndRowZeroStaysOnTop) {
+    Image img(4, 3, 3);
+    img.at(0, 0)[0] = 1.f; // top-left red
+    writeImage(path("h.exr"), img, ImageWriteOptions{.halfFloat = true});
+    const Image back = readImage(path("h.exr"));
+    EXPECT_EQ(back.at(0, 0)[0], 1.f);
+    EXPECT_EQ(back.at(0, 2)[0], 0.f);
+}
+
+TEST_F(ImageIoTest, PngSrgbRoundTripWithinOneStep) {
+    const Image img = gradient(32, 8, 4);
+    writeImage(path("a.png"), img);
+    const Image back = readImage(path("a.png"));
+    ASSERT_EQ(back.channels, 4);
+    ASSERT_EQ(back.pixels.size(), img.pixels.size());
+    for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+        const bool alpha = i % 4 == 3;
+        // One 8-bit step of the stored (encoded) value; half a step from rounding.
+        const float a = alpha ? img.pixels[i] : linearToSrgbValue(img.pixels[i]);
+        const float b = alpha ? back.pixels[i] : linearToSrgbValue(back.pixels[i]);
+        EXPECT_NEAR(a, b, 0.5f / 255.f + 1e-5f) << "value " << i;
+    }
+}
+
+TEST_F(ImageIoTest, PngIsSrgbEncodedOnDisk) {
+    Image img(1, 1, 3);
+    img.at(0, 0)[0] = 0.5f; // linear mid grey encodes to 188/255
+    writeImage(path("g.png"), img);
+    const Image raw = readImage(path("g.png"), false);
+    EXPECT_NEAR(raw.at(0, 0)[0], 188.f / 255.f, 1e-6f);
+    EXPECT_NEAR(readImage(path("g.png")).at(0, 0)[0], 0.5f, 0.003f);
+}
+
+TEST_F(ImageIoTest, PngClampsOutOfRangeValues) {
+    Image img(2, 1, 3);
+    img.at(0, 0)[0] = 7.f;
+    img.at(1, 0)[0] = -1.f;
+    writeImage(path("c.png"), img);
+    const Image back = readImage(path("c.png"));
+    EXPECT_FLOAT_EQ(back.at(0, 0)[0], 1.f);
+    EXPECT_FLOAT_EQ(back.at(1, 0)[0], 0.f);
+}
+
+TEST_F(ImageIoTest, HdrAndJpgWriteRgb) {
+    const Image img = gradient(8, 8, 4);
+    writeImage(path("a.hdr"), img);
+    const Image hdr = readImage(path("a.hdr"));
+    ASSERT_EQ(hdr.channels, 3);
+    EXPECT_NEAR(hdr.at(5, 6)[1], img.at(5, 6)[1], 0.01f);
+    writeImage(path("a.jpg"), img);
+    const Image jpg = readImage(path("a.jpg"));
+    ASSERT_EQ(jpg.channels, 3);
+    EXPECT_NEAR(jpg.at(5, 6)[1], img.at(5, 6)[1], 0.05f);
+}
+
+TEST_F(ImageIoTest, ReadingAMissingFileNamesIt) {
+    const std::string missing = path("does_not_exist.exr");
+    try {
+        (void)readImage(missing);
+        FAIL() << "expected an Error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.file(), missing);
+        EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(ImageIoTest, WriteIsAtomicAndLeavesNoTemporary) {
+    writeImage(path("x.png"), gradient(4, 4, 3));
+    int files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
+        ++files;
+        EXPECT_EQ(entry.path().filename(), "x.png");
+    }
+    EXPECT_EQ(files, 1);
+}
+
+TEST_F(ImageIoTest, FailedWriteThrowsAndLeavesNothing) {
+    EXPECT_THROW(writeImage(path("no_such_dir/x.exr"), gradient(4, 4, 3)), Error);
+    EXPECT_THROW(writeImage(path("x.unknownformat"), gradient(4, 4, 3)), Error);
+    EXPECT_THROW(writeImage(path("empty.exr"), Image()), Error);
+    EXPECT_TRUE(std::filesystem::is_empty(dir_));
+}
+
+TEST_F(ImageIoTest, DecodesFromMemory) {
+    const Image img = gradient(6, 5, 3);
+    writeImage(path("m.png"), img);
+    std::ifstream f(path("m.png"), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const auto decoded = decodeImageFromMemory(bytes.data(), bytes.size(), "image/png");
+    ASSERT_TRUE(decoded.has_value());
+    const Image fromFile = readImage(path("m.png"));
+    EXPECT_EQ(decoded->pixels, fromFile.pixels);
+
+    const std::string junk = "definitely not an image";
+    EXPECT_FALSE(decodeImageFromMemory(junk.data(), junk.size(), "image/png").has_value());
+    EXPECT_FALSE(decodeImageFromMemory(nullptr, 0).has_value());
+}
+
+TEST(SrgbTransfer, InvertsAndHitsKnownValues) {
+    EXPECT_FLOAT_EQ(srgbToLinearValue(0.f), 0.f);
+    EXPECT_FLOAT_EQ(srgbToLinearValue(1.f), 1.f);
+    EXPECT_NEAR(linearToSrgbValue(0.18f), 0.4613f, 1e-4f);
+    for (float v = 0.f; v <= 1.f; v += 0.01f)
+        EXPECT_NEAR(srgbToLinearValue(linearToSrgbValue(v)), v, 1e-5f);
+}
+
+} // namespace
+} // namespace specula
