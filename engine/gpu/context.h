@@ -30,7 +30,7 @@ public:
     void makeCurrent();
     bool isHeadless() const { return window_ == nullptr; }
     GLFWwindow* window() const { return window_; } // null for a headless context
-    void swapBuffers();                             // no-op for a headless context
+    void swapBuffers();                            // no-op for a headless context
 
     const std::string& renderer() const { return renderer_; } // GL_RENDERER
     const std::string& version() const { return version_; }   // GL_VERSION

@@ -77,7 +77,7 @@ TEST(View, SkipsEntitiesMissingAComponent) {
         seen.insert(e.index);
     });
     EXPECT_EQ(seen, both);
-    EXPECT_EQ(reg.view<Position, Tag>().count(), 0u) << "a never-used component type";
+    EXPECT_EQ((reg.view<Position, Tag>().count()), 0u) << "a never-used component type";
 }
 
 TEST(View, RemovalDuringIterationIsSafe) {

@@ -1,0 +1,4 @@
+uniform vec4 uColor;
+layout(location = 0) out vec4 fragColor;
+
+void main() { fragColor = uColor; }

@@ -1,0 +1,79 @@
+#pragma once
+// The default room with its distance probe baked once per test binary (face resolution 128
+// keeps the bake under a few seconds), a headless GL context, and a frame renderer.
+#include "assetcooker/lib/distance_bake.h"
+#include "engine/gpu/context.h"
+#include "sandbox/lib/frame_renderer.h"
+#include "sandbox/lib/reflection_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+
+namespace specula::test {
+
+class RoomProbe : public ::testing::Test {
+protected:
+    static constexpr int kWidth = 200, kHeight = 150;
+
+    static void SetUpTestSuite() {
+        context_ = gpu::GlContext::createHeadless().release();
+        scene_ = new ReflectionScene(defaultScenePath(), defaultSkyPath());
+        dir_ = (std::filesystem::temp_directory_path() /
+                ("specula-probe-test-" + std::to_string(::getpid())))
+                   .string();
+        DistanceBakeOptions o;
+        o.centre = scene_->probeCentre();
+        o.faceRes = 128;
+        o.sky = &scene_->sky();
+        o.reflectorReach = scene_->reflectorReach();
+        writeDistanceProbe(bakeDistanceProbe(scene_->registry(), scene_->markup(), o), dir_,
+                           scene_->path());
+        renderer_ = new FrameRenderer(*scene_, kWidth, kHeight);
+    }
+    static void TearDownTestSuite() {
+        delete renderer_;
+        delete scene_;
+        delete context_;
+        std::filesystem::remove_all(dir_);
+    }
+
+    static ReflectionProbe probeFor(LookupMethod m, float de = 0.01f) {
+        ReflectionProbe p;
+        p.asset = dir_ + "/manifest.json";
+        p.method = m;
+        p.errorTolerance = de;
+        return p;
+    }
+
+    static gpu::GlContext* context_;
+    static ReflectionScene* scene_;
+    static FrameRenderer* renderer_;
+    static std::string dir_;
+};
+
+inline gpu::GlContext* RoomProbe::context_ = nullptr;
+inline ReflectionScene* RoomProbe::scene_ = nullptr;
+inline FrameRenderer* RoomProbe::renderer_ = nullptr;
+inline std::string RoomProbe::dir_;
+
+// Mirror pixels whose 3x3 neighbourhood is all mirror: rasteriser and tracer may disagree on
+// which pixels the silhouette covers, never on the interior.
+inline Image erodedMask(const Image& mask) {
+    Image out(mask.width, mask.height, 1);
+    for (int y = 0; y < mask.height; ++y)
+        for (int x = 0; x < mask.width; ++x) {
+            bool all = true;
+            for (int dy = -1; dy <= 1 && all; ++dy)
+                for (int dx = -1; dx <= 1 && all; ++dx) {
+                    const int xx = x + dx, yy = y + dy;
+                    all = xx >= 0 && yy >= 0 && xx < mask.width && yy < mask.height &&
+                          mask.at(xx, yy)[0] > 0.5f;
+                }
+            out.at(x, y)[0] = all ? 1.f : 0.f;
+        }
+    return out;
+}
+
+} // namespace specula::test
