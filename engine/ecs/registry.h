@@ -103,7 +103,11 @@ public:
         return *c;
     }
 
-    template <typename... Ts> View<Ts...> view() { return View<Ts...>({findPool<Ts>()...}); }
+    // The tuple is spelled out: a braced list is ambiguous with View's copy constructor when
+    // there is a single component type.
+    template <typename... Ts> View<Ts...> view() {
+        return View<Ts...>(std::tuple<SparseSet<Ts>*...>(findPool<Ts>()...));
+    }
 
     std::size_t alive() const { return generations_.size() - free_.size(); }
 
