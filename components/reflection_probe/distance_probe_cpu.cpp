@@ -31,7 +31,9 @@ struct TwinFetches {
         const Image& img = face(layer, dir, uv);
         return vec3(sampleBilinear(img, uv, Wrap::Clamp));
     }
+    mutable bool skyFetched = false;
     vec3 fetchSky(vec3 dir) const {
+        skyFetched = true;
         if (asset->sky.empty()) return vec3(0.f);
         return vec3(sampleBilinear(asset->sky, equirectUv(dir), Wrap::Repeat, Wrap::Clamp));
     }
@@ -93,9 +95,17 @@ CpuDistanceProbe::CpuDistanceProbe(const DistanceProbeAsset& asset, DistanceLook
 
 CpuDistanceProbe::~CpuDistanceProbe() = default;
 
-glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches) const {
-    if (config_.features & kFeatureLayers) return twin_->layered.probeRadiance(x, lhat, twin_->params, fetches);
-    return twin_->single.probeRadiance(x, lhat, twin_->params, fetches);
+glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches,
+                                     bool* sawSky) const {
+    glsl::TwinFetches& f = (config_.features & kFeatureLayers)
+                               ? static_cast<glsl::TwinFetches&>(twin_->layered)
+                               : static_cast<glsl::TwinFetches&>(twin_->single);
+    f.skyFetched = false;
+    const glm::vec3 c = (config_.features & kFeatureLayers)
+                            ? twin_->layered.probeRadiance(x, lhat, twin_->params, fetches)
+                            : twin_->single.probeRadiance(x, lhat, twin_->params, fetches);
+    if (sawSky) *sawSky = f.skyFetched;
+    return c;
 }
 
 } // namespace specula

@@ -15,8 +15,9 @@ public:
     ~CpuDistanceProbe();
 
     // x: probe-local reflector point, lhat: unit reflected direction. Adds the texture
-    // fetches spent to `fetches`.
-    glm::vec3 radiance(glm::vec3 x, glm::vec3 lhat, int& fetches) const;
+    // fetches spent to `fetches`. `sawSky`: set when no layer was hit and the distant sky
+    // answered.
+    glm::vec3 radiance(glm::vec3 x, glm::vec3 lhat, int& fetches, bool* sawSky = nullptr) const;
 
     const DistanceLookupConfig& config() const { return config_; }
 

@@ -2,6 +2,7 @@
 // the default room.
 #include "components/reflection_probe/distance_probe_cpu.h"
 #include "engine/image/compare.h"
+#include "engine/image/image_io.h"
 #include "probe_fixture.h"
 
 #include <cstdio>
@@ -22,6 +23,11 @@ double psnrOf(const Image& a, const Image& b, const Image& mask) {
 } // namespace
 
 TEST_F(RoomProbe, ShaderMatchesCpuTwinPerPixel) {
+    // The twin runs on the exact inputs the shader used (its probe-local position and
+    // reflected direction, read back as float32), so layer lookups must agree to filtering
+    // precision. Rays that end in the sky go through equirectUv's atan/acos, which GPUs
+    // evaluate with approximations (llvmpipe ~1e-5 rad); on the high-frequency panorama that
+    // moves the bilinear sample by a fraction of a texel, hence the looser sky bound.
     const CameraView cam = scene_->camera(kWidth, kHeight);
     const Image mask = test::erodedMask(scene_->groundTruth(cam, true).mirrorMask);
     for (LookupMethod m : kMethods) {
@@ -31,16 +37,21 @@ TEST_F(RoomProbe, ShaderMatchesCpuTwinPerPixel) {
         const Image dir = renderer_->render(cam, 2);
         const ecs::Entity probe = scene_->probeEntity();
         CpuDistanceProbe twin(*renderer_->probes().asset(probe), *renderer_->probes().config(probe));
-        long n = 0, close = 0;
-        double sum = 0, worst = 0;
+        long n = 0, close = 0, skyN = 0;
+        double sum = 0, worst = 0, worstSky = 0;
         for (int y = 0; y < kHeight; ++y)
             for (int x = 0; x < kWidth; ++x) {
                 if (mask.at(x, y)[0] < 0.5f) continue;
                 int fetches = 0;
+                bool sky = false;
                 const glm::vec3 cpu = twin.radiance(glm::vec3(pos.rgba(x, y)),
-                                                    glm::vec3(dir.rgba(x, y)), fetches);
-                const glm::vec3 gpu(colour.rgba(x, y));
-                const float err = glm::length(cpu - gpu);
+                                                    glm::vec3(dir.rgba(x, y)), fetches, &sky);
+                const float err = glm::length(cpu - glm::vec3(colour.rgba(x, y)));
+                if (sky) {
+                    ++skyN;
+                    worstSky = std::max(worstSky, double(err));
+                    continue;
+                }
                 ++n;
                 sum += err;
                 worst = std::max(worst, double(err));
@@ -48,12 +59,14 @@ TEST_F(RoomProbe, ShaderMatchesCpuTwinPerPixel) {
             }
         ASSERT_GT(n, 500) << "the camera must see the reflectors";
         const double share = double(close) / double(n);
-        std::printf("%-9s twin vs GLSL: %ld px, %.3f%% within 2e-3, mean %.2e, worst %.3f\n",
-                    toString(m), n, 100.0 * share, sum / n, worst);
-        // Texel-boundary decisions (nearest distance fetch, face ties) can flip on the last
-        // bit of a float between GPU and CPU; those few pixels may differ by a texel's colour.
-        EXPECT_GT(share, 0.99) << toString(m);
-        EXPECT_LT(sum / n, 2e-3) << toString(m);
+        std::printf("%-9s twin vs GLSL: %ld layer px, %.3f%% within 2e-3, mean %.2e, worst %.4f; "
+                    "%ld sky px, worst %.4f\n",
+                    toString(m), n, 100.0 * share, sum / n, worst, skyN, worstSky);
+        // A nearest distance fetch right on a texel boundary can flip on the last bit of a
+        // float between GPU and CPU and end the search one texel apart: allow 0.5 % of pixels.
+        EXPECT_GT(share, 0.995) << toString(m);
+        EXPECT_LT(sum / n, 5e-4) << toString(m);
+        EXPECT_LT(worstSky, 0.03) << toString(m);
     }
 }
 
@@ -67,6 +80,12 @@ TEST_F(RoomProbe, RectificationBeatsEnvmapAndBoxProjAgainstGroundTruth) {
         scene_->setProbe(probeFor(kMethods[i]));
         const Image img = renderer_->render(cam);
         psnr[i] = psnrOf(img, envOnly.color, mask);
+        if (const char* out = std::getenv("SPECULA_TEST_OUT")) {
+            writeImage(std::string(out) + "/" + toString(kMethods[i]) + ".png", img);
+            writeImage(std::string(out) + "/truth_env_only.png", envOnly.color);
+            writeImage(std::string(out) + "/err_" + toString(kMethods[i]) + ".png",
+                       errorHeatmap(img, envOnly.color, &mask, 0.2f));
+        }
         std::printf("%-9s PSNR vs env-only ground truth %.2f dB, vs full ground truth %.2f dB\n",
                     toString(kMethods[i]), psnr[i], psnrOf(img, full.color, mask));
     }

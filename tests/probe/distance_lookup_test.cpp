@@ -147,5 +147,9 @@ TEST_F(DistanceLookup, MissesFallToTheSky) {
         int fetches = 0;
         const glm::vec3 c = twin.radiance(glm::vec3(0.1f, 0.2f, 0.f), glm::vec3(0.f, 0.f, 1.f), fetches);
         EXPECT_NEAR(c.r, 0.25f, 1e-6f) << toString(m);
+        // Every distance fetch sees d_inf, so no method can stop early: N distance fetches
+        // (one for the average distance) and one sky fetch.
+        const int n = makeLookupConfig(probe, a).maxSteps;
+        EXPECT_EQ(fetches, m == LookupMethod::AvgDist ? 2 : n + 1) << toString(m);
     }
 }
