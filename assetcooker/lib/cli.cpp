@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include "assetcooker/lib/bake_command.h"
 #include "assetcooker/lib/inspect.h"
 #include "engine/core/error.h"
 
@@ -75,6 +76,7 @@ const std::vector<Subcommand>& subcommands() {
          "\n"
          "exit status: 0 ok, 1 FILE could not be loaded, 2 bad command line\n",
          runInspect},
+        {"bake", "bake a scene's reflection probe into a cooked folder", kBakeUsage, runBake},
     };
     return table;
 }

@@ -1,6 +1,8 @@
 #pragma once
 // The specula-cook command line: a table of subcommands, each with its own help and
 // argument parser. Adding a subcommand is one entry in subcommands() (cli.cpp).
+#include "engine/core/flags.h"
+
 #include <functional>
 #include <ostream>
 #include <span>
@@ -16,9 +18,7 @@ inline constexpr int kExitFailure = 1; // the input could not be processed
 inline constexpr int kExitUsage = 2;   // the command line itself is wrong
 
 // Thrown by argument parsing; runCli prints it with the usage line and exits kExitUsage.
-struct UsageError {
-    std::string message;
-};
+using UsageError = specula::UsageError;
 
 struct Subcommand {
     std::string_view name;

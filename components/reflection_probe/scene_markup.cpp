@@ -3,6 +3,7 @@
 #include "engine/core/error.h"
 #include "engine/scene/components.h"
 
+#include <cmath>
 #include <limits>
 #include <map>
 #include <unordered_map>
@@ -32,7 +33,7 @@ std::string nameOf(ecs::Registry& reg, ecs::Entity e) {
 
 } // namespace
 
-void meshWorldBounds(ecs::Registry& reg, ecs::Entity e, glm::vec3& lo, glm::vec3& hi) {
+void meshWorldBounds(const ecs::Registry& reg, ecs::Entity e, glm::vec3& lo, glm::vec3& hi) {
     const Mesh* mesh = reg.find<Mesh>(e);
     const Transform* t = reg.find<Transform>(e);
     if (!mesh || !t) return;
@@ -105,10 +106,12 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene,
         }
     }
 
-    // Environment objects: root subtrees, looking through mesh-less grouping roots.
+    // Environment objects: root subtrees.
     std::vector<ecs::Entity> objectRoots;
     for (ecs::Entity r : scene.roots) {
-        if (!reg.has<Mesh>(r) && !children[r.index].empty() && extrasOf(reg, r, file).empty())
+        // A lone mesh-less root is a wrapper around the whole scene, not one object.
+        if (scene.roots.size() == 1 && !reg.has<Mesh>(r) && !children[r.index].empty() &&
+            extrasOf(reg, r, file).empty())
             for (ecs::Entity c : children[r.index]) objectRoots.push_back(c);
         else
             objectRoots.push_back(r);
@@ -142,6 +145,41 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene,
         }
     }
     return m;
+}
+
+glm::vec3 markupProbeCentre(const ecs::Registry& reg, const SceneMarkup& m, const LoadedScene& scene) {
+    if (!m.probes.empty()) return m.probes.front().position;
+    if (!m.mirrorEntities.empty()) {
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        for (ecs::Entity e : m.mirrorEntities) meshWorldBounds(reg, e, lo, hi);
+        return 0.5f * (lo + hi);
+    }
+    return 0.5f * (scene.boundsMin + scene.boundsMax);
+}
+
+float markupCellSize(const SceneMarkup& m) {
+    if (!m.probes.empty()) {
+        const json& o = m.probes.front().options;
+        if (o.contains("cell_size") && o["cell_size"].is_number() &&
+            o["cell_size"].get<double>() > 0.0)
+            return o["cell_size"].get<float>();
+    }
+    return 1.5f;
+}
+
+float markupReflectorReach(const ecs::Registry& reg, const SceneMarkup& m, glm::vec3 centre,
+                           float cellSize) {
+    float reach = 0.5f * std::sqrt(3.f) * cellSize;
+    for (ecs::Entity e : m.mirrorEntities) {
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        meshWorldBounds(reg, e, lo, hi);
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 corner((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y,
+                                   (i & 4) ? hi.z : lo.z);
+            reach = std::max(reach, glm::length(corner - centre));
+        }
+    }
+    return reach;
 }
 
 } // namespace specula

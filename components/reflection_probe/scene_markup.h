@@ -4,8 +4,8 @@
 //   "specula_reflector": true|{f0}   the node's meshes (and its subtree's) are mirrors
 //   "specula_layer": "name"          groups the node's subtree with others of that name
 // Every other mesh is environment. Environment objects are the root nodes' subtrees (a
-// mesh-less root that only groups children is looked through), so each object can be its
-// own probe layer.
+// single mesh-less root wrapping the whole scene is looked through), so each object can be
+// its own probe layer.
 #include "engine/ecs/registry.h"
 #include "engine/scene/gltf_loader.h"
 
@@ -47,7 +47,18 @@ struct SceneMarkup {
 SceneMarkup readSceneMarkup(ecs::Registry& registry, const LoadedScene& scene,
                             const std::string& file);
 
+// Where the probe goes: the first `specula_probe` node, else the centre of the reflectors'
+// bounds, else the centre of the scene.
+glm::vec3 markupProbeCentre(const ecs::Registry& registry, const SceneMarkup& markup,
+                            const LoadedScene& scene);
+// Side of the cubic cell reflectors move in: the probe's `cell_size`, else 1.5 m.
+float markupCellSize(const SceneMarkup& markup);
+// How far from `centre` a reflector point can be: the farthest reflector vertex, and at
+// least the corner of the cell.
+float markupReflectorReach(const ecs::Registry& registry, const SceneMarkup& markup, glm::vec3 centre,
+                           float cellSize);
+
 // World-space bounds of an entity's mesh (through Transform::world).
-void meshWorldBounds(ecs::Registry& registry, ecs::Entity e, glm::vec3& lo, glm::vec3& hi);
+void meshWorldBounds(const ecs::Registry& registry, ecs::Entity e, glm::vec3& lo, glm::vec3& hi);
 
 } // namespace specula

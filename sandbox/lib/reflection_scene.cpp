@@ -27,46 +27,22 @@ ReflectionScene::ReflectionScene(const std::string& gltfPath, const std::string&
 }
 
 glm::vec3 ReflectionScene::probeCentre() const {
-    if (!markup_.probes.empty()) return markup_.probes.front().position;
-    if (!markup_.reflectors.empty()) {
-        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-        auto& reg = const_cast<ecs::Registry&>(registry_);
-        for (ecs::Entity e : markup_.mirrorEntities) meshWorldBounds(reg, e, lo, hi);
-        return 0.5f * (lo + hi);
-    }
-    return 0.5f * (loaded_.boundsMin + loaded_.boundsMax);
+    return markupProbeCentre(registry_, markup_, loaded_);
 }
 
-float ReflectionScene::cellSize() const {
-    if (!markup_.probes.empty()) {
-        const auto& o = markup_.probes.front().options;
-        if (o.contains("cell_size") && o["cell_size"].is_number() && o["cell_size"].get<double>() > 0)
-            return o["cell_size"].get<float>();
-    }
-    return 1.5f;
-}
+float ReflectionScene::cellSize() const { return markupCellSize(markup_); }
 
 float ReflectionScene::reflectorReach() const {
-    const glm::vec3 c = probeCentre();
-    float reach = 0.5f * std::sqrt(3.f) * cellSize();
-    auto& reg = const_cast<ecs::Registry&>(registry_);
-    for (ecs::Entity e : markup_.mirrorEntities) {
-        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-        meshWorldBounds(reg, e, lo, hi);
-        for (int i = 0; i < 8; ++i) {
-            const glm::vec3 corner((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
-            reach = std::max(reach, glm::length(corner - c));
-        }
-    }
-    return reach;
+    return markupReflectorReach(registry_, markup_, probeCentre(),
+                                cellSize());
 }
 
 CameraView ReflectionScene::camera(int width, int height) const {
-    auto& reg = const_cast<ecs::Registry&>(registry_);
     for (ecs::Entity e : loaded_.entities) {
-        const Camera* cam = reg.find<Camera>(e);
-        if (!cam) continue;
-        const glm::mat4 world = reg.get<Transform>(e).world;
+        const Camera* cam = registry_.find<Camera>(e);
+        const Transform* t = registry_.find<Transform>(e);
+        if (!cam || !t) continue;
+        const glm::mat4 world = t->world;
         CameraView v;
         // The camera looks down its local -Z; the view matrix is the inverse of its world.
         v.view = glm::inverse(world);
