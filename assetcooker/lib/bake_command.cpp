@@ -2,6 +2,8 @@
 
 #include "assetcooker/lib/cli.h"
 #include "assetcooker/lib/distance_bake.h"
+#include "assetcooker/lib/effect_plan.h"
+#include "assetcooker/lib/lightfield_bake.h"
 #include "components/reflection_probe/scene_markup.h"
 #include "engine/core/error.h"
 #include "engine/core/flags.h"
@@ -17,7 +19,7 @@
 namespace specula::cook {
 
 const std::string_view kBakeUsage =
-    "usage: specula-cook bake SCENE --out DIR [--flavour distance] [options]\n"
+    "usage: specula-cook bake SCENE --out DIR [--flavour distance|lightfield] [options]\n"
     "\n"
     "Bakes the reflection probe of SCENE (.gltf/.glb) into DIR: manifest.json plus one float\n"
     "EXR cube map per layer (N x 6N, faces +X -X +Y -Y +Z -Z top to bottom; RGB radiance, A\n"
@@ -30,11 +32,22 @@ const std::string_view kBakeUsage =
     "\n"
     "options:\n"
     "  --out DIR          output folder (replaced atomically; never left half-written)\n"
-    "  --flavour F        distance (default)\n"
+    "  --flavour F        distance (default) or lightfield\n"
     "  --face-res N       cube face resolution, 1..4096 (default 256)\n"
     "  --probe x,y,z      probe centre in world space (overrides the markup)\n"
     "  --sky FILE         equirectangular panorama for the distant environment (default: black)\n"
+    "  --layers L         plan (default): the layers and methods of the effect plan\n"
+    "                     (specula-cook plan); objects: one layer per object\n"
     "  -h, --help         show this help\n"
+    "\n"
+    "lightfield (Yu et al. 2005): six slabs around a cubic cell of side L, camera planes on the\n"
+    "cell faces extended to 3L, NUM x NUM cameras of RES x RES pixels (90 degree field of view)\n"
+    "each; raw atlases (see lightfield_asset.h) and the focal-plane disparity per slab.\n"
+    "  --cell-size L      cell side in metres (default: the probe's cell_size, else 1.5)\n"
+    "  --cell-center x,y,z  cell centre in world space (default: the probe position)\n"
+    "  --cameras NUM      cameras per side of a slab, 2..256 (default 8)\n"
+    "  --image-res RES    pixels per side of a camera image, a multiple of 4 (default 64)\n"
+    "  --compress C       none (sRGB RGB8, default) or bc1 (DXT1); bc7 is not supported\n"
     "\n"
     "exit status: 0 ok, 1 the scene could not be baked, 2 bad command line\n";
 
@@ -58,6 +71,84 @@ struct SignalGuard {
 };
 } // namespace
 
+namespace {
+// `bake --flavour lightfield`: the remaining flags, the bake on all cores with a progress
+// bar, the same SIGINT guard and atomic write as the distance flavour.
+int runLightFieldBake(Flags& flags, const std::optional<std::string>& outDir,
+                      const std::optional<glm::vec3>& probeAt,
+                      const std::optional<std::string>& skyPath, std::ostream& out) {
+    const auto cellSize = flags.value("--cell-size");
+    const auto cellCentre = flags.vec3Value("--cell-center");
+    const int cameras = flags.intValue("--cameras", 8, 2, 256);
+    const int res = flags.intValue("--image-res", 64, 4, 4096);
+    const std::string compress = flags.value("--compress").value_or("none");
+    const auto pos = flags.positionals();
+    if (pos.size() != 1) throw UsageError{"bake needs exactly one SCENE"};
+    if (!outDir || outDir->empty()) throw UsageError{"bake needs --out DIR"};
+    if (compress == "bc7")
+        throw UsageError{"--compress: bc7 is not supported by this cooker (no BC7 encoder); "
+                         "use bc1 or none"};
+    if (compress != "none" && compress != "bc1")
+        throw UsageError{"--compress: expected none or bc1, got '" + compress + "'"};
+    if (res % 4 != 0) throw UsageError{"--image-res: expected a multiple of 4 (BC1 blocks)"};
+    if (cameras * res > 16384)
+        throw UsageError{"--cameras x --image-res must be at most 16384 (the 2D texture side)"};
+
+    const auto start = std::chrono::steady_clock::now();
+    ecs::Registry registry;
+    const LoadedScene scene = loadGltf(pos[0], registry);
+    const SceneMarkup markup = readSceneMarkup(registry, scene, pos[0]);
+    Image sky;
+    if (skyPath) sky = readImage(*skyPath);
+
+    LightFieldBakeOptions o;
+    o.cellCentre = cellCentre ? *cellCentre
+                   : probeAt  ? *probeAt
+                              : markupProbeCentre(registry, markup, scene);
+    o.cellSize = cellSize ? parseFloat("--cell-size", *cellSize, 1e-3f, 1e4f)
+                          : markupCellSize(markup);
+    o.cameras = cameras;
+    o.res = res;
+    o.compression = compress == "bc1" ? LightFieldCompression::BC1 : LightFieldCompression::None;
+    o.sky = sky.empty() ? nullptr : &sky;
+    SignalGuard guard;
+    o.cancelled = [] { return gInterrupted.load(); };
+    LightFieldAsset asset;
+    {
+        ProgressBar bar("baking light field " + std::filesystem::path(pos[0]).filename().string());
+        o.progress = [&](double f) { bar.update(f); };
+        asset = bakeLightFieldProbe(registry, markup, o);
+    }
+    if (gInterrupted) throw Error(*outDir, "", "interrupted; nothing was written");
+    writeLightFieldProbe(asset, *outDir, pos[0]);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out << "baked light field: 6 slabs x " << cameras << "^2 cameras x " << res << "^2 px, cell "
+        << o.cellSize << " m, " << toString(o.compression) << ", " << asset.gpuBytes()
+        << " bytes of atlas, bake " << asset.bakeSeconds << " s, total " << seconds << " s -> "
+        << *outDir << "/manifest.json\n";
+    for (int k = 0; k < 6; ++k) {
+        const LightFieldSlab& s = asset.slabs[std::size_t(k)];
+        out << "  slab " << slabName(k) << ": depth " << s.nearDepth << " .. " << s.farDepth
+            << " m, sky " << s.skyFraction << ", focal depth " << s.focalDepth
+            << " m, disparity " << s.disparity << " px/camera\n";
+    }
+    for (const LightFieldIntrusion& i : asset.intrusions)
+        out << (i.region == "cell" ? "  warning: " : "  note: ") << i.object << " lies in "
+            << i.region << (i.region == "cell" ? " (reaches " : " (gap to the cell ")
+            << std::abs(i.depth) << " m)"
+            << (i.region == "cell" ? ": reflectors there see it wrongly; shrink the cell\n"
+                                   : ": baked from where each line leaves the cell, so "
+                                     "reflectors inside the cell still see it right\n");
+    for (const ReflectorOverhang& r :
+         findReflectorOverhangs(registry, markup, o.cellCentre, o.cellSize))
+        out << "  warning: reflector " << r.node << " reaches " << r.metres
+            << " m outside the cell (--cell-size " << o.cellSize + 2.f * r.metres
+            << " would hold it)\n";
+    return kExitOk;
+}
+} // namespace
+
 int runBake(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
     Flags flags(args);
     const auto outDir = flags.value("--out");
@@ -65,11 +156,15 @@ int runBake(std::span<const std::string> args, std::ostream& out, std::ostream& 
     const int faceRes = flags.intValue("--face-res", 256, 1, 4096);
     const auto probeAt = flags.vec3Value("--probe");
     const auto skyPath = flags.value("--sky");
+    const std::string layers = flags.value("--layers").value_or("plan");
+    if (flavour == "lightfield") return runLightFieldBake(flags, outDir, probeAt, skyPath, out);
     const auto pos = flags.positionals();
     if (pos.size() != 1) throw UsageError{"bake needs exactly one SCENE"};
     if (!outDir || outDir->empty()) throw UsageError{"bake needs --out DIR"};
+    if (layers != "plan" && layers != "objects")
+        throw UsageError{"--layers: expected 'plan' or 'objects', got '" + layers + "'"};
     if (flavour != "distance")
-        throw UsageError{"--flavour: expected 'distance', got '" + flavour + "'"};
+        throw UsageError{"--flavour: expected 'distance' or 'lightfield', got '" + flavour + "'"};
 
     const auto start = std::chrono::steady_clock::now();
     ecs::Registry registry;
@@ -83,6 +178,17 @@ int runBake(std::span<const std::string> args, std::ostream& out, std::ostream& 
     o.faceRes = faceRes;
     o.sky = sky.empty() ? nullptr : &sky;
     o.reflectorReach = markupReflectorReach(registry, markup, o.centre, markupCellSize(markup));
+    const EffectPlan plan = planEffects(registry, markup, o.centre, o.reflectorReach);
+    if (layers == "plan") {
+        if (plan.mode == "layered") {
+            for (const PlannedLayer& l : plan.layers) o.layers.push_back({l.name, l.objects, l.method});
+        } else {
+            // One lookup over the composite: no object layers to bake or upload.
+            o.layers = {};
+            o.compositeOnly = true;
+            o.compositeMethod = plan.layers.empty() ? "envmap" : plan.layers.front().method;
+        }
+    }
     SignalGuard guard;
     o.cancelled = [] { return gInterrupted.load(); };
     DistanceProbeAsset asset;
@@ -92,6 +198,7 @@ int runBake(std::span<const std::string> args, std::ostream& out, std::ostream& 
         asset = bakeDistanceProbe(registry, markup, o);
     }
     if (gInterrupted) throw Error(*outDir, "", "interrupted; nothing was written");
+    asset.effectPlan = plan.toJson().dump();
     writeDistanceProbe(asset, *outDir, pos[0]);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -2,6 +2,7 @@
 
 #include "assetcooker/lib/bake_command.h"
 #include "assetcooker/lib/inspect.h"
+#include "assetcooker/lib/plan_command.h"
 #include "engine/core/error.h"
 
 #include <exception>
@@ -77,6 +78,8 @@ const std::vector<Subcommand>& subcommands() {
          "exit status: 0 ok, 1 FILE could not be loaded, 2 bad command line\n",
          runInspect},
         {"bake", "bake a scene's reflection probe into a cooked folder", kBakeUsage, runBake},
+        {"plan", "print the effect plan of a scene's probe (what it needs, and why)", kPlanUsage,
+         runPlan},
     };
     return table;
 }

@@ -107,7 +107,10 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
     const EmbreeScene environment(registry, [&](ecs::Entity e) { return !mirrors.count(e); });
     if (environment.empty()) throw Error("", "scene", "has no environment geometry to bake");
 
-    const long rowsTotal = long(opt.faceRes) * 6 * long(1 + markup.objects.size());
+    const std::size_t layerCount = opt.compositeOnly  ? 0
+                                   : opt.layers.empty() ? markup.objects.size()
+                                                        : opt.layers.size();
+    const long rowsTotal = long(opt.faceRes) * 6 * long(1 + layerCount);
     std::atomic<long> rowsDone{0};
 
     DistanceProbeAsset asset;
@@ -117,17 +120,36 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
 
     DistanceProbeLayer composite;
     composite.name = "composite";
+    composite.method = opt.compositeMethod;
     for (const EnvironmentObject& o : markup.objects)
         composite.objects.push_back(o.name);
-    bakeFaces(environment, opt, true, composite.faces, rowsDone, rowsTotal);
+    bakeFaces(environment, opt, opt.withSky, composite.faces, rowsDone, rowsTotal);
 
+    // The layers: the plan's groups, or one per object.
+    std::vector<DistanceBakeOptions::LayerSpec> specs = opt.layers;
+    if (specs.empty() && !opt.compositeOnly)
+        for (const EnvironmentObject& o : markup.objects) specs.push_back({o.name, {o.name}, ""});
     std::vector<DistanceProbeLayer> objects;
-    for (const EnvironmentObject& o : markup.objects) {
-        std::unordered_set<ecs::Entity> members(o.meshes.begin(), o.meshes.end());
+    for (const DistanceBakeOptions::LayerSpec& spec : specs) {
+        std::unordered_set<ecs::Entity> members;
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        for (const std::string& name : spec.objects) {
+            auto it = std::find_if(markup.objects.begin(), markup.objects.end(),
+                                   [&](const EnvironmentObject& o) { return o.name == name; });
+            if (it == markup.objects.end())
+                throw Error("", "layer '" + spec.name + "'", "names unknown object '" + name + "'");
+            members.insert(it->meshes.begin(), it->meshes.end());
+            lo = glm::min(lo, it->boundsMin);
+            hi = glm::max(hi, it->boundsMax);
+        }
         const EmbreeScene scene(registry, [&](ecs::Entity e) { return members.count(e) > 0; });
         DistanceProbeLayer layer;
-        layer.name = o.name;
-        layer.objects = {o.name};
+        layer.name = spec.name;
+        layer.objects = spec.objects;
+        layer.method = spec.method;
+        // Grown a little: a ray grazing the bounds must still try the layer.
+        layer.boxMin = lo - opt.centre - glm::vec3(1e-3f);
+        layer.boxMax = hi - opt.centre + glm::vec3(1e-3f);
         bakeFaces(scene, opt, false, layer.faces, rowsDone, rowsTotal);
         objects.push_back(std::move(layer));
     }
@@ -138,7 +160,8 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
         L.avgDistance = s.weight > 0 ? float(s.weightedSum / s.weight) : 0.f;
         L.minDistance = s.weight > 0 ? s.minD : 0.f;
         L.maxDistance = s.maxD;
-        L.method = L.solidAngle >= opt.rectifySolidAngle ? "bisection" : "avgdist";
+        if (L.method.empty())
+            L.method = L.solidAngle >= opt.rectifySolidAngle ? "bisection" : "avgdist";
         return s;
     };
     const LayerStats all = finish(composite);
@@ -153,13 +176,15 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
     for (DistanceProbeLayer& L : objects)
         setInfinity(L.faces, asset.dInf);
 
-    // Near to far by the nearest point of each object: the order occlusion needs.
-    std::stable_sort(objects.begin(), objects.end(),
-                     [](const DistanceProbeLayer& a, const DistanceProbeLayer& b) {
-                         return a.minDistance < b.minDistance;
-                     });
-    // An object the probe cannot see at all adds nothing but cost.
-    std::erase_if(objects, [](const DistanceProbeLayer& L) { return L.solidAngle <= 0.f; });
+    if (opt.layers.empty()) {
+        // Near to far by the nearest point of each object: the order occlusion needs.
+        std::stable_sort(objects.begin(), objects.end(),
+                         [](const DistanceProbeLayer& a, const DistanceProbeLayer& b) {
+                             return a.minDistance < b.minDistance;
+                         });
+        // An object the probe cannot see at all adds nothing but cost.
+        std::erase_if(objects, [](const DistanceProbeLayer& L) { return L.solidAngle <= 0.f; });
+    }
 
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (const EnvironmentObject& o : markup.objects) {
@@ -168,6 +193,8 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
     }
     asset.boxMin = lo - opt.centre;
     asset.boxMax = hi - opt.centre;
+    composite.boxMin = asset.boxMin;
+    composite.boxMax = asset.boxMax;
 
     asset.layers.push_back(std::move(composite));
     for (DistanceProbeLayer& L : objects)

@@ -17,9 +17,20 @@ struct DistanceBakeOptions {
     const Image* sky = nullptr; // equirectangular; black when null
     // Reflectors move within this distance of the centre; D must reach past them.
     float reflectorReach = 1.f;
-    // A layer covering at least this solid angle is planned for per-pixel rectification,
-    // a smaller one for the average-distance correction (DESIGN §4).
-    float rectifySolidAngle = 0.5f;
+    // A layer covering at least this solid angle is marked for per-pixel rectification, a
+    // smaller one for the average-distance correction (DESIGN §4), unless `layers` says.
+    float rectifySolidAngle = 0.379f;
+    // The layers to bake, near to far, each a group of environment objects with its lookup
+    // method (the effect plan). Empty: one layer per object, sorted by nearest distance.
+    struct LayerSpec {
+        std::string name;
+        std::vector<std::string> objects;
+        std::string method;
+    };
+    std::vector<LayerSpec> layers;
+    bool withSky = true; // false: the composite sees black where nothing is hit
+    bool compositeOnly = false;  // bake no object layers (the plan needs one lookup only)
+    std::string compositeMethod; // the composite's planned method (empty: by solid angle)
     std::function<void(double)> progress; // fraction done, from the baking thread
     std::function<bool()> cancelled;      // polled between rows; true aborts with Error
 };

@@ -16,13 +16,16 @@ const char* toString(LookupMethod m) {
     case LookupMethod::Secant: return "secant";
     case LookupMethod::AvgDist: return "avgdist";
     case LookupMethod::Layered: return "layered";
+    case LookupMethod::Planned: return "plan";
+    case LookupMethod::LightField: return "lightfield";
     }
     return "?";
 }
 
 bool parseLookupMethod(const std::string& s, LookupMethod& out) {
     for (LookupMethod m : {LookupMethod::Envmap, LookupMethod::BoxProj, LookupMethod::Bisection,
-                           LookupMethod::Secant, LookupMethod::AvgDist, LookupMethod::Layered}) {
+                           LookupMethod::Secant, LookupMethod::AvgDist, LookupMethod::Layered,
+                           LookupMethod::Planned, LookupMethod::LightField}) {
         if (s == toString(m)) {
             out = m;
             return true;
@@ -39,6 +42,8 @@ int methodIndex(LookupMethod m) {
     case LookupMethod::Secant: return 3;
     case LookupMethod::AvgDist: return 4;
     case LookupMethod::Layered: return -1;
+    case LookupMethod::Planned: return -1;
+    case LookupMethod::LightField: return -1;
     }
     return 0;
 }
@@ -71,8 +76,37 @@ DistanceLookupConfig makeLookupConfig(const ReflectionProbe& probe, const Distan
     c.maxSteps = bisectionSteps(c.range, c.tolerance);
     c.layerMethods.assign(a.layers.size(), 0);
     c.layerAvgDistance.assign(a.layers.size(), 0.f);
-    for (std::size_t i = 0; i < a.layers.size(); ++i) c.layerAvgDistance[i] = a.layers[i].avgDistance;
+    for (std::size_t i = 0; i < a.layers.size(); ++i) {
+        c.layerAvgDistance[i] = a.layers[i].avgDistance;
+        c.layerBoxMin.push_back(a.layers[i].boxMin);
+        c.layerBoxMax.push_back(a.layers[i].boxMax);
+    }
 
+    if (probe.method == LookupMethod::Planned) {
+        // The cooked plan: the composite alone when it baked no object layers, else every
+        // baked layer with the method the plan gave it.
+        auto planned = [&](std::size_t i) {
+            LookupMethod m = LookupMethod::Bisection;
+            if (!parseLookupMethod(a.layers[i].method, m) || m == LookupMethod::Layered ||
+                m == LookupMethod::Planned)
+                throw Error(probe.asset, "layers[" + std::to_string(i) + "].method",
+                            "expected envmap, boxproj, bisection, secant or avgdist, got '" +
+                                a.layers[i].method + "'");
+            return methodIndex(m);
+        };
+        if (a.objectLayerCount() == 0) {
+            c.method = planned(0);
+            c.features = featureOf(c.method);
+            return c;
+        }
+        c.layerCount = a.objectLayerCount();
+        c.features = kFeatureLayers;
+        for (int i = 1; i <= c.layerCount; ++i) {
+            c.layerMethods[std::size_t(i)] = planned(std::size_t(i));
+            c.features |= featureOf(c.layerMethods[std::size_t(i)]);
+        }
+        return c;
+    }
     if (probe.method != LookupMethod::Layered) {
         c.method = methodIndex(probe.method);
         c.features = featureOf(c.method);

@@ -30,6 +30,7 @@ struct DistanceLookupConfig {
     int layerCount = 0; // object layers used in layered mode
     std::vector<int> layerMethods;   // index = layer (0 unused)
     std::vector<float> layerAvgDistance;
+    std::vector<glm::vec3> layerBoxMin, layerBoxMax; // probe-local
     std::uint32_t features = 0;      // DistanceFeature bits (Fresnel is added per reflector)
 };
 

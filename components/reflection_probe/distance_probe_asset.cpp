@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -127,6 +128,14 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
     const fs::path target = fs::absolute(dir);
     const fs::path tmp = target.string() + ".tmp-" + std::to_string(::getpid());
     std::error_code ec;
+    // DIR is replaced wholesale: only ever replace a cooked probe (or an empty folder), never
+    // a file or a folder of something else that a mistyped --out happens to name.
+    if (fs::exists(target, ec) && !fs::is_directory(target, ec))
+        throw Error(dir, "", "exists and is not a folder; refusing to replace it");
+    if (fs::is_directory(target, ec) && !fs::exists(target / "manifest.json", ec) &&
+        !fs::is_empty(target, ec))
+        throw Error(dir, "", "is a folder without manifest.json (not a cooked probe); refusing "
+                             "to replace it");
     fs::remove_all(tmp, ec);
     fs::create_directories(tmp);
     try {
@@ -144,6 +153,8 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
                               {"min_distance", L.minDistance},
                               {"max_distance", L.maxDistance},
                               {"solid_angle_sr", L.solidAngle},
+                              {"box_min", vec3Json(L.boxMin)},
+                              {"box_max", vec3Json(L.boxMax)},
                               {"method", L.method},
                               {"file", name},
                               {"checksum", fileChecksum(path)}});
@@ -160,6 +171,7 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
                          {"face_layout", "N x 6N EXR, faces +X -X +Y -Y +Z -Z top to bottom, "
                                          "RGB radiance, A distance from the centre"},
                          {"layers", layers}};
+        if (!asset.effectPlan.empty()) manifest["effect_plan"] = json::parse(asset.effectPlan);
         if (!asset.sky.empty()) {
             const std::string path = (tmp / "sky.exr").string();
             writeImage(path, asset.sky);
@@ -188,12 +200,19 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
 }
 
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {
-    std::ifstream in(manifestPath);
+    std::ifstream in(manifestPath, std::ios::binary);
     if (!in) throw Error(manifestPath, "", "cannot open manifest");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw Error(manifestPath, "", "read failed");
+    return parseDistanceProbe(text, manifestPath);
+}
+
+DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
+                                      const std::string& manifestPath) {
     json m;
     try {
-        m = json::parse(in);
-    } catch (const json::parse_error& e) {
+        m = json::parse(manifestText);
+    } catch (const json::exception& e) {
         throw Error(manifestPath, "", std::string("not valid JSON: ") + e.what());
     }
     const Reader r{manifestPath};
@@ -201,7 +220,7 @@ DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {
     if (r.string(m, "format", "") != "specula-probe")
         throw Error(manifestPath, "format", "expected \"specula-probe\"");
     const float version = r.number(m, "version", "", 0.f, 1e6f);
-    if (int(version) != kProbeFormatVersion)
+    if (version != float(kProbeFormatVersion))
         throw Error(manifestPath, "version",
                     "unknown format version " + m["version"].dump() + " (this build reads " +
                         std::to_string(kProbeFormatVersion) + ")");
@@ -228,6 +247,8 @@ DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {
         L.maxDistance = r.number(layers[i], "max_distance", path, 0.f, 1e9f);
         L.solidAngle = r.number(layers[i], "solid_angle_sr", path, 0.f, 13.f);
         L.method = r.string(layers[i], "method", path);
+        L.boxMin = r.vec3(layers[i], "box_min", path);
+        L.boxMax = r.vec3(layers[i], "box_max", path);
         if (const json& objs = r.member(layers[i], "objects", path); objs.is_array()) {
             for (const json& o : objs)
                 if (o.is_string()) L.objects.push_back(o.get<std::string>());
@@ -244,6 +265,11 @@ DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {
                             std::to_string(stacked.channels) + " channels");
         L.faces = splitFaces(stacked);
         a.layers.push_back(std::move(L));
+    }
+    if (m.contains("effect_plan")) {
+        if (!m["effect_plan"].is_object())
+            throw Error(manifestPath, "effect_plan", "expected an object");
+        a.effectPlan = m["effect_plan"].dump();
     }
     if (m.contains("sky")) {
         const std::string file = r.checkedFile(m["sky"], "sky.", dir, a.skyChecksum);

@@ -22,6 +22,7 @@ struct DistanceProbeLayer {
     float minDistance = 0.f;
     float maxDistance = 0.f;
     float solidAngle = 0.f; // steradians covered (texels with a finite distance)
+    glm::vec3 boxMin{0.f}, boxMax{0.f}; // probe-local bounds of the layer's geometry
     std::string method;     // planned lookup method for this layer ("bisection", "avgdist")
     std::array<Image, 6> faces;
     std::string file;     // relative to the manifest
@@ -37,6 +38,7 @@ struct DistanceProbeAsset {
     std::vector<DistanceProbeLayer> layers; // [0] composite, then objects near to far
     Image sky;                              // equirectangular panorama (may be empty)
     std::string skyFile, skyChecksum;
+    std::string effectPlan; // the cooker's effect plan as JSON text (empty when none)
 
     int objectLayerCount() const { return int(layers.size()) - 1; }
 };
@@ -52,5 +54,10 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
 // Reads and validates a manifest and its images: format version, every field's type and
 // range, file checksums. Errors name the file and the field.
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath);
+
+// readDistanceProbe on manifest text already in memory (the fuzzer's entry point):
+// `manifestPath` names the manifest in errors and locates the images beside it.
+DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
+                                      const std::string& manifestPath);
 
 } // namespace specula

@@ -41,6 +41,8 @@ struct TwinFetches {
     float layerAvgDistance(int layer) const {
         return config->layerAvgDistance[std::size_t(layer)];
     }
+    vec3 layerBoxMin(int layer) const { return config->layerBoxMin[std::size_t(layer)]; }
+    vec3 layerBoxMax(int layer) const { return config->layerBoxMax[std::size_t(layer)]; }
 };
 
 // The shared lookup is included inside a struct so that its calls to fetchDistance and

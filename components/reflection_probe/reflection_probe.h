@@ -20,10 +20,13 @@ enum class LookupMethod {
     Secant,    // bisection bracket refined by the secant rule
     AvgDist,   // one fetch at x + d-bar l
     Layered,   // object layers near to far, each with its own method, sky last
+    Planned,   // whatever the cooked effect plan chose (mode and per-layer methods)
+    LightField, // light-field slabs (Yu et al. 2005): needs flavour LightFieldSlab
 };
 
 const char* toString(LookupMethod m);
-// Parses "envmap", "boxproj", "bisection", "secant", "avgdist", "layered"; false if unknown.
+// Parses "envmap", "boxproj", "bisection", "secant", "avgdist", "layered", "plan",
+// "lightfield"; false if unknown.
 bool parseLookupMethod(const std::string& s, LookupMethod& out);
 
 struct ReflectionProbe {
@@ -35,6 +38,12 @@ struct ReflectionProbe {
     // Layered mode: the method of every object layer (Bisection, Secant or AvgDist; the
     // cooked plan's choice when Envmap is given).
     LookupMethod layerMethod = LookupMethod::Bisection;
+    // Light-field flavour: focal-plane disparity in pixels per camera step for all six
+    // slabs; NaN or < 0 takes the cooked per-slab optimum. A change re-uploads nothing.
+    float disparity = -1.f;
+    // Light-field flavour: draw the environment from the light field (eye rays) while the
+    // eye is inside the cell, instead of rasterising it.
+    bool lightFieldBackground = false;
 
     bool operator==(const ReflectionProbe&) const = default;
 };

@@ -3,8 +3,15 @@
 #include "engine/core/error.h"
 #include "engine/gpu/shader.h"
 
+#include "components/reflection_probe/lightfield_probe_cpu.h"
+#include "components/reflection_probe/scene_markup.h"
+#include "engine/scene/components.h"
+
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <limits>
 
 namespace specula {
 
@@ -15,7 +22,19 @@ struct ReflectionProbeSystem::ProbeGpu {
     gpu::Texture layers;
     gpu::Texture sky;
     std::size_t bytes = 0;
+    // Light-field flavour: the cooked slabs and their atlas array (lightfield_asset.h).
+    std::shared_ptr<const LightFieldAsset> lightField;
+    gpu::Texture atlas;
 };
+
+namespace {
+// The component fields that are uniforms only: editing them must not rebuild GPU state.
+ReflectionProbe buildKey(ReflectionProbe p) {
+    p.disparity = -1.f;
+    p.lightFieldBackground = false;
+    return p;
+}
+} // namespace
 
 std::string featureName(std::uint32_t f) {
     std::string s;
@@ -30,6 +49,8 @@ std::string featureName(std::uint32_t f) {
     add(kFeatureBisection, "bisection");
     add(kFeatureSecant, "secant");
     add(kFeatureAvgDist, "avgdist");
+    add(kFeatureLightField, "lightfield");
+    add(kFeatureLightFieldBackground, "background");
     add(kFeatureFresnel, "fresnel");
     return s;
 }
@@ -42,6 +63,18 @@ gpu::Program& ReflectionProbeSystem::program(std::uint32_t f, int output) {
     auto it = programs_.find(key);
     if (it != programs_.end()) return it->second;
     auto bit = [&](std::uint32_t b) { return (f & b) ? "1" : "0"; };
+    if (f & kFeatureLightField) {
+        const bool background = (f & kFeatureLightFieldBackground) != 0;
+        gpu::Program p = gpu::buildProgram(
+            gpu::ShaderSource::file(background
+                                        ? "components/reflection_probe/shaders/fullscreen.vert"
+                                        : "components/reflection_probe/shaders/reflector.vert"),
+            gpu::ShaderSource::file("components/reflection_probe/shaders/lightfield_reflector.frag"),
+            {std::string("HAS_FRESNEL=") + bit(kFeatureFresnel),
+             std::string("BACKGROUND=") + bit(kFeatureLightFieldBackground),
+             "OUTPUT=" + std::to_string(output)});
+        return programs_.emplace(key, std::move(p)).first->second;
+    }
     const std::vector<std::string> defines = {
         std::string("HAS_ENVMAP=") + bit(kFeatureEnvmap),
         std::string("HAS_BOXPROJ=") + bit(kFeatureBoxProj),
@@ -65,12 +98,20 @@ void ReflectionProbeSystem::sync(ecs::Registry& registry) {
     });
     registry.view<ReflectionProbe>().each([&](ecs::Entity e, ReflectionProbe& probe) {
         auto& slot = probes_[e];
-        if (slot && slot->component == probe) return;
-        if (probe.flavour != ProbeFlavour::DistanceCubemap)
-            throw Error(probe.asset, "flavour", "this system draws distance-cubemap probes");
-
+        if (slot && buildKey(slot->component) == buildKey(probe)) {
+            slot->component = probe; // uniform-only fields (disparity, background)
+            return;
+        }
         auto gpuProbe = std::make_unique<ProbeGpu>();
         gpuProbe->component = probe;
+        if (probe.flavour == ProbeFlavour::LightFieldSlab) {
+            syncLightField(*gpuProbe);
+            slot = std::move(gpuProbe);
+            return;
+        }
+        if (probe.method == LookupMethod::LightField)
+            throw Error(probe.asset, "method",
+                        "'lightfield' needs a probe of flavour LightFieldSlab");
         // Probes that share an asset share its CPU copy; the GPU copy is per probe since the
         // methods (and so the layers uploaded) may differ.
         auto& cached = assetCache_[probe.asset];
@@ -134,11 +175,42 @@ void ReflectionProbeSystem::render(ecs::Registry& registry, const CameraView& ca
     glDisable(GL_CULL_FACE);
     stats_.reflectorsDrawn = 0;
     stats_.permutations.clear();
+    stats_.reflectorsOutsideCell = 0;
+    stats_.reflectorLeftCell = false;
+    stats_.lightFieldBackgroundDrawn = false;
+    // The light-field background replaces the environment's colour (its depth stays, so
+    // reflectors are still occluded by it) before the timed reflector pass.
+    for (const auto& [e, p] : probes_)
+        if (p->lightField && p->component.lightFieldBackground) {
+            const glm::vec3 eye = camera.eye() - p->lightField->cellCentre;
+            const float h = p->lightField->halfCell();
+            if (std::abs(eye.x) <= h && std::abs(eye.y) <= h && std::abs(eye.z) <= h) {
+                drawLightFieldBackground(*p, camera, output);
+                stats_.lightFieldBackgroundDrawn = true;
+            }
+        }
     timer_->begin();
     registry.view<Reflector>().each([&](ecs::Entity e, Reflector& r) {
         auto it = probes_.find(r.probe);
         if (it == probes_.end() || !scene.contains(e)) return;
         ProbeGpu& p = *it->second;
+        if (p.lightField) {
+            checkCell(registry, e, p);
+            std::uint32_t features = kFeatureLightField;
+            if (r.fresnelF0 >= 0.f) features |= kFeatureFresnel;
+            gpu::Program& prog = program(features, output);
+            const std::string name = featureName(features);
+            if (std::find(stats_.permutations.begin(), stats_.permutations.end(), name) ==
+                stats_.permutations.end())
+                stats_.permutations.push_back(name);
+            prog.use();
+            SceneRenderer::setCameraUniforms(prog, camera);
+            bindLightField(prog, p);
+            prog.setUniform("uF0", r.fresnelF0);
+            scene.drawEntity(e, prog);
+            ++stats_.reflectorsDrawn;
+            return;
+        }
         const DistanceLookupConfig& c = p.config;
         std::uint32_t features = c.features;
         if (r.fresnelF0 >= 0.f) features |= kFeatureFresnel;
@@ -170,6 +242,8 @@ void ReflectionProbeSystem::render(ecs::Registry& registry, const CameraView& ca
             prog.setUniform("uLayerMethod[" + std::to_string(i) + "]", c.layerMethods[i]);
             prog.setUniform("uLayerAvgDistance[" + std::to_string(i) + "]",
                             c.layerAvgDistance[i]);
+            prog.setUniform("uLayerBoxMin[" + std::to_string(i) + "]", c.layerBoxMin[i]);
+            prog.setUniform("uLayerBoxMax[" + std::to_string(i) + "]", c.layerBoxMax[i]);
         }
         scene.drawEntity(e, prog);
         ++stats_.reflectorsDrawn;
@@ -186,6 +260,123 @@ const DistanceProbeAsset* ReflectionProbeSystem::asset(ecs::Entity probe) const 
 const DistanceLookupConfig* ReflectionProbeSystem::config(ecs::Entity probe) const {
     auto it = probes_.find(probe);
     return it == probes_.end() ? nullptr : &it->second->config;
+}
+
+} // namespace specula
+
+namespace specula {
+
+void ReflectionProbeSystem::syncLightField(ProbeGpu& g) {
+    const ReflectionProbe& probe = g.component;
+    auto& cached = lightFieldCache_[probe.asset];
+    g.lightField = cached.lock();
+    if (!g.lightField) {
+        g.lightField = std::make_shared<const LightFieldAsset>(readLightFieldProbe(probe.asset));
+        cached = g.lightField;
+    }
+    const LightFieldAsset& a = *g.lightField;
+    GLint maxLayers = 0, maxSize = 0;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    const int n = a.atlasSize();
+    if (n > maxSize || maxLayers < 6)
+        throw Error(probe.asset, "cameras",
+                    "atlas of " + std::to_string(n) + "^2 x 6 exceeds this GPU's limits (" +
+                        std::to_string(maxSize) + "^2, " + std::to_string(maxLayers) + " layers)");
+    const bool bc1 = a.compression == LightFieldCompression::BC1;
+    if (bc1 && !epoxy_has_gl_extension("GL_EXT_texture_compression_s3tc"))
+        throw Error(probe.asset, "compression",
+                    "bc1 needs GL_EXT_texture_compression_s3tc, which this context lacks");
+    g.atlas = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    const GLuint tex = g.atlas.id();
+    // sRGB formats: the texels are sRGB codes, decoded to linear before filtering.
+    glTextureStorage3D(tex, 1, bc1 ? GL_COMPRESSED_SRGB_S3TC_DXT1_EXT : GL_SRGB8_ALPHA8, n, n, 6);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int k = 0; k < 6; ++k) {
+        const auto& data = a.slabs[std::size_t(k)].data;
+        if (bc1)
+            glCompressedTextureSubImage3D(tex, 0, 0, 0, k, n, n, 1,
+                                          GL_COMPRESSED_SRGB_S3TC_DXT1_EXT, GLsizei(data.size()),
+                                          data.data());
+        else
+            glTextureSubImage3D(tex, 0, 0, 0, k, n, n, 1, GL_RGB, GL_UNSIGNED_BYTE, data.data());
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (const GLenum err = glGetError(); err != GL_NO_ERROR)
+        throw Error(probe.asset, "", "uploading the light-field atlas failed (GL error " +
+                                         std::to_string(err) + ")");
+    // What the GPU holds: RGB8 is stored as 4 bytes a texel (GL_SRGB8_ALPHA8).
+    g.bytes = bc1 ? a.gpuBytes() : std::size_t(n) * n * 6 * 4;
+}
+
+void ReflectionProbeSystem::bindLightField(gpu::Program& prog, const ProbeGpu& p) {
+    const LightFieldAsset& a = *p.lightField;
+    glBindTextureUnit(1, p.atlas.id());
+    prog.setUniform("uAtlas", 1);
+    prog.setUniform("uAtlasSize", float(a.atlasSize()));
+    prog.setUniform("uCellCentre", a.cellCentre);
+    prog.setUniform("uHalfCell", a.halfCell());
+    prog.setUniform("uCameras", a.cameras);
+    prog.setUniform("uRes", a.res);
+    const std::array<float, 6> d = effectiveDisparities(a, p.component.disparity);
+    for (int k = 0; k < 6; ++k)
+        prog.setUniform("uDisparity[" + std::to_string(k) + "]", d[std::size_t(k)]);
+}
+
+void ReflectionProbeSystem::drawLightFieldBackground(const ProbeGpu& p, const CameraView& camera,
+                                                     int output) {
+    if (!emptyVao_) emptyVao_ = gpu::VertexArray::create();
+    gpu::Program& prog = program(kFeatureLightField | kFeatureLightFieldBackground, output);
+    prog.use();
+    SceneRenderer::setCameraUniforms(prog, camera);
+    bindLightField(prog, p);
+    prog.setUniform("uInvViewProj", glm::inverse(camera.viewProj()));
+    prog.setUniform("uViewport", glm::vec2(float(camera.width), float(camera.height)));
+    GLboolean depthTest = GL_FALSE;
+    glGetBooleanv(GL_DEPTH_TEST, &depthTest);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glBindVertexArray(emptyVao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+    if (depthTest) glEnable(GL_DEPTH_TEST);
+}
+
+void ReflectionProbeSystem::checkCell(ecs::Registry& registry, ecs::Entity reflector,
+                                      const ProbeGpu& p) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    meshWorldBounds(registry, reflector, lo, hi);
+    if (lo.x > hi.x) return;
+    const LightFieldAsset& a = *p.lightField;
+    const float h = a.halfCell();
+    float over = 0.f;
+    for (int k = 0; k < 3; ++k)
+        over = std::max({over, hi[k] - a.cellCentre[k] - h, a.cellCentre[k] - h - lo[k]});
+    if (!(over > 0.f)) return;
+    ++stats_.reflectorsOutsideCell;
+    stats_.reflectorLeftCell = true;
+    if (warnedOutside_.insert(reflector).second) {
+        const Name* name = registry.find<Name>(reflector);
+        std::fprintf(stderr,
+                     "specula: reflector '%s' reaches %.3f m outside the light-field cell of %s "
+                     "(the light field is exact only inside it)\n",
+                     name ? name->value.c_str() : "?", double(over), p.component.asset.c_str());
+    }
+}
+
+const LightFieldAsset* ReflectionProbeSystem::lightFieldAsset(ecs::Entity probe) const {
+    auto it = probes_.find(probe);
+    return it == probes_.end() ? nullptr : it->second->lightField.get();
+}
+
+std::array<float, 6> ReflectionProbeSystem::lightFieldDisparities(ecs::Entity probe) const {
+    auto it = probes_.find(probe);
+    if (it == probes_.end() || !it->second->lightField) return {};
+    return effectiveDisparities(*it->second->lightField, it->second->component.disparity);
 }
 
 } // namespace specula

@@ -3,6 +3,7 @@
 // shader permutation per distinct feature mask. Components stay plain structs: sync() sees
 // a new or edited component (compared with the copy it last built from) and rebuilds.
 #include "components/reflection_probe/distance_lookup_config.h"
+#include "components/reflection_probe/lightfield_asset.h"
 #include "components/reflection_probe/reflection_probe.h"
 #include "engine/ecs/registry.h"
 #include "engine/gpu/gl_objects.h"
@@ -11,10 +12,12 @@
 #include "engine/math/camera.h"
 #include "engine/render/scene_renderer.h"
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace specula {
 
@@ -23,6 +26,11 @@ struct ProbeFrameStats {
     std::size_t reflectorsDrawn = 0;
     std::size_t probeGpuBytes = 0;          // texture memory of all probes
     std::vector<std::string> permutations; // the compiled feature sets, e.g. "bisection"
+    // Light-field probes are exact only for reflectors inside their cell: reflectors whose
+    // world bounds reach outside it in the last render() (each is also logged once).
+    std::size_t reflectorsOutsideCell = 0;
+    bool reflectorLeftCell = false;
+    bool lightFieldBackgroundDrawn = false; // the light field drew the environment this frame
 };
 
 class ReflectionProbeSystem {
@@ -44,17 +52,33 @@ public:
     // The CPU-side asset and lookup configuration of a synced probe (null if none).
     const DistanceProbeAsset* asset(ecs::Entity probe) const;
     const DistanceLookupConfig* config(ecs::Entity probe) const;
+    // Light-field probes: the cooked asset (null if none) and the disparities the shader
+    // uses now (the component's `disparity` when set, else the cooked per-slab values).
+    const LightFieldAsset* lightFieldAsset(ecs::Entity probe) const;
+    std::array<float, 6> lightFieldDisparities(ecs::Entity probe) const;
 
 private:
     struct ProbeGpu;
     gpu::Program& program(std::uint32_t features, int output);
+    void syncLightField(ProbeGpu& gpuProbe);
+    void bindLightField(gpu::Program& prog, const ProbeGpu& p);
+    void drawLightFieldBackground(const ProbeGpu& p, const CameraView& camera, int output);
+    void checkCell(ecs::Registry& registry, ecs::Entity reflector, const ProbeGpu& p);
 
     std::unordered_map<ecs::Entity, std::unique_ptr<ProbeGpu>> probes_;
     std::map<std::uint64_t, gpu::Program> programs_; // key: features | output << 32
     std::unordered_map<std::string, std::weak_ptr<const DistanceProbeAsset>> assetCache_;
+    std::unordered_map<std::string, std::weak_ptr<const LightFieldAsset>> lightFieldCache_;
+    std::unordered_set<ecs::Entity> warnedOutside_; // reflectors already logged as outside
+    gpu::VertexArray emptyVao_;                     // the background pass draws no attributes
     std::unique_ptr<gpu::GpuTimer> timer_;
     ProbeFrameStats stats_;
 };
+
+// Permutation bits of the light-field flavour, apart from the distance bits so a cache key
+// never confuses the two.
+inline constexpr std::uint32_t kFeatureLightField = 1u << 16;
+inline constexpr std::uint32_t kFeatureLightFieldBackground = 1u << 17;
 
 // Human-readable name of a feature mask, e.g. "layers+bisection+avgdist+fresnel".
 std::string featureName(std::uint32_t features);

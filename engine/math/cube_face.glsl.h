@@ -9,6 +9,8 @@
 // Returns (u, v, face) with u, v in [0, 1]; v = 0 is the face's first stored row.
 vec3 cubeFaceUv(vec3 dir) {
     if (any(isnan(dir))) return vec3(0.5f, 0.5f, 0.0f);
+    // Infinite components dominate: keep their signs, drop the finite ones (inf/inf is NaN).
+    if (any(isinf(dir))) dir = mix(vec3(0.0f), sign(dir), isinf(dir));
     vec3 a = abs(dir);
     float ma;
     float sc;
@@ -32,8 +34,9 @@ vec3 cubeFaceUv(vec3 dir) {
     }
     if (!(ma > 0.0f)) return vec3(0.5f, 0.5f, 0.0f); // zero direction
 
-    float inv = 0.5f / ma;
-    return vec3(clamp(sc * inv + 0.5f, 0.0f, 1.0f), clamp(tc * inv + 0.5f, 0.0f, 1.0f), face);
+    // Divide before halving: 0.5 / ma overflows for denormal ma, and 0 * inf is NaN.
+    return vec3(clamp(0.5f * (sc / ma) + 0.5f, 0.0f, 1.0f),
+                clamp(0.5f * (tc / ma) + 0.5f, 0.0f, 1.0f), face);
 }
 
 // Inverse of cubeFaceUv: the (unnormalised) direction through (u, v) of `face`.

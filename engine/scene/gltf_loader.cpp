@@ -871,6 +871,12 @@ class Converter {
     };
 
     void convert(ecs::Registry& registry) {
+        // glTF 2.x only: a major version this loader does not know may mean anything.
+        const std::string& version = m_.asset.version;
+        if (version.empty() || version.substr(0, version.find('.')) != "2")
+            fail("asset.version", "expected a glTF 2.x version, got '" + version + "'");
+        if (!m_.asset.minVersion.empty() && m_.asset.minVersion.substr(0, 2) != "2.")
+            fail("asset.minVersion", "expected 2.x, got '" + m_.asset.minVersion + "'");
         for (const auto& ext : m_.extensionsRequired)
             if (!supportedRequiredExtensions().count(ext))
                 fail("extensionsRequired", "requires unsupported extension '" + ext + "'");

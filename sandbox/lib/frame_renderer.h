@@ -15,10 +15,20 @@ public:
     // Renders the current state; output 0 = colour, 1/2 = the reflector pixels' probe-local
     // position / reflected direction (inputs for the CPU twin; other pixels hold the scene).
     Image render(const CameraView& camera, int output = 0);
+    // The same frame left in target() without a readback (timing loops).
+    void draw(const CameraView& camera, int output = 0);
     // Environment and sky only, reflectors skipped (for rasteriser-vs-tracer checks).
     Image renderEnvironment(const CameraView& camera);
 
     const ProbeFrameStats& stats() const { return probes_.stats(); }
+    // Time of the last draw's reflector pass. GL timer queries (stats().reflectorPassMs) on a
+    // GPU; on a software rasteriser, whose TIME_ELAPSED queries do not cover its deferred
+    // rasterisation (llvmpipe answers ~30 ns for most frames), the wall clock between two
+    // glFinish calls around the pass. SPECULA_TIMER=gl|wall forces either.
+    double passMs() const;
+    const char* timerSource() const {
+        return wallClock_ ? "wall clock around the pass (glFinish)" : "GL timer query";
+    }
     ReflectionProbeSystem& probes() { return probes_; }
     SceneRenderer& sceneRenderer() { return renderer_; }
     gpu::RenderTarget& target() { return target_; }
@@ -28,6 +38,11 @@ private:
     SceneRenderer renderer_;
     ReflectionProbeSystem probes_;
     gpu::RenderTarget target_;
+    bool wallClock_ = false;
+    double wallMs_ = 0.0;
 };
+
+// GL_RENDERER names a CPU rasteriser (llvmpipe, softpipe, SwiftShader).
+bool softwareRasteriser();
 
 } // namespace specula

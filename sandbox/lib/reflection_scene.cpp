@@ -10,8 +10,12 @@
 
 namespace specula {
 
-std::string defaultScenePath() { return std::string(SPECULA_SOURCE_ROOT) + "/assets/room/room.gltf"; }
-std::string defaultSkyPath() { return std::string(SPECULA_SOURCE_ROOT) + "/assets/scenes/env/field.jpg"; }
+std::string defaultScenePath() {
+    return std::string(SPECULA_SOURCE_ROOT) + "/assets/room/room.gltf";
+}
+std::string defaultSkyPath() {
+    return std::string(SPECULA_SOURCE_ROOT) + "/assets/scenes/env/field.jpg";
+}
 
 ReflectionScene::ReflectionScene(const std::string& gltfPath, const std::string& skyPath)
     : path_(gltfPath) {
@@ -30,11 +34,12 @@ glm::vec3 ReflectionScene::probeCentre() const {
     return markupProbeCentre(registry_, markup_, loaded_);
 }
 
-float ReflectionScene::cellSize() const { return markupCellSize(markup_); }
+float ReflectionScene::cellSize() const {
+    return markupCellSize(markup_);
+}
 
 float ReflectionScene::reflectorReach() const {
-    return markupReflectorReach(registry_, markup_, probeCentre(),
-                                cellSize());
+    return markupReflectorReach(registry_, markup_, probeCentre(), cellSize());
 }
 
 CameraView ReflectionScene::camera(int width, int height) const {
@@ -57,7 +62,8 @@ CameraView ReflectionScene::camera(int width, int height) const {
 CameraView ReflectionScene::orbitCamera(int width, int height, float angle, float distance,
                                         float heightAbove) const {
     const glm::vec3 c = probeCentre();
-    const glm::vec3 eye = c + glm::vec3(distance * std::sin(angle), heightAbove, distance * std::cos(angle));
+    const glm::vec3 eye =
+        c + glm::vec3(distance * std::sin(angle), heightAbove, distance * std::cos(angle));
     return CameraView::lookAt(eye, c, glm::vec3(0, 1, 0), glm::radians(50.f), width, height);
 }
 
@@ -67,7 +73,8 @@ ecs::Entity ReflectionScene::attachProbe(const ReflectionProbe& probe) {
     registry_.emplace<Name>(probe_, Name{"reflection_probe"});
     registry_.emplace<ReflectionProbe>(probe_, probe);
     for (const ReflectorMarkup& r : markup_.reflectors)
-        for (ecs::Entity e : r.meshes) registry_.emplace<Reflector>(e, Reflector{probe_, r.f0});
+        for (ecs::Entity e : r.meshes)
+            registry_.emplace<Reflector>(e, Reflector{probe_, r.f0});
     return probe_;
 }
 
@@ -88,6 +95,10 @@ void ReflectionScene::setReflectorOffset(glm::vec3 offset) {
         t.translation = authored + offset;
     }
     updateWorldTransforms(registry_);
+}
+
+glm::vec3 ReflectionScene::reflectorPosition() const {
+    return reflectorRoots_.empty() ? probeCentre() : reflectorRoots_.front().second + offset_;
 }
 
 GroundTruthImage ReflectionScene::groundTruth(const CameraView& camera, bool environmentOnly) {

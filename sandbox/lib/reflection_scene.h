@@ -51,6 +51,9 @@ public:
     // Moves every reflector node to its authored position + offset (world space).
     void setReflectorOffset(glm::vec3 offset);
     glm::vec3 reflectorOffset() const { return offset_; }
+    // World position of the first reflector node (authored + offset); the probe centre when
+    // the scene has no reflector.
+    glm::vec3 reflectorPosition() const;
 
     bool isMirror(ecs::Entity e) const { return markup_.mirrorEntities.count(e) > 0; }
 

@@ -9,6 +9,7 @@
 //   vec3  fetchSky(vec3 dir)                   the distant environment
 //   int   layerMethod(int layer)               method of each object layer (layered mode)
 //   float layerAvgDistance(int layer)          d-bar of each layer
+//   vec3  layerBoxMin(int layer), layerBoxMax(int layer)   probe-local bounds of a layer
 // and defines HAS_ENVMAP, HAS_BOXPROJ, HAS_BISECTION, HAS_SECANT, HAS_AVGDIST, HAS_LAYERS
 // as 0 or 1: a method the probe does not use is not compiled into its shader.
 //
@@ -123,6 +124,23 @@ LayerHit lookupAvgDist(int layer, vec3 x, vec3 lhat, ProbeLookupParams p) {
 }
 #endif
 
+#if HAS_LAYERS
+// Whether the ray x + t lhat (t >= 0) can meet the layer's bounding box: a layer the ray
+// misses costs no fetch at all, which is what keeps many layers affordable.
+bool layerMayHit(int layer, vec3 x, vec3 lhat) {
+    vec3 s = vec3(lhat.x >= 0.0f ? 1.0f : -1.0f, lhat.y >= 0.0f ? 1.0f : -1.0f,
+                  lhat.z >= 0.0f ? 1.0f : -1.0f);
+    vec3 inv = s / max(abs(lhat), vec3(1e-12f));
+    vec3 t1 = (layerBoxMin(layer) - x) * inv;
+    vec3 t2 = (layerBoxMax(layer) - x) * inv;
+    vec3 tNear = min(t1, t2);
+    vec3 tFar = max(t1, t2);
+    float enter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0f));
+    float leave = min(min(tFar.x, tFar.y), tFar.z);
+    return enter <= leave;
+}
+#endif
+
 LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, ProbeLookupParams p) {
 #if HAS_BISECTION
     if (method == kMethodBisection) return lookupBisection(layer, x, lhat, p);
@@ -139,8 +157,11 @@ LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, ProbeLookupParams
         return makeHit(fetchRadiance(layer, l), true, 1);
     }
 #endif
-    // Classic environment map: direction only.
-    return makeHit(fetchRadiance(layer, lhat), true, 1);
+    // Classic environment map: direction only. The composite (layer 0) holds the sky where
+    // it sees nothing, so it always answers; an object layer of distant things (layered
+    // mode) answers only where it has something, else the layers behind it and the sky do.
+    if (layer == 0) return makeHit(fetchRadiance(layer, lhat), true, 1);
+    return finishRectified(layer, lhat, fetchDistance(layer, lhat), 1, p.dInf);
 }
 
 // Radiance seen from probe-local point x along the unit reflected direction lhat.
@@ -148,6 +169,7 @@ vec3 probeRadiance(vec3 x, vec3 lhat, ProbeLookupParams p, INOUT(int) fetches) {
 #if HAS_LAYERS
     // Near to far: the first layer with a hit occludes everything behind it.
     for (int i = 1; i <= p.layerCount; ++i) {
+        if (!layerMayHit(i, x, lhat)) continue;
         LayerHit h = lookupLayer(layerMethod(i), i, x, lhat, p);
         fetches += h.fetches;
         if (h.hit) return h.radiance;

@@ -23,6 +23,8 @@ uniform int uMethod;
 uniform int uLayerCount;
 uniform int uLayerMethod[64];
 uniform float uLayerAvgDistance[64];
+uniform vec3 uLayerBoxMin[64];
+uniform vec3 uLayerBoxMax[64];
 uniform float uF0;
 
 in vec3 vWorldPos;
@@ -46,6 +48,8 @@ vec3 fetchSky(vec3 dir) {
 
 int layerMethod(int layer) { return uLayerMethod[layer]; }
 float layerAvgDistance(int layer) { return uLayerAvgDistance[layer]; }
+vec3 layerBoxMin(int layer) { return uLayerBoxMin[layer]; }
+vec3 layerBoxMax(int layer) { return uLayerBoxMax[layer]; }
 
 #include "components/reflection_probe/shaders/distance_lookup.glsl.h"
 

@@ -1,0 +1,310 @@
+#include "effect_plan.h"
+
+#include "assetcooker/lib/distance_bake.h"
+#include "engine/core/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace specula {
+
+namespace {
+
+constexpr float kPi = 3.14159265f;
+
+// Which texels of the analysis cube an object covers, grown by `grow` texels within each
+// face (a conservative stand-in for the parallax a moving reflector adds).
+std::vector<char> coverage(const DistanceProbeLayer& L, float dInf, int grow) {
+    const int n = L.faces[0].width;
+    std::vector<char> mask(std::size_t(6) * n * n, 0);
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                if (L.faces[std::size_t(f)].at(x, y)[3] >= 0.5f * dInf) continue;
+                for (int yy = std::max(0, y - grow); yy <= std::min(n - 1, y + grow); ++yy)
+                    for (int xx = std::max(0, x - grow); xx <= std::min(n - 1, x + grow); ++xx)
+                        mask[(std::size_t(f) * n + yy) * n + xx] = 1;
+            }
+    return mask;
+}
+
+bool overlaps(const std::vector<char>& a, const std::vector<char>& b) {
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i] && b[i]) return true;
+    return false;
+}
+
+std::string fmt(float v, int digits = 2) {
+    std::ostringstream s;
+    s.setf(std::ios::fixed);
+    s.precision(digits);
+    s << v;
+    return s.str();
+}
+
+} // namespace
+
+EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::vec3 centre,
+                       float reach, PlanThresholds t) {
+    EffectPlan plan;
+    // The user's needs, from the probe markup.
+    std::optional<std::string> forcedFlavour;
+    std::optional<bool> forcedFresnel, forcedBackground;
+    if (!markup.probes.empty()) {
+        const nlohmann::json& o = markup.probes.front().options;
+        if (o.contains("max_error_deg") && o["max_error_deg"].is_number()) {
+            t.maxErrorDeg = std::clamp(o["max_error_deg"].get<float>(), 1e-3f, 45.f);
+            plan.userNeeds.push_back("max_error_deg = " + fmt(t.maxErrorDeg, 3));
+        }
+        if (o.contains("motion_range") && o["motion_range"].is_number()) {
+            const float range = std::clamp(o["motion_range"].get<float>(), 0.f, 1e4f);
+            reach = std::max(reach, 0.5f * std::sqrt(3.f) * range);
+            plan.userNeeds.push_back("motion_range = " + fmt(range) + " m");
+        }
+        if (o.contains("flavour") && o["flavour"].is_string()) {
+            forcedFlavour = o["flavour"].get<std::string>();
+            if (*forcedFlavour != "distance" && *forcedFlavour != "lightfield")
+                throw Error(markup.probes.front().node, "specula_probe.flavour",
+                            "expected \"distance\" or \"lightfield\"");
+            plan.userNeeds.push_back("flavour = " + *forcedFlavour);
+        }
+        if (o.contains("fresnel") && o["fresnel"].is_boolean()) {
+            forcedFresnel = o["fresnel"].get<bool>();
+            plan.userNeeds.push_back(std::string("fresnel = ") + (*forcedFresnel ? "true" : "false"));
+        }
+        if (o.contains("background") && o["background"].is_boolean()) {
+            forcedBackground = o["background"].get<bool>();
+            plan.userNeeds.push_back(std::string("background = ") +
+                                     (*forcedBackground ? "true" : "false"));
+        }
+    }
+
+    // Visibility from the probe centre, one layer per object, at low resolution.
+    DistanceBakeOptions bo;
+    bo.centre = centre;
+    bo.faceRes = t.analysisFaceRes;
+    bo.reflectorReach = reach;
+    bo.withSky = false;
+    for (const EnvironmentObject& o : markup.objects) bo.layers.push_back({o.name, {o.name}, "-"});
+    DistanceProbeAsset analysis;
+    if (!markup.objects.empty()) analysis = bakeDistanceProbe(registry, markup, bo);
+
+    const float tolRad = t.maxErrorDeg * kPi / 180.f;
+    const float texelAngle = 0.5f * kPi / float(t.analysisFaceRes);
+    struct Near {
+        std::size_t object;
+        std::vector<char> mask;
+    };
+    std::vector<Near> nears;
+    std::vector<std::string> distant;
+    for (std::size_t i = 1; i < analysis.layers.size(); ++i) {
+        const DistanceProbeLayer& L = analysis.layers[i];
+        PlannedObject po;
+        po.name = L.name;
+        po.nearest = L.minDistance;
+        po.average = L.avgDistance;
+        po.solidAngle = L.solidAngle;
+        if (L.solidAngle <= 0.f) {
+            po.decision = "invisible";
+            po.reason = "not visible from the probe centre";
+            plan.objects.push_back(po);
+            continue;
+        }
+        // From a reflector point up to `reach` off the centre, the direction to the object's
+        // nearest point turns by at most asin(reach / nearest): the direction-only error.
+        const float parallax = reach >= L.minDistance ? 0.5f * kPi : std::asin(reach / L.minDistance);
+        po.parallaxDeg = parallax * 180.f / kPi;
+        if (parallax < tolRad) {
+            po.decision = "distant";
+            po.reason = "direction-only error <= " + fmt(po.parallaxDeg) + " deg < " +
+                        fmt(t.maxErrorDeg) + " deg at " + fmt(L.minDistance) + " m";
+            distant.push_back(L.name);
+        } else {
+            po.decision = L.solidAngle >= t.rectifySolidAngle ? "rectify" : "avgdist";
+            po.reason = "parallax up to " + fmt(po.parallaxDeg, 1) + " deg; covers " +
+                        fmt(L.solidAngle, 3) + " sr " +
+                        (po.decision == "rectify" ? ">= " : "< ") + fmt(t.rectifySolidAngle, 3) +
+                        " sr -> " +
+                        (po.decision == "rectify" ? "per-pixel rectification" : "average distance");
+            const int grow = int(std::ceil(parallax / texelAngle));
+            nears.push_back({plan.objects.size(), coverage(L, analysis.dInf, grow)});
+        }
+        plan.objects.push_back(po);
+    }
+
+    // Layers near to far: an object joins the first layer after every layer holding an
+    // object it can overlap (as seen from some reflector point), so occlusion order holds
+    // and objects that never overlap share a layer (one lookup instead of several).
+    std::sort(nears.begin(), nears.end(), [&](const Near& a, const Near& b) {
+        return plan.objects[a.object].nearest < plan.objects[b.object].nearest;
+    });
+    std::vector<std::vector<std::size_t>> groups; // indices into nears
+    bool anyOverlap = false;
+    float occluderParallax = 0.f; // worst parallax of a small object in front of another
+    for (std::size_t i = 0; i < nears.size(); ++i) {
+        std::size_t first = 0;
+        for (std::size_t g = 0; g < groups.size(); ++g)
+            for (std::size_t j : groups[g])
+                if (overlaps(nears[i].mask, nears[j].mask)) {
+                    first = g + 1;
+                    anyOverlap = true;
+                    const PlannedObject& front = plan.objects[nears[j].object];
+                    if (front.decision == "avgdist")
+                        occluderParallax = std::max(occluderParallax, front.parallaxDeg);
+                }
+        if (first == groups.size()) groups.emplace_back();
+        groups[first].push_back(i);
+    }
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        PlannedLayer layer;
+        bool rectify = false;
+        float lo = 1e30f, hi = 0.f;
+        for (std::size_t i : groups[g]) {
+            const PlannedObject& po = plan.objects[nears[i].object];
+            layer.objects.push_back(po.name);
+            rectify |= po.decision == "rectify";
+            lo = std::min(lo, po.average);
+            hi = std::max(hi, po.average);
+        }
+        layer.name = layer.objects.size() == 1 ? layer.objects[0] : "group" + std::to_string(g);
+        // One d-bar cannot serve objects at different distances.
+        const bool spread = hi > 1.2f * lo;
+        layer.method = rectify || spread ? "bisection" : "avgdist";
+        layer.reason = rectify ? "holds an object that needs per-pixel rectification"
+                       : spread ? "its objects lie at different distances (d-bar " + fmt(lo) +
+                                      " to " + fmt(hi) + " m)"
+                                : "small objects at one distance: one fetch at d-bar";
+        plan.layers.push_back(std::move(layer));
+    }
+    if (!distant.empty())
+        plan.layers.push_back({"distant", distant, "envmap",
+                               "far enough for the direction-only lookup"});
+
+    // Mode: the cheapest runtime path that represents the plan.
+    if (nears.empty()) {
+        plan.mode = "envmap";
+        plan.modeReason = markup.objects.empty() ? "no environment geometry: only the distant sky"
+                                                 : "every object is distant";
+    } else if (!anyOverlap) {
+        plan.mode = "single";
+        plan.modeReason = "no two near objects overlap as seen from the cell: one layer, merged";
+        const bool rectify = std::any_of(plan.layers.begin(), plan.layers.end(),
+                                         [](const PlannedLayer& l) { return l.method == "bisection"; });
+        PlannedLayer merged{"composite", {}, rectify ? "bisection" : "avgdist",
+                            "all objects merged into the composite"};
+        for (const PlannedLayer& l : plan.layers)
+            merged.objects.insert(merged.objects.end(), l.objects.begin(), l.objects.end());
+        if (!distant.empty())
+            merged.reason += "; distant objects ride along in the same lookup at no extra fetch";
+        plan.layers = {merged};
+    } else {
+        plan.mode = "layered";
+        plan.modeReason = "near objects overlap as seen from the cell: occlusion can show in "
+                          "the reflection, so they get their own layers, near to far";
+    }
+
+    // Flavour: the light field only for near occluding geometry the distance cube cannot
+    // represent (Wang et al. 2012: surfaces hidden from the probe centre but seen from the
+    // reflector). Enclosing surfaces (floor, walls) hide nothing; a small object in front of
+    // another does, and beyond 45 degrees of parallax what it uncovers dominates.
+    if (forcedFlavour) {
+        plan.flavour = *forcedFlavour;
+        plan.flavourReason = "the user asked for it (specula_probe.flavour)";
+    } else if (occluderParallax > 45.f) {
+        plan.flavour = "lightfield";
+        plan.flavourReason = "a small occluder moves across what is behind it by " +
+                             fmt(occluderParallax, 1) +
+                             " deg: disocclusions a distance cube map cannot show";
+    } else {
+        plan.flavour = "distance";
+        plan.flavourReason = anyOverlap ? "occluders move by at most " +
+                                              fmt(occluderParallax, 1) +
+                                              " deg over what is behind them: layered distance "
+                                              "cube maps represent it"
+                                        : "no occlusion parallax to represent";
+    }
+
+    // Fresnel only where a reflector's material asks for an F0 below 1, or the user does.
+    std::vector<std::string> asking;
+    for (const ReflectorMarkup& r : markup.reflectors)
+        if (r.f0 >= 0.f && r.f0 < 1.f) asking.push_back(r.node + " (F0 " + fmt(r.f0, 3) + ")");
+    if (forcedFresnel) {
+        plan.fresnel = *forcedFresnel;
+        plan.fresnelReason = "the user said so (specula_probe.fresnel)";
+    } else {
+        plan.fresnel = !asking.empty();
+        std::string who;
+        for (const std::string& a : asking) {
+            if (!who.empty()) who += ", ";
+            who += a;
+        }
+        plan.fresnelReason = asking.empty() ? "every reflector is a perfect mirror"
+                                            : "asked for by " + who;
+    }
+    plan.lightFieldBackground = forcedBackground.value_or(false);
+    plan.backgroundReason = forcedBackground ? "the user said so (specula_probe.background)"
+                                             : "not asked for";
+
+    std::vector<std::string> f;
+    if (plan.mode == "layered") f.push_back("layers");
+    for (const char* m : {"envmap", "bisection", "avgdist"})
+        if (std::any_of(plan.layers.begin(), plan.layers.end(),
+                        [&](const PlannedLayer& l) { return l.method == m; }) ||
+            (plan.mode == "envmap" && std::string(m) == "envmap"))
+            f.push_back(m);
+    if (plan.fresnel) f.push_back("fresnel");
+    for (const std::string& name : f) {
+        if (!plan.features.empty()) plan.features += '+';
+        plan.features += name;
+    }
+    return plan;
+}
+
+nlohmann::json EffectPlan::toJson() const {
+    nlohmann::json j;
+    j["flavour"] = {{"value", flavour}, {"reason", flavourReason}};
+    j["mode"] = {{"value", mode}, {"reason", modeReason}};
+    j["layers"] = nlohmann::json::array();
+    for (const PlannedLayer& l : layers)
+        j["layers"].push_back(
+            {{"name", l.name}, {"objects", l.objects}, {"method", l.method}, {"reason", l.reason}});
+    j["fresnel"] = {{"value", fresnel}, {"reason", fresnelReason}};
+    j["lightfield_background"] = {{"value", lightFieldBackground}, {"reason", backgroundReason}};
+    j["objects"] = nlohmann::json::array();
+    for (const PlannedObject& o : objects)
+        j["objects"].push_back({{"name", o.name},
+                                {"nearest_m", o.nearest},
+                                {"average_m", o.average},
+                                {"solid_angle_sr", o.solidAngle},
+                                {"parallax_deg", o.parallaxDeg},
+                                {"decision", o.decision},
+                                {"reason", o.reason}});
+    j["user_needs"] = userNeeds;
+    j["features"] = features;
+    return j;
+}
+
+std::string EffectPlan::toText() const {
+    std::ostringstream s;
+    s << "flavour  " << flavour << "  (" << flavourReason << ")\n";
+    s << "mode     " << mode << "  (" << modeReason << ")\n";
+    s << "shader   " << features << "\n";
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        s << "layer " << i + 1 << "  " << layers[i].method << "  [";
+        for (std::size_t k = 0; k < layers[i].objects.size(); ++k)
+            s << (k ? ", " : "") << layers[i].objects[k];
+        s << "]  (" << layers[i].reason << ")\n";
+    }
+    s << "fresnel  " << (fresnel ? "on" : "off") << "  (" << fresnelReason << ")\n";
+    s << "background from light field  " << (lightFieldBackground ? "on" : "off") << "  ("
+      << backgroundReason << ")\n";
+    for (const std::string& n : userNeeds) s << "user need  " << n << "\n";
+    s << "objects:\n";
+    for (const PlannedObject& o : objects)
+        s << "  " << o.name << ": " << o.decision << " - " << o.reason << "\n";
+    return s.str();
+}
+
+} // namespace specula

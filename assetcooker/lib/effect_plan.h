@@ -1,0 +1,69 @@
+#pragma once
+// The effect plan: which reflection effects a probe needs, decided from the scene and
+// explained. A scene pays for exactly what it needs: distant objects are looked up by
+// direction only, large near ones are rectified per pixel, small near ones get the average
+// distance, layers exist only where objects can occlude each other in a reflection, and
+// Fresnel only where a material asks. The user can state needs in the probe node's extras
+// ("specula_probe": {"max_error_deg", "motion_range", "flavour", "fresnel"}); the plan
+// honours them and says so.
+#include "components/reflection_probe/scene_markup.h"
+#include "engine/ecs/registry.h"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace specula {
+
+struct PlanThresholds {
+    // Largest angular error (degrees) the direction-only lookup may make anywhere in the
+    // reflector cell before an object needs correcting.
+    float maxErrorDeg = 1.0f;
+    // Solid angle from which an object is rectified per pixel rather than given the average
+    // distance: a cone of 20 degrees half-angle, 2 pi (1 - cos 20 deg) = 0.379 sr. Within such
+    // a cone a flat surface's distance varies by less than 1/cos(20 deg) - 1 = 6.4 % of its
+    // nearest distance, which the single d-bar fetch absorbs; wider, it does not.
+    float rectifySolidAngle = 0.379f;
+    int analysisFaceRes = 32; // resolution of the visibility analysis from the probe centre
+};
+
+struct PlannedObject {
+    std::string name;
+    float nearest = 0.f, average = 0.f, solidAngle = 0.f, parallaxDeg = 0.f;
+    std::string decision; // "distant", "rectify", "avgdist", "invisible"
+    std::string reason;
+};
+
+struct PlannedLayer {
+    std::string name;
+    std::vector<std::string> objects;
+    std::string method; // bisection, avgdist, envmap
+    std::string reason;
+};
+
+struct EffectPlan {
+    std::string flavour; // "distance" or "lightfield"
+    std::string flavourReason;
+    std::string mode; // "envmap" (direction only), "single" (one rectified layer), "layered"
+    std::string modeReason;
+    std::vector<PlannedLayer> layers; // near to far; the distant layer last
+    bool fresnel = false;
+    std::string fresnelReason;
+    bool lightFieldBackground = false;
+    std::string backgroundReason;
+    std::vector<PlannedObject> objects;
+    std::vector<std::string> userNeeds; // what the markup asked for, as read
+    std::string features;               // shader features the plan compiles in
+
+    nlohmann::json toJson() const;
+    std::string toText() const;
+};
+
+// Analyses the environment from `centre` (a low-resolution visibility bake) with reflector
+// points anywhere within `reach` of it. Markup needs override `thresholds`.
+EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::vec3 centre,
+                       float reach, PlanThresholds thresholds = {});
+
+} // namespace specula

@@ -1,0 +1,104 @@
+#pragma once
+// A cooked light-field-slab probe (Yu, Yang, McMillan 2005; DESIGN §5): six slabs around a
+// cubic cell of side l, each NUM x NUM cameras of RES x RES pixels with a 90 degree field of
+// view looking out along the slab axis.
+//
+// Atlas layout (one GL_TEXTURE_2D_ARRAY per probe, 6 layers):
+//   layer k = slab k in cube-face order +X -X +Y -Y +Z -Z (the slab axis a = k / 2, sign
+//   + for even k). Slab axes: b = (a + 1) % 3, c = (a + 2) % 3 (X: y,z; Y: z,x; Z: x,y).
+//   Each layer is a (NUM * RES)^2 atlas; camera (i, j) (i along b, j along c) owns the tile
+//   of texels [i RES, (i+1) RES) x [j RES, (j+1) RES). Within a tile, texel (x, y) holds the
+//   ray with slope (d_b, d_c) / |d_a| = ((x + 0.5) 2 / RES - 1, (y + 0.5) 2 / RES - 1).
+//   Camera i sits at s_i = (i / (NUM - 1) - 1/2) 3l on the plane d_a = +-l/2: the outermost
+//   cameras lie on the edges of the 3l-wide plane, so every continuous camera index of a ray
+//   through the cell is in [0, NUM - 1] and interpolates between two real cameras.
+//   Texels are sRGB-encoded 8-bit RGB (GL_SRGB8_ALPHA8) or BC1 blocks of sRGB colour
+//   (GL_COMPRESSED_SRGB_S3TC_DXT1_EXT); RES is a multiple of 4 so BC1 blocks never straddle
+//   two cameras. Limits: NUM * RES <= 16384 (2D texture side), 6 layers (<= 2048), so the
+//   paper's 32 x 128 is a 4096^2 x 6 array: 384 MiB uncompressed, 48 MiB BC1.
+// On disk: manifest.json plus one raw file per slab holding exactly the bytes uploaded
+// (rows top to bottom: RGB8 texels, or BC1 blocks in block-row order), with checksums.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace specula {
+
+enum class LightFieldCompression { None, BC1 };
+const char* toString(LightFieldCompression c);
+
+struct LightFieldSlab {
+    // Axial depth (along the slab axis, from the camera plane) of what the cameras see, over
+    // the samples whose line passes through the cell (the only ones a reflector in the cell
+    // reads). nearDepth/farDepth are the robust range (percentiles, sky = +inf) that sets
+    // the focal plane; minDepth/maxDepth the extremes of the hits beyond the plane.
+    float nearDepth = 0.f, farDepth = 0.f; // farDepth = +inf when the sky is in range
+    float minDepth = 0.f, maxDepth = 0.f;
+    float skyFraction = 0.f;       // share of those samples that see the sky
+    float intrudingFraction = 0.f; // share that hit geometry before the camera plane
+    float focalDepth = 0.f;        // harmonic mean of near and far (+inf: far is the sky)
+    float disparity = 0.f;         // focal-plane disparity, pixels per camera step
+    std::vector<std::uint8_t> data; // the atlas layer as uploaded (see the header comment)
+    std::string file, checksum;
+};
+
+struct LightFieldIntrusion {
+    std::string object;
+    std::string region; // "cell" or the slab region, e.g. "slab -Y"
+    float depth = 0.f;  // how far (metres) the object's bounds reach into that region
+};
+
+struct LightFieldAsset {
+    glm::vec3 cellCentre{0.f}; // world space
+    float cellSize = 1.f;      // l
+    int cameras = 8;           // NUM per side
+    int res = 64;              // RES
+    LightFieldCompression compression = LightFieldCompression::None;
+    float depthPercentile = 0.4f; // the robust range's lower/upper percentile
+    double bakeSeconds = 0.0;
+    std::array<LightFieldSlab, 6> slabs;
+    std::vector<LightFieldIntrusion> intrusions;
+
+    int atlasSize() const { return cameras * res; }
+    float halfCell() const { return 0.5f * cellSize; }
+    // Distance between neighbouring cameras: 3l / (NUM - 1).
+    float cameraSpacing() const { return 3.f * cellSize / float(cameras - 1); }
+    // Bytes of one slab's atlas layer in the asset's texel format (on disk and on the GPU).
+    std::size_t layerBytes() const;
+    std::size_t gpuBytes() const { return 6 * layerBytes(); }
+};
+
+// Disparity (pixels per camera step) that puts the focal plane at axial depth z: a point at
+// depth z moves by spacing / z in slope, i.e. spacing / z * RES / 2 pixels, per camera.
+float disparityForDepth(const LightFieldAsset& a, float focalDepth);
+
+// The names of the slabs in layer order: "+X", "-X", "+Y", "-Y", "+Z", "-Z".
+const char* slabName(int slab);
+
+// Checks NUM, RES, cell size and compression against the storage limits; throws Error
+// naming `source` and the field (`--cameras` style flag names when source is empty).
+void validateLightFieldSize(int cameras, int res, float cellSize, LightFieldCompression c,
+                            const std::string& source);
+
+// Writes DIR/manifest.json and the six slab files, atomically (temporary folder + rename).
+void writeLightFieldProbe(const LightFieldAsset& asset, const std::string& dir,
+                          const std::string& sourceScene);
+
+// Reads and validates a light-field manifest and its slab files (version, every field,
+// sizes, checksums). Errors name the file and the field.
+LightFieldAsset readLightFieldProbe(const std::string& manifestPath);
+
+// The manifest's "flavour" member ("distance", "lightfield"), so a loader can dispatch.
+// Throws Error naming the file when it cannot be read.
+std::string probeManifestFlavour(const std::string& manifestPath);
+
+// BC1 (DXT1) of an RGB8 image (width and height multiples of 4; 3 bytes per texel, rows top
+// to bottom): 8 bytes per 4x4 block, blocks in row order. Always the four-colour mode.
+std::vector<std::uint8_t> encodeBC1(const std::uint8_t* rgb, int width, int height);
+// Decodes BC1 blocks back to RGB8, as the GPU's decoder does (to within rounding).
+std::vector<std::uint8_t> decodeBC1(const std::uint8_t* blocks, int width, int height);
+
+} // namespace specula

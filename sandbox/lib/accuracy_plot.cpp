@@ -1,0 +1,198 @@
+#include "accuracy_plot.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <map>
+
+namespace specula {
+
+namespace {
+
+const std::string& plotFont() {
+    static const std::string font = [] {
+        for (const char* f : {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+                              "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
+                              "/usr/share/fonts/truetype/freefont/FreeSans.ttf"})
+            if (std::filesystem::exists(f)) return std::string(f);
+        return std::string();
+    }();
+    return font;
+}
+
+// One colour per method, in order of appearance (linear RGB, bright enough on dark grey).
+constexpr std::array<std::array<float, 3>, 9> kPalette = {{{0.90f, 0.10f, 0.08f},
+                                                           {0.95f, 0.45f, 0.02f},
+                                                           {0.90f, 0.90f, 0.10f},
+                                                           {0.10f, 0.70f, 0.15f},
+                                                           {0.10f, 0.30f, 1.00f},
+                                                           {0.55f, 0.20f, 0.90f},
+                                                           {0.10f, 0.85f, 0.85f},
+                                                           {0.90f, 0.25f, 0.65f},
+                                                           {0.60f, 0.60f, 0.60f}}};
+
+struct Canvas {
+    OIIO::ImageBuf buf;
+    void line(int x0, int y0, int x1, int y1, const std::array<float, 3>& c) {
+        OIIO::ImageBufAlgo::render_line(buf, x0, y0, x1, y1, c);
+    }
+    void thickLine(int x0, int y0, int x1, int y1, const std::array<float, 3>& c) {
+        for (int d = -1; d <= 1; ++d) {
+            line(x0 + d, y0, x1 + d, y1, c);
+            line(x0, y0 + d, x1, y1 + d, c);
+        }
+    }
+    void dashed(int x0, int y0, int x1, int y1, const std::array<float, 3>& c) {
+        const double len = std::hypot(double(x1 - x0), double(y1 - y0));
+        const int n = std::max(1, int(len / 6.0));
+        for (int i = 0; i < n; i += 2) {
+            const double a = double(i) / n, b = double(std::min(i + 1, n)) / n;
+            line(int(x0 + a * (x1 - x0)), int(y0 + a * (y1 - y0)), int(x0 + b * (x1 - x0)),
+                 int(y0 + b * (y1 - y0)), c);
+        }
+    }
+    void box(int x0, int y0, int x1, int y1, const std::array<float, 3>& c, bool fill) {
+        OIIO::ImageBufAlgo::render_box(buf, x0, y0, x1, y1, c, fill);
+    }
+    void text(int x, int y, const std::string& s, int size, const std::array<float, 3>& c,
+              OIIO::ImageBufAlgo::TextAlignX ax = OIIO::ImageBufAlgo::TextAlignX::Left,
+              OIIO::ImageBufAlgo::TextAlignY ay = OIIO::ImageBufAlgo::TextAlignY::Baseline) {
+        if (plotFont().empty()) return; // no font on this machine: the plot has no text
+        OIIO::ImageBufAlgo::render_text(buf, x, y, s, size, plotFont(), c, ax, ay);
+    }
+};
+
+std::string fmt(const char* f, double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, f, v);
+    return b;
+}
+
+void drawPanel(Canvas& cv, int ox, int pw, int ph, const PlotPanel& panel) {
+    using OIIO::ImageBufAlgo::TextAlignX;
+    using OIIO::ImageBufAlgo::TextAlignY;
+    const std::array<float, 3> axis{0.8f, 0.8f, 0.8f}, grid{0.07f, 0.07f, 0.08f},
+        white{1.f, 1.f, 1.f};
+    const int left = ox + 64, right = ox + pw - 20, top = 58, bottom = ph - 52;
+
+    std::vector<PlotPoint> pts;
+    for (const PlotPoint& p : panel.points)
+        if (std::isfinite(p.psnr) && std::isfinite(p.ratio) && p.ratio > 0) pts.push_back(p);
+    double rMin = 1, rMax = 2, pMin = 0, pMax = 1;
+    if (!pts.empty()) {
+        rMin = rMax = pts[0].ratio;
+        pMin = pMax = pts[0].psnr;
+        for (const PlotPoint& p : pts) {
+            rMin = std::min(rMin, p.ratio), rMax = std::max(rMax, p.ratio);
+            pMin = std::min(pMin, p.psnr), pMax = std::max(pMax, p.psnr);
+        }
+    }
+    // x: log2 of the ratio, whole powers of two as ticks; y: PSNR, 5 dB ticks.
+    double lx0 = std::floor(std::log2(rMin) - 0.25), lx1 = std::ceil(std::log2(rMax) + 0.25);
+    if (lx1 - lx0 < 2) lx1 = lx0 + 2;
+    double y0 = std::floor(pMin / 5.0) * 5.0 - 2.5, y1 = std::ceil(pMax / 5.0) * 5.0 + 2.5;
+    auto X = [&](double r) {
+        return int(left + (std::log2(r) - lx0) / (lx1 - lx0) * (right - left));
+    };
+    auto Y = [&](double p) { return int(bottom - (p - y0) / (y1 - y0) * (bottom - top)); };
+
+    for (double l = lx0; l <= lx1 + 1e-9; l += 1) {
+        const int x = X(std::exp2(l));
+        cv.line(x, top, x, bottom, grid);
+        cv.line(x, bottom, x, bottom + 5, axis);
+        cv.text(x, bottom + 20, fmt(l >= 0 ? "%.0f" : "%.3g", std::exp2(l)), 13, axis,
+                TextAlignX::Center);
+    }
+    for (double v = std::ceil(y0 / 5.0) * 5.0; v <= y1; v += 5) {
+        const int y = Y(v);
+        cv.line(left, y, right, y, grid);
+        cv.line(left - 5, y, left, y, axis);
+        cv.text(left - 8, y + 5, fmt("%.0f", v), 13, axis, TextAlignX::Right);
+    }
+    cv.box(left, top, right, bottom, axis, false);
+    cv.text((left + right) / 2, ph - 12, "reflector pass time / envmap (log scale)", 14, axis,
+            TextAlignX::Center);
+    cv.text(ox + 14, top - 10, "PSNR dB (reflector pixels, env-only ground truth)", 13, axis);
+    cv.text((left + right) / 2, 24, panel.title, 17, white, TextAlignX::Center);
+
+    // Lines per method, then the points, then the Pareto front on top.
+    std::map<std::string, int> colourOf;
+    std::vector<std::string> order;
+    for (const PlotPoint& p : pts)
+        if (colourOf.emplace(p.method, int(colourOf.size()) % int(kPalette.size())).second)
+            order.push_back(p.method);
+    for (const std::string& m : order) {
+        std::vector<const PlotPoint*> line;
+        for (const PlotPoint& p : pts)
+            if (p.method == m) line.push_back(&p);
+        std::sort(line.begin(), line.end(), [](auto* a, auto* b) { return a->ratio < b->ratio; });
+        const auto& c = kPalette[std::size_t(colourOf[m])];
+        for (std::size_t i = 1; i < line.size(); ++i)
+            cv.thickLine(X(line[i - 1]->ratio), Y(line[i - 1]->psnr), X(line[i]->ratio),
+                         Y(line[i]->psnr), c);
+        for (const PlotPoint* p : line)
+            cv.box(X(p->ratio) - 4, Y(p->psnr) - 4, X(p->ratio) + 4, Y(p->psnr) + 4, c, true);
+    }
+    const std::vector<std::size_t> front = paretoFront(pts);
+    for (std::size_t i = 0; i < front.size(); ++i) {
+        const PlotPoint& p = pts[front[i]];
+        cv.box(X(p.ratio) - 8, Y(p.psnr) - 8, X(p.ratio) + 8, Y(p.psnr) + 8, white, false);
+        if (i > 0) {
+            const PlotPoint& q = pts[front[i - 1]];
+            cv.dashed(X(q.ratio), Y(q.psnr), X(p.ratio), Y(p.psnr), white);
+        }
+    }
+    // Legend, bottom right inside the frame.
+    int ly = bottom - 14 - 18 * int(order.size());
+    for (const std::string& m : order) {
+        const auto& c = kPalette[std::size_t(colourOf[m])];
+        cv.box(right - 130, ly - 9, right - 118, ly + 1, c, true);
+        cv.text(right - 112, ly, m, 13, axis);
+        ly += 18;
+    }
+    cv.box(right - 132, ly - 10, right - 116, ly + 2, white, false);
+    cv.text(right - 112, ly, "Pareto front", 13, axis);
+}
+
+} // namespace
+
+std::vector<std::size_t> paretoFront(const std::vector<PlotPoint>& points) {
+    std::vector<std::size_t> idx;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const PlotPoint& p = points[i];
+        if (!std::isfinite(p.psnr) || !std::isfinite(p.ratio)) continue;
+        bool dominated = false;
+        for (std::size_t j = 0; j < points.size() && !dominated; ++j) {
+            const PlotPoint& q = points[j];
+            if (j == i || !std::isfinite(q.psnr) || !std::isfinite(q.ratio)) continue;
+            dominated =
+                q.ratio <= p.ratio && q.psnr >= p.psnr && (q.ratio < p.ratio || q.psnr > p.psnr);
+        }
+        if (!dominated) idx.push_back(i);
+    }
+    std::sort(idx.begin(), idx.end(),
+              [&](std::size_t a, std::size_t b) { return points[a].ratio < points[b].ratio; });
+    return idx;
+}
+
+Image accuracyPlot(const std::vector<PlotPanel>& panels, int pw, int ph) {
+    const int n = std::max<int>(1, int(panels.size()));
+    Canvas cv;
+    cv.buf.reset(OIIO::ImageSpec(pw * n, ph, 3, OIIO::TypeDesc::FLOAT));
+    const float bg[3] = {0.035f, 0.035f, 0.04f};
+    OIIO::ImageBufAlgo::fill(cv.buf, bg);
+    for (int i = 0; i < int(panels.size()); ++i)
+        drawPanel(cv, i * pw, pw, ph, panels[std::size_t(i)]);
+    Image out(pw * n, ph, 3);
+    cv.buf.get_pixels(OIIO::ROI(0, pw * n, 0, ph, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
+                      out.pixels.data());
+    return out;
+}
+
+} // namespace specula

@@ -1,0 +1,47 @@
+#pragma once
+// specula-sandbox bench: every method and its accuracy sweep on several scenes, measured in
+// one run against the Embree ground truth. Writes bench.csv, bench.md, accuracy_vs_time.png
+// and strip_<scene>.png into the output folder.
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace specula {
+
+struct BenchOptions {
+    std::vector<std::string> scenes; // empty: the default room and the truck room
+    std::string sky;                 // empty: the default panorama
+    bool quick = false;
+    int width = 0, height = 0; // 0: 1024x768, quick 160x120
+    int faceRes = 0;           // 0: 256, quick 64
+    int maxFrames = 0;         // timed frames per row at most; 0: 64, quick 12
+    std::string outDir = "bench-out";
+    bool progress = true;
+};
+
+struct BenchRow {
+    std::string scene, method, params;
+    double msMedian = 0, ratioToEnvmap = 0;
+    double psnr = 0, rmse = 0;         // vs environment-only ground truth
+    double psnrFull = 0, rmseFull = 0; // vs the full (multi-bounce) ground truth
+    double fetchesPerPixel = 0;
+    std::size_t gpuBytes = 0;
+    double bakeSeconds = 0;
+    int frames = 0; // timed samples behind the median
+};
+
+struct BenchReport {
+    std::vector<BenchRow> rows;
+    std::string machine, renderer, glVersion;
+    std::string timer; // how pass times were taken (FrameRenderer::timerSource)
+    int width = 0, height = 0, faceRes = 0;
+};
+
+// `second scene` of the default set.
+std::string truckRoomPath();
+
+// Runs the whole bench and writes its files; progress lines go to `log`. Throws Error
+// naming the file on bad input.
+BenchReport runBench(const BenchOptions& options, std::ostream& log);
+
+} // namespace specula

@@ -1,0 +1,31 @@
+#pragma once
+// The one place the sandbox needs to know how a light-field probe is baked. Built against a
+// tree without the light-field cooker (assetcooker/lib/lightfield_bake.h) it returns nothing
+// and the bench, the strip and walk simply have no light field; with it, the bench sweeps
+// the cooked sizes below and walk bakes one when asked for --method lightfield.
+#include "sandbox/lib/reflection_scene.h"
+
+#include <string>
+#include <vector>
+
+namespace specula {
+
+struct LightFieldBake {
+    std::string manifest;
+    std::string params; // e.g. "num=16 res=64"
+    double seconds = 0;
+    double fetchesPerPixel = 4; // quadrilinear: 4 bilinear fetches per ray (DESIGN §5)
+};
+
+bool lightFieldBakeAvailable();
+
+// The bench's light-field sweep (one bake per size), into dirRoot_<params>.
+std::vector<LightFieldBake> bakeLightFieldsForBench(ReflectionScene& scene,
+                                                    const std::string& dirRoot, bool quick);
+// One light field for walk (cameras x res), into dir.
+LightFieldBake bakeLightField(ReflectionScene& scene, const std::string& dir, int cameras, int res);
+
+// "lightfield" or "distance" from a manifest ("distance" when the reader is not built).
+std::string manifestFlavour(const std::string& manifest);
+
+} // namespace specula

@@ -1,0 +1,165 @@
+#include "probe_source.h"
+
+#include "assetcooker/lib/distance_bake.h"
+#include "components/reflection_probe/distance_probe_asset.h"
+#include "engine/core/error.h"
+#include "engine/core/flags.h"
+#include "engine/core/progress.h"
+#include "sandbox/lib/lightfield_hook.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <glm/gtc/constants.hpp>
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace specula {
+
+double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int faceRes,
+                             bool showProgress) {
+    const auto start = std::chrono::steady_clock::now();
+    DistanceBakeOptions o;
+    o.centre = scene.probeCentre();
+    o.faceRes = faceRes;
+    o.sky = scene.sky().empty() ? nullptr : &scene.sky();
+    o.reflectorReach = scene.reflectorReach();
+    DistanceProbeAsset asset;
+    {
+        std::optional<ProgressBar> bar;
+        if (showProgress) {
+            bar.emplace("baking " + fs::path(scene.path()).filename().string());
+            o.progress = [&](double f) { bar->update(f); };
+        }
+        asset = bakeDistanceProbe(scene.registry(), scene.markup(), o);
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    writeDistanceProbe(asset, dir, scene.path());
+    return seconds;
+}
+
+ProbeSource resolveProbeSource(const std::string& input,
+                               const std::optional<std::string>& sceneOverride,
+                               const std::optional<std::string>& skyOverride,
+                               const std::string& bakeDir, int faceRes, bool showProgress,
+                               bool lightField) {
+    if (!fs::exists(input)) throw Error(input, "", "no such file");
+    ProbeSource src;
+    const std::string ext = fs::path(input).extension().string();
+    if (ext == ".json") {
+        src.manifest = input;
+        src.lightField = manifestFlavour(input) == "lightfield";
+        // Validates the whole asset (version, fields, checksums) before anything is drawn; a
+        // light field is validated when the probe system loads it.
+        DistanceProbeAsset asset;
+        if (!src.lightField) asset = readDistanceProbe(input);
+        if (sceneOverride) {
+            src.scenePath = *sceneOverride;
+        } else {
+            std::ifstream in(input);
+            const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+            if (!j.is_object() || !j.contains("source") || !j["source"].is_string())
+                throw Error(input, "source", "expected the scene's path (or give --scene)");
+            const fs::path s = j["source"].get<std::string>();
+            const fs::path besideManifest = fs::path(input).parent_path() / s;
+            src.scenePath = fs::exists(s) || s.is_absolute() || !fs::exists(besideManifest)
+                                ? s.string()
+                                : besideManifest.string();
+        }
+        if (!fs::exists(src.scenePath))
+            throw Error(input, "source", "scene '" + src.scenePath + "' not found (give --scene)");
+        src.skyPath = skyOverride      ? *skyOverride
+                      : src.lightField ? defaultSkyPath()
+                      : asset.skyFile.empty()
+                          ? std::string()
+                          : (fs::path(input).parent_path() / asset.skyFile).string();
+        return src;
+    }
+    if (ext != ".gltf" && ext != ".glb")
+        throw Error(input, "", "expected a scene (.gltf, .glb) or a probe manifest (.json)");
+    src.scenePath = input;
+    src.skyPath = skyOverride ? *skyOverride : defaultSkyPath();
+    ReflectionScene scene(src.scenePath, src.skyPath);
+    if (scene.markup().reflectors.empty())
+        throw Error(input, "specula_reflector", "the scene has no reflector node");
+    if (lightField) {
+        if (!lightFieldBakeAvailable())
+            throw Error(input, "", "this build cannot bake a light field; give a cooked manifest");
+        const LightFieldBake b = bakeLightField(scene, bakeDir, 16, 32);
+        src.bakeSeconds = b.seconds;
+        src.lightField = true;
+    } else {
+        src.bakeSeconds = bakeDistanceProbeInto(scene, bakeDir, faceRes, showProgress);
+    }
+    src.manifest = (fs::path(bakeDir) / "manifest.json").string();
+    src.baked = true;
+    return src;
+}
+
+bool parseWalkPath(const std::string& s, WalkPath& out) {
+    if (s == "orbit")
+        out = WalkPath::Orbit;
+    else if (s == "line")
+        out = WalkPath::Line;
+    else if (s == "figure8")
+        out = WalkPath::Figure8;
+    else
+        return false;
+    return true;
+}
+
+const char* toString(WalkPath p) {
+    switch (p) {
+    case WalkPath::Orbit:
+        return "orbit";
+    case WalkPath::Line:
+        return "line";
+    case WalkPath::Figure8:
+        return "figure8";
+    }
+    return "?";
+}
+
+glm::vec3 walkOffset(WalkPath path, float t, float cellSize) {
+    const float a = 0.2f * cellSize;
+    const float w = glm::two_pi<float>() * t;
+    switch (path) {
+    case WalkPath::Orbit:
+        return {a * std::sin(w), 0.25f * a * std::sin(2.f * w), a * std::cos(w)};
+    case WalkPath::Line:
+        return {a * std::sin(w), 0.f, 0.f};
+    case WalkPath::Figure8:
+        return {a * std::sin(w), 0.f, a * std::sin(2.f * w)};
+    }
+    return glm::vec3(0.f);
+}
+
+Image erodedMask(const Image& mask) {
+    Image out(mask.width, mask.height, 1);
+    for (int y = 0; y < mask.height; ++y)
+        for (int x = 0; x < mask.width; ++x) {
+            bool all = true;
+            for (int dy = -1; dy <= 1 && all; ++dy)
+                for (int dx = -1; dx <= 1 && all; ++dx) {
+                    const int xx = x + dx, yy = y + dy;
+                    all = xx >= 0 && yy >= 0 && xx < mask.width && yy < mask.height &&
+                          mask.at(xx, yy)[0] > 0.5f;
+                }
+            out.at(x, y)[0] = all ? 1.f : 0.f;
+        }
+    return out;
+}
+
+void parseSize(const std::string& flag, const std::string& text, int& width, int& height) {
+    const auto x = text.find('x');
+    if (x == std::string::npos)
+        throw UsageError{flag + ": expected WIDTHxHEIGHT, got '" + text + "'"};
+    width = parseInt(flag, text.substr(0, x), 16, 8192);
+    height = parseInt(flag, text.substr(x + 1), 16, 8192);
+}
+
+} // namespace specula

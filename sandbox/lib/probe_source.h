@@ -1,0 +1,52 @@
+#pragma once
+// What walk and bench start from: a scene (.gltf/.glb, baked here into a probe) or a cooked
+// manifest (its scene found through the manifest's "source"). Plus the small helpers both
+// subcommands share: the reflector path inside the cell and the reflector-pixel mask.
+#include "engine/image/image.h"
+#include "sandbox/lib/reflection_scene.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace specula {
+
+struct ProbeSource {
+    std::string scenePath;
+    std::string skyPath;
+    std::string manifest;   // cooked distance probe
+    double bakeSeconds = 0; // 0 when a cooked manifest was given
+    bool baked = false;
+    bool lightField = false; // the manifest is a light-field probe
+};
+
+// `input`: a scene or a manifest.json. `sceneOverride`: the scene to use with a manifest
+// (else its "source", relative to the working directory or to the manifest's folder).
+// A scene is baked with Embree into `bakeDir` (replaced): a distance probe with `faceRes`, or
+// with `lightField` a light field (16 cameras of 32^2 pixels a slab). Throws Error naming the
+// file on bad input.
+ProbeSource resolveProbeSource(const std::string& input,
+                               const std::optional<std::string>& sceneOverride,
+                               const std::optional<std::string>& skyOverride,
+                               const std::string& bakeDir, int faceRes, bool showProgress,
+                               bool lightField = false);
+
+// Bakes the distance probe of a loaded scene into `dir`; returns the seconds it took.
+double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int faceRes,
+                             bool showProgress);
+
+// Walk paths: where the reflectors are at time t in [0, 1), as an offset from their authored
+// position. Every path stays within 0.2 cell sizes of it on each axis, inside the cell.
+enum class WalkPath { Orbit, Line, Figure8 };
+bool parseWalkPath(const std::string& s, WalkPath& out);
+const char* toString(WalkPath p);
+glm::vec3 walkOffset(WalkPath path, float t, float cellSize);
+
+// Mirror pixels whose 3x3 neighbourhood is all mirror: the rasteriser and the tracer may
+// disagree on which silhouette pixels a reflector covers, never on its interior.
+Image erodedMask(const Image& mask);
+
+// "WxH" -> width, height (each 16..8192); throws UsageError.
+void parseSize(const std::string& flag, const std::string& text, int& width, int& height);
+
+} // namespace specula

@@ -1,0 +1,114 @@
+#include "walk.h"
+
+#include "engine/core/error.h"
+#include "engine/core/progress.h"
+#include "engine/gpu/context.h"
+#include "engine/image/compare.h"
+#include "engine/image/contact_sheet.h"
+#include "engine/image/image_io.h"
+#include "sandbox/lib/frame_renderer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include <glm/gtc/constants.hpp>
+
+namespace fs = std::filesystem;
+
+namespace specula {
+
+void walkCameraOrbit(const ReflectionScene& scene, float& angle, float& distance, float& height) {
+    const CameraView base = scene.camera(64, 48);
+    const glm::vec3 c = scene.probeCentre(), e = base.eye() - c;
+    angle = std::atan2(e.x, e.z);
+    distance = std::max(0.5f, std::hypot(e.x, e.z));
+    height = e.y;
+}
+
+CameraView walkCamera(const ReflectionScene& scene, int width, int height, float angle,
+                      float distance, float heightAbove) {
+    return scene.orbitCamera(width, height, angle, distance, heightAbove);
+}
+
+CameraView walkCamera(const ReflectionScene& scene, int width, int height, float t) {
+    float angle, distance, h;
+    walkCameraOrbit(scene, angle, distance, h);
+    return walkCamera(scene, width, height, angle + 0.4f * std::sin(glm::two_pi<float>() * t),
+                      distance, h);
+}
+
+int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
+    fs::create_directories(o.outDir);
+    const ProbeSource src =
+        resolveProbeSource(o.input, o.scene, o.sky, (fs::path(o.outDir) / "probe").string(),
+                           o.faceRes, o.progress, o.method == LookupMethod::LightField);
+    if (src.baked) out << "baked " << src.manifest << " in " << src.bakeSeconds << " s\n";
+    auto context = gpu::GlContext::createHeadless();
+    ReflectionScene scene(src.scenePath, src.skyPath);
+    ReflectionProbe probe;
+    probe.asset = src.manifest;
+    probe.method = src.lightField ? LookupMethod::LightField : o.method;
+    probe.flavour = src.lightField ? ProbeFlavour::LightFieldSlab : ProbeFlavour::DistanceCubemap;
+    probe.errorTolerance = o.tolerance;
+    probe.layerMethod = LookupMethod::Envmap; // the cooked plan's choice per layer
+    scene.attachProbe(probe);
+
+    std::ostringstream csv;
+    csv << "frame,reflector_x,reflector_y,reflector_z,camera_angle_deg,pass_ms"
+        << (o.compare ? ",psnr" : "") << '\n';
+    std::vector<Image> sheet;
+    std::vector<std::string> labels;
+    const int sheetEvery = std::max(1, (o.frames + 23) / 24); // at most 24 tiles
+    {
+        FrameRenderer fr(scene, o.width, o.height);
+        // Warm-up: shader compile and upload; llvmpipe's first timer result can be garbage.
+        fr.draw(walkCamera(scene, o.width, o.height, 0.f));
+        float angle0, dist, h;
+        walkCameraOrbit(scene, angle0, dist, h);
+        std::optional<ProgressBar> bar;
+        if (o.progress) bar.emplace("walk " + std::string(toString(o.path)));
+        for (int i = 0; i < o.frames; ++i) {
+            const float t = float(i) / float(o.frames);
+            scene.setReflectorOffset(walkOffset(o.path, t, scene.cellSize()));
+            const float angle = angle0 + 0.4f * std::sin(glm::two_pi<float>() * t);
+            const CameraView cam = walkCamera(scene, o.width, o.height, angle, dist, h);
+            const Image img = fr.render(cam);
+            const double ms = fr.passMs();
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%04d.png", i);
+            writeImage((fs::path(o.outDir) / name).string(), img);
+            const glm::vec3 p = scene.reflectorPosition();
+            csv << i << ',' << p.x << ',' << p.y << ',' << p.z << ','
+                << glm::degrees(angle - angle0) << ',' << ms;
+            if (o.compare) {
+                const GroundTruthImage gt = scene.groundTruth(cam, true);
+                const Image mask = erodedMask(gt.mirrorMask);
+                const double psnr = compareImages(img, gt.color, &mask).psnr;
+                csv << ',' << (std::isinf(psnr) ? std::string("inf") : std::to_string(psnr));
+            }
+            csv << '\n';
+            if (i % sheetEvery == 0) {
+                sheet.push_back(img);
+                labels.push_back("frame " + std::to_string(i));
+            }
+            if (bar) bar->update(double(i + 1) / o.frames);
+        }
+    }
+    {
+        const std::string path = (fs::path(o.outDir) / "frames.csv").string();
+        std::ofstream(path + ".tmp") << csv.str();
+        fs::rename(path + ".tmp", path);
+    }
+    writeImage(
+        (fs::path(o.outDir) / "contact_sheet.png").string(),
+        contactSheet(sheet, labels, std::min<int>(6, int(sheet.size())), std::min(o.width, 256)));
+    out << "wrote " << o.frames << " frames (" << toString(o.method) << ", " << toString(o.path)
+        << " path), contact_sheet.png and frames.csv to " << o.outDir << '\n';
+    return 0;
+}
+
+} // namespace specula

@@ -1,0 +1,41 @@
+#pragma once
+// specula-sandbox walk: the reflectors move along a path inside the probe's cell while the
+// camera swings around them, every frame drawn with the chosen method. Headless it writes
+// frame_NNNN.png, contact_sheet.png and frames.csv; with a window it is an interactive
+// walkthrough (GLFW + Dear ImGui).
+#include "components/reflection_probe/reflection_probe.h"
+#include "sandbox/lib/probe_source.h"
+
+#include <optional>
+#include <ostream>
+#include <string>
+
+namespace specula {
+
+struct WalkOptions {
+    std::string input; // scene (.gltf/.glb) or probe manifest (.json)
+    std::optional<std::string> scene, sky;
+    LookupMethod method = LookupMethod::Bisection;
+    float tolerance = 0.01f; // d_e
+    WalkPath path = WalkPath::Orbit;
+    int frames = 60; // headless: frames written; window: 0 = until closed, else exit after N
+    bool headless = false;
+    bool compare = false; // headless: PSNR of every frame against its ground truth
+    std::string outDir = "walk-out";
+    int width = 640, height = 480;
+    int faceRes = 128; // when a scene is baked here
+    bool progress = true;
+};
+
+// The camera of frame t in [0, 1): the scene camera's distance and height around the probe,
+// swung +-23 degrees about its starting angle (a full circle would pass behind columns).
+CameraView walkCamera(const ReflectionScene& scene, int width, int height, float t);
+CameraView walkCamera(const ReflectionScene& scene, int width, int height, float angle,
+                      float distance, float height_);
+void walkCameraOrbit(const ReflectionScene& scene, float& angle, float& distance, float& height);
+
+// Returns the exit status; throws Error on bad input.
+int runWalkHeadless(const WalkOptions& options, std::ostream& out);
+int runWalkWindow(const WalkOptions& options, std::ostream& out);
+
+} // namespace specula

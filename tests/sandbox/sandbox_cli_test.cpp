@@ -1,0 +1,278 @@
+// Drives the specula-sandbox executable through the shell on small frames: help, command-line
+// and input errors, a headless walk, a quick bench (files exist, parse and hold sane figures)
+// and the window walk under Xvfb.
+#include "engine/image/image_io.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kTool = fs::path(SPECULA_BIN_DIR) / "specula-sandbox";
+const fs::path kRoom = fs::path(SPECULA_SOURCE_DIR) / "assets/room/room.gltf";
+
+struct ToolRun {
+    int status = -1;
+    std::string out, err;
+};
+
+std::string quote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s)
+        q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+ToolRun tool(const std::string& args, const std::string& prefix = "") {
+    const fs::path errFile =
+        fs::temp_directory_path() / ("specula_sandbox_test_" + std::to_string(::getpid()) + ".err");
+    ToolRun r;
+    const std::string cmd =
+        prefix + quote(kTool.string()) + " " + args + " 2>" + quote(errFile.string());
+    FILE* pipe = ::popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0)
+        r.out.append(buf, n);
+    const int st = ::pclose(pipe);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    std::ifstream in(errFile);
+    r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    fs::remove(errFile);
+    return r;
+}
+
+// A fresh folder under the temp directory, removed with the object.
+struct TempDir {
+    fs::path path;
+    explicit TempDir(const std::string& name)
+        : path(fs::temp_directory_path() /
+               ("specula-sandbox-" + name + "-" + std::to_string(::getpid()))) {
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        if (!std::getenv("SPECULA_KEEP_TEST_OUT")) fs::remove_all(path);
+    }
+};
+
+using Table = std::vector<std::map<std::string, std::string>>;
+
+Table readCsv(const fs::path& file) {
+    std::ifstream in(file);
+    std::string line;
+    std::vector<std::string> header;
+    Table rows;
+    auto split = [](const std::string& s) {
+        std::vector<std::string> f;
+        std::stringstream ss(s);
+        std::string x;
+        while (std::getline(ss, x, ','))
+            f.push_back(x);
+        return f;
+    };
+    if (!std::getline(in, line)) return rows;
+    header = split(line);
+    while (std::getline(in, line)) {
+        const auto f = split(line);
+        EXPECT_EQ(f.size(), header.size()) << line;
+        std::map<std::string, std::string> row;
+        for (std::size_t i = 0; i < header.size() && i < f.size(); ++i)
+            row[header[i]] = f[i];
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+double num(const std::map<std::string, std::string>& row, const std::string& key) {
+    const auto it = row.find(key);
+    EXPECT_NE(it, row.end()) << "no column " << key;
+    if (it == row.end()) return std::nan("");
+    char* end = nullptr;
+    const double v = std::strtod(it->second.c_str(), &end);
+    EXPECT_TRUE(end && *end == '\0') << key << " = '" << it->second << "'";
+    return v;
+}
+
+std::size_t lines(const std::string& s) {
+    std::size_t n = 0;
+    for (char c : s)
+        n += c == '\n';
+    return n;
+}
+
+} // namespace
+
+TEST(SpeculaSandbox, HelpForToolAndEachSubcommand) {
+    ASSERT_TRUE(fs::exists(kTool)) << kTool;
+    for (const char* args : {"--help", "walk --help", "bench --help", "bench -h"}) {
+        const ToolRun r = tool(args);
+        EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+        EXPECT_NE(r.out.find("usage: specula-sandbox"), std::string::npos) << args;
+        EXPECT_TRUE(r.err.empty()) << args << ": " << r.err;
+    }
+    EXPECT_NE(tool("--help").out.find("bench"), std::string::npos);
+    EXPECT_NE(tool("walk --help").out.find("--headless"), std::string::npos);
+    EXPECT_NE(tool("bench --help").out.find("--quick"), std::string::npos);
+}
+
+TEST(SpeculaSandbox, CommandLineErrorsExitTwo) {
+    const std::string room = quote(kRoom.string());
+    for (const std::string& args : std::vector<std::string>{
+             std::string(""), std::string("nonsense"), std::string("--bogus"), std::string("walk"),
+             "walk " + room + " " + room, "walk " + room + " --method nope",
+             "walk " + room + " --frames 0 --headless", "walk " + room + " --path spiral",
+             "walk " + room + " --de -1", "walk " + room + " --size 10",
+             "walk " + room + " --compare", "walk " + room + " --frames", "bench --bogus",
+             "bench stray", std::string("bench --max-frames 1")}) {
+        const ToolRun r = tool(args);
+        EXPECT_EQ(r.status, 2) << "'" << args << "': " << r.err;
+        EXPECT_NE(r.err.find("error"), std::string::npos) << args;
+        EXPECT_TRUE(r.out.empty()) << args;
+    }
+}
+
+TEST(SpeculaSandbox, BadInputExitsOneWithOneLineNamingTheFile) {
+    TempDir dir("bad");
+    const fs::path missing = dir.path / "missing.gltf";
+    const fs::path garbage = dir.path / "garbage.gltf";
+    std::ofstream(garbage) << "{ not json";
+    const fs::path manifest = dir.path / "manifest.json";
+    std::ofstream(manifest) << "{\"format\": \"specula-probe\", \"version\": 999}";
+    const fs::path text = dir.path / "notes.txt";
+    std::ofstream(text) << "hello";
+    for (const fs::path& f : {missing, garbage, manifest, text}) {
+        const ToolRun r = tool("walk " + quote(f.string()) + " --headless --frames 1 --out " +
+                               quote((dir.path / "out").string()));
+        EXPECT_EQ(r.status, 1) << f << ": " << r.err;
+        EXPECT_EQ(lines(r.err), 1u) << r.err;
+        EXPECT_NE(r.err.find(f.string()), std::string::npos) << r.err;
+    }
+    const ToolRun b = tool("bench --quick --scene " + quote(missing.string()) + " --out " +
+                           quote((dir.path / "bench").string()));
+    EXPECT_EQ(b.status, 1) << b.err;
+    EXPECT_EQ(lines(b.err), 1u) << b.err;
+    EXPECT_NE(b.err.find(missing.string()), std::string::npos) << b.err;
+}
+
+TEST(SpeculaSandbox, HeadlessWalkWritesFramesSheetAndCsvThenReplaysItsManifest) {
+    TempDir dir("walk");
+    const fs::path out = dir.path / "walk";
+    const ToolRun r = tool("walk " + quote(kRoom.string()) +
+                           " --headless --frames 3 --size 96x72 --face-res 32 "
+                           "--path figure8 --compare --out " +
+                           quote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (int i = 0; i < 3; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%04d.png", i);
+        ASSERT_TRUE(fs::exists(out / name)) << name;
+        const specula::Image img = specula::readImage((out / name).string());
+        EXPECT_EQ(img.width, 96);
+        EXPECT_EQ(img.height, 72);
+    }
+    EXPECT_FALSE(fs::exists(out / "frame_0003.png"));
+    const specula::Image sheet = specula::readImage((out / "contact_sheet.png").string());
+    EXPECT_GT(sheet.width, 96);
+
+    const Table rows = readCsv(out / "frames.csv");
+    ASSERT_EQ(rows.size(), 3u);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        EXPECT_EQ(num(rows[i], "frame"), double(i));
+        const double ms = num(rows[i], "pass_ms");
+        EXPECT_TRUE(std::isfinite(ms) && ms > 0) << ms;
+        // The sphere (first reflector) is authored at (-0.65, 1.2, 0); the path keeps it within
+        // 0.2 cell sizes (cell 1.5 m) of there.
+        EXPECT_NEAR(num(rows[i], "reflector_x"), -0.65, 0.31);
+        EXPECT_NEAR(num(rows[i], "reflector_y"), 1.2, 0.31);
+        EXPECT_NEAR(num(rows[i], "reflector_z"), 0.0, 0.31);
+        const double psnr = num(rows[i], "psnr");
+        EXPECT_TRUE(std::isfinite(psnr) && psnr > 12.0) << psnr; // bisection against Embree
+    }
+
+    // The baked probe replays from its manifest (scene from its "source").
+    const fs::path manifest = out / "probe" / "manifest.json";
+    ASSERT_TRUE(fs::exists(manifest));
+    const fs::path again = dir.path / "again";
+    const ToolRun m = tool("walk " + quote(manifest.string()) +
+                           " --headless --frames 1 --size 96x72 --method envmap "
+                           "--out " +
+                           quote(again.string()));
+    ASSERT_EQ(m.status, 0) << m.err;
+    EXPECT_EQ(readCsv(again / "frames.csv").size(), 1u);
+}
+
+TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
+    TempDir dir("bench");
+    const fs::path out = dir.path / "bench";
+    const ToolRun r = tool("bench --quick --size 96x72 --face-res 32 --max-frames 4 --out " +
+                           quote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Table rows = readCsv(out / "bench.csv");
+    std::map<std::string, int> perScene;
+    for (const auto& row : rows) {
+        const std::string scene = row.at("scene"), method = row.at("method");
+        ++perScene[scene];
+        const double ms = num(row, "ms_median"), ratio = num(row, "ratio_to_envmap");
+        EXPECT_TRUE(std::isfinite(ms) && ms > 0) << scene << " " << method << " " << ms;
+        EXPECT_TRUE(std::isfinite(ratio) && ratio > 0) << scene << " " << method;
+        const double psnr = num(row, "psnr"), rmse = num(row, "rmse");
+        const double fetches = num(row, "fetches_per_pixel"), bytes = num(row, "gpu_bytes");
+        if (method == "groundtruth") {
+            EXPECT_TRUE(std::isinf(psnr) || psnr >= 99.0) << psnr;
+            EXPECT_EQ(rmse, 0.0);
+            continue;
+        }
+        EXPECT_TRUE(std::isfinite(psnr) && psnr > 5.0 && psnr < 99.0)
+            << scene << " " << method << " " << psnr;
+        EXPECT_TRUE(std::isfinite(rmse) && rmse > 0.0) << method;
+        EXPECT_GT(bytes, 0.0) << method;
+        EXPECT_GT(num(row, "bake_s"), 0.0) << method;
+        if (method == "envmap") {
+            EXPECT_EQ(ratio, 1.0);
+            EXPECT_NEAR(fetches, 1.0, 1e-9); // one direction lookup, sky included
+        }
+        if (method == "bisection" || method == "secant") {
+            EXPECT_GT(fetches, 1.5) << method;
+        }
+    }
+    EXPECT_EQ(perScene.size(), 2u);
+    for (const auto& [scene, n] : perScene) {
+        EXPECT_GE(n, 10) << scene;
+    }
+    std::ifstream md(out / "bench.md");
+    const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("renderer: "), std::string::npos);
+    EXPECT_NE(text.find("machine: "), std::string::npos);
+    EXPECT_NE(text.find("| envmap |"), std::string::npos);
+    EXPECT_NE(text.find("| groundtruth |"), std::string::npos);
+    for (const char* png : {"accuracy_vs_time.png", "strip_room.png", "strip_truck_room.png"}) {
+        const specula::Image img = specula::readImage((out / png).string());
+        EXPECT_GT(img.width, 100) << png;
+    }
+}
+
+TEST(SpeculaSandbox, WindowWalkRunsUnderXvfb) {
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xvfb-run not installed";
+    TempDir dir("window");
+    const ToolRun r =
+        tool("walk " + quote(kRoom.string()) + " --frames 3 --size 96x72 --face-res 16",
+             "xvfb-run -a -s '-screen 0 320x240x24' ");
+    ASSERT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("3 frames shown"), std::string::npos) << r.out;
+}
