@@ -105,8 +105,8 @@ int runLightFieldBake(Flags& flags, const std::optional<std::string>& outDir,
     o.cellCentre = cellCentre ? *cellCentre
                    : probeAt  ? *probeAt
                               : markupProbeCentre(registry, markup, scene);
-    o.cellSize = cellSize ? parseFloat("--cell-size", *cellSize, 1e-3f, 1e4f)
-                          : markupCellSize(markup);
+    o.cellSize =
+        cellSize ? parseFloat("--cell-size", *cellSize, 1e-3f, 1e4f) : markupCellSize(markup);
     o.cameras = cameras;
     o.res = res;
     o.compression = compress == "bc1" ? LightFieldCompression::BC1 : LightFieldCompression::None;
@@ -130,8 +130,8 @@ int runLightFieldBake(Flags& flags, const std::optional<std::string>& outDir,
     for (int k = 0; k < 6; ++k) {
         const LightFieldSlab& s = asset.slabs[std::size_t(k)];
         out << "  slab " << slabName(k) << ": depth " << s.nearDepth << " .. " << s.farDepth
-            << " m, sky " << s.skyFraction << ", focal depth " << s.focalDepth
-            << " m, disparity " << s.disparity << " px/camera\n";
+            << " m, sky " << s.skyFraction << ", focal depth " << s.focalDepth << " m, disparity "
+            << s.disparity << " px/camera\n";
     }
     for (const LightFieldIntrusion& i : asset.intrusions)
         out << (i.region == "cell" ? "  warning: " : "  note: ") << i.object << " lies in "

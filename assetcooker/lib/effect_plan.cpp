@@ -2,6 +2,7 @@
 
 #include "assetcooker/lib/distance_bake.h"
 #include "engine/core/error.h"
+#include "engine/math/cube_face.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,6 +27,20 @@ std::vector<char> coverage(const DistanceProbeLayer& L, float dInf, int grow) {
                 for (int yy = std::max(0, y - grow); yy <= std::min(n - 1, y + grow); ++yy)
                     for (int xx = std::max(0, x - grow); xx <= std::min(n - 1, x + grow); ++xx)
                         mask[(std::size_t(f) * n + yy) * n + xx] = 1;
+            }
+    return mask;
+}
+
+// Texels whose centre direction lies within `halfAngle` of `axis` (a bounding cone).
+std::vector<char> coneCoverage(glm::vec3 axis, float halfAngle, int n) {
+    std::vector<char> mask(std::size_t(6) * n * n, 0);
+    const float cosHalf = std::cos(std::min(halfAngle + 0.5f * kPi / float(n), kPi));
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const glm::vec2 uv((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
+                const glm::vec3 d = glm::normalize(glsl::cubeFaceDirection(f, uv));
+                if (glm::dot(d, axis) >= cosHalf) mask[(std::size_t(f) * n + y) * n + x] = 1;
             }
     return mask;
 }
@@ -106,30 +121,48 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
         po.nearest = L.minDistance;
         po.average = L.avgDistance;
         po.solidAngle = L.solidAngle;
+        std::vector<char> cone;
         if (L.solidAngle <= 0.f) {
-            po.decision = "invisible";
-            po.reason = "not visible from the probe centre";
-            plan.objects.push_back(po);
-            continue;
+            // Smaller than the analysis texels (or hidden from the centre): judge it by its
+            // bounding sphere instead, which errs on the side of correcting it.
+            const EnvironmentObject& o = *std::find_if(
+                markup.objects.begin(), markup.objects.end(),
+                [&](const EnvironmentObject& e) { return e.name == L.name; });
+            const glm::vec3 mid = 0.5f * (o.boundsMin + o.boundsMax) - centre;
+            const float radius = 0.5f * glm::length(o.boundsMax - o.boundsMin);
+            const float dist = glm::length(mid);
+            if (dist <= radius) {
+                po.decision = "invisible";
+                po.reason = "encloses the probe centre yet no ray from it meets the object";
+                plan.objects.push_back(po);
+                continue;
+            }
+            const float halfAngle = std::asin(radius / dist);
+            po.nearest = dist - radius;
+            po.average = dist;
+            po.solidAngle = 2.f * kPi * (1.f - std::cos(halfAngle));
+            cone = coneCoverage(glm::normalize(mid), halfAngle, t.analysisFaceRes);
         }
         // From a reflector point up to `reach` off the centre, the direction to the object's
         // nearest point turns by at most asin(reach / nearest): the direction-only error.
-        const float parallax = reach >= L.minDistance ? 0.5f * kPi : std::asin(reach / L.minDistance);
+        const float parallax = reach >= po.nearest ? 0.5f * kPi : std::asin(reach / po.nearest);
         po.parallaxDeg = parallax * 180.f / kPi;
         if (parallax < tolRad) {
             po.decision = "distant";
             po.reason = "direction-only error <= " + fmt(po.parallaxDeg) + " deg < " +
-                        fmt(t.maxErrorDeg) + " deg at " + fmt(L.minDistance) + " m";
+                        fmt(t.maxErrorDeg) + " deg at " + fmt(po.nearest) + " m";
             distant.push_back(L.name);
         } else {
-            po.decision = L.solidAngle >= t.rectifySolidAngle ? "rectify" : "avgdist";
+            po.decision = po.solidAngle >= t.rectifySolidAngle ? "rectify" : "avgdist";
             po.reason = "parallax up to " + fmt(po.parallaxDeg, 1) + " deg; covers " +
-                        fmt(L.solidAngle, 3) + " sr " +
+                        fmt(po.solidAngle, 3) + " sr " +
                         (po.decision == "rectify" ? ">= " : "< ") + fmt(t.rectifySolidAngle, 3) +
                         " sr -> " +
                         (po.decision == "rectify" ? "per-pixel rectification" : "average distance");
             const int grow = int(std::ceil(parallax / texelAngle));
-            nears.push_back({plan.objects.size(), coverage(L, analysis.dInf, grow)});
+            std::vector<char> mask = coverage(L, analysis.dInf, grow);
+            for (std::size_t k = 0; k < cone.size(); ++k) mask[k] |= cone[k];
+            nears.push_back({plan.objects.size(), std::move(mask)});
         }
         plan.objects.push_back(po);
     }

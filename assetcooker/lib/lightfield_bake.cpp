@@ -46,7 +46,8 @@ struct DepthHistogram {
         ++bins[std::size_t(bin)];
     }
     void merge(const DepthHistogram& o) {
-        for (int i = 0; i < kBins; ++i) bins[std::size_t(i)] += o.bins[std::size_t(i)];
+        for (int i = 0; i < kBins; ++i)
+            bins[std::size_t(i)] += o.bins[std::size_t(i)];
         sky += o.sky, intruding += o.intruding, total += o.total;
         minDepth = std::min(minDepth, o.minDepth);
         maxDepth = std::max(maxDepth, o.maxDepth);
@@ -100,8 +101,10 @@ LightFieldAsset bakeLightFieldProbe(ecs::Registry& registry, const SceneMarkup& 
     const float h = 0.5f * opt.cellSize;
     std::array<std::vector<std::uint8_t>, 6> rgb;
     std::array<DepthHistogram, 6> hist;
-    for (auto& layer : rgb) layer.assign(std::size_t(n) * n * 3, 0);
-    for (auto& H : hist) H.qMax = 1.f / (0.01f * opt.cellSize);
+    for (auto& layer : rgb)
+        layer.assign(std::size_t(n) * n * 3, 0);
+    for (auto& H : hist)
+        H.qMax = 1.f / (0.01f * opt.cellSize);
     std::mutex histMutex;
     const long tasks = 6L * num * num;
     std::atomic<long> done{0};
@@ -109,7 +112,8 @@ LightFieldAsset bakeLightFieldProbe(ecs::Registry& registry, const SceneMarkup& 
 
     tbb::parallel_for(tbb::blocked_range<long>(0, tasks), [&](const tbb::blocked_range<long>& r) {
         std::array<DepthHistogram, 6> local;
-        for (auto& H : local) H.qMax = hist[0].qMax;
+        for (auto& H : local)
+            H.qMax = hist[0].qMax;
         bool used[6] = {};
         for (long task = r.begin(); task < r.end(); ++task) {
             if (stop || (opt.cancelled && opt.cancelled())) {
@@ -224,21 +228,21 @@ std::vector<LightFieldIntrusion> findLightFieldIntrusions(const SceneMarkup& mar
                 const float e = k == a ? h : 3.f * h;
                 overlap = overlap && hi[k] >= -e && lo[k] <= e;
             }
-            if (overlap)
-                out.push_back({o.name, std::string("slabs +-") + "XYZ"[a], depth});
+            if (overlap) out.push_back({o.name, std::string("slabs +-") + "XYZ"[a], depth});
         }
     }
     return out;
 }
 
 std::vector<ReflectorOverhang> findReflectorOverhangs(const ecs::Registry& registry,
-                                                      const SceneMarkup& markup,
-                                                      glm::vec3 centre, float cellSize) {
+                                                      const SceneMarkup& markup, glm::vec3 centre,
+                                                      float cellSize) {
     const float h = 0.5f * cellSize;
     std::vector<ReflectorOverhang> out;
     for (const ReflectorMarkup& r : markup.reflectors) {
         glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-        for (ecs::Entity e : r.meshes) meshWorldBounds(registry, e, lo, hi);
+        for (ecs::Entity e : r.meshes)
+            meshWorldBounds(registry, e, lo, hi);
         if (lo.x > hi.x) continue;
         float over = 0.f;
         for (int k = 0; k < 3; ++k)

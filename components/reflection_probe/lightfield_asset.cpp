@@ -62,9 +62,13 @@ void validateLightFieldSize(int cameras, int res, float cellSize, LightFieldComp
 
 namespace {
 
-json vec3Json(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
+json vec3Json(glm::vec3 v) {
+    return json::array({v.x, v.y, v.z});
+}
 // JSON has no infinity: +inf depths are written as null.
-json depthJson(float d) { return std::isinf(d) ? json(nullptr) : json(d); }
+json depthJson(float d) {
+    return std::isinf(d) ? json(nullptr) : json(d);
+}
 
 // Typed manifest access naming the file and the JSON path on every failure.
 struct Fields {
@@ -83,8 +87,8 @@ struct Fields {
         const double d = v.get<double>();
         if (!std::isfinite(d) || d < lo || d > hi)
             throw Error(file, path + key,
-                        "expected a number in [" + std::to_string(lo) + ", " +
-                            std::to_string(hi) + "], got " + v.dump());
+                        "expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                            "], got " + v.dump());
         return d;
     }
     int integer(const json& obj, const std::string& key, const std::string& path, int lo,
@@ -150,7 +154,8 @@ void palette(std::uint16_t c0, std::uint16_t c1, glm::ivec3 out[4]) {
 // power iterations on the covariance), then each texel takes the nearest palette entry.
 void encodeBlock(const glm::vec3 px[16], std::uint8_t out[8]) {
     glm::vec3 mean(0.f);
-    for (int i = 0; i < 16; ++i) mean += px[i];
+    for (int i = 0; i < 16; ++i)
+        mean += px[i];
     mean /= 16.f;
     float cov[6] = {};
     for (int i = 0; i < 16; ++i) {
@@ -194,7 +199,8 @@ void encodeBlock(const glm::vec3 px[16], std::uint8_t out[8]) {
     // c0 == c1: every index 0 (c0); the block is a single colour.
     out[0] = std::uint8_t(c0 & 0xff), out[1] = std::uint8_t(c0 >> 8);
     out[2] = std::uint8_t(c1 & 0xff), out[3] = std::uint8_t(c1 >> 8);
-    for (int k = 0; k < 4; ++k) out[4 + k] = std::uint8_t(indices >> (8 * k));
+    for (int k = 0; k < 4; ++k)
+        out[4 + k] = std::uint8_t(indices >> (8 * k));
 }
 
 } // namespace
@@ -252,11 +258,9 @@ void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
                 throw Error(dir, std::string("slab ") + slabName(k),
                             "atlas holds " + std::to_string(s.data.size()) + " bytes, expected " +
                                 std::to_string(a.layerBytes()));
-            const std::string name = std::string("slab_") + "xxyyzz"[k] +
-                                     (k % 2 ? "neg" : "pos") + (a.compression ==
-                                                                    LightFieldCompression::BC1
-                                                                ? ".bc1"
-                                                                : ".rgb8");
+            const std::string name =
+                std::string("slab_") + "xxyyzz"[k] + (k % 2 ? "neg" : "pos") +
+                (a.compression == LightFieldCompression::BC1 ? ".bc1" : ".rgb8");
             writeBytes(tmp / name, s.data);
             slabs.push_back({{"slab", slabName(k)},
                              {"layer", k},
@@ -364,9 +368,13 @@ LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
     a.cameras = r.integer(m, "cameras", "", 2, 256);
     a.res = r.integer(m, "image_res", "", 4, 4096);
     const std::string comp = r.string(m, "compression", "");
-    if (comp == "none") a.compression = LightFieldCompression::None;
-    else if (comp == "bc1") a.compression = LightFieldCompression::BC1;
-    else throw Error(manifestPath, "compression", "expected \"none\" or \"bc1\", got \"" + comp + "\"");
+    if (comp == "none")
+        a.compression = LightFieldCompression::None;
+    else if (comp == "bc1")
+        a.compression = LightFieldCompression::BC1;
+    else
+        throw Error(manifestPath, "compression",
+                    "expected \"none\" or \"bc1\", got \"" + comp + "\"");
     validateLightFieldSize(a.cameras, a.res, a.cellSize, a.compression, manifestPath);
     a.depthPercentile = float(r.number(m, "depth_percentile", "", 0.0, 0.5));
     if (m.contains("bake") && m["bake"].contains("seconds") && m["bake"]["seconds"].is_number())
@@ -375,8 +383,7 @@ LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
         for (const json& i : m["intrusions"])
             if (i.is_object() && i.contains("object") && i["object"].is_string())
                 a.intrusions.push_back({i["object"].get<std::string>(),
-                                        i.value("region", std::string()),
-                                        i.value("depth_m", 0.f)});
+                                        i.value("region", std::string()), i.value("depth_m", 0.f)});
 
     const json& slabs = r.member(m, "slabs", "");
     if (!slabs.is_array() || slabs.size() != 6)
@@ -386,7 +393,8 @@ LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
         const json& j = slabs[std::size_t(k)];
         LightFieldSlab& s = a.slabs[std::size_t(k)];
         if (r.string(j, "slab", path) != slabName(k))
-            throw Error(manifestPath, path + "slab", std::string("expected \"") + slabName(k) + "\"");
+            throw Error(manifestPath, path + "slab",
+                        std::string("expected \"") + slabName(k) + "\"");
         s.nearDepth = float(r.number(j, "depth_near", path, 0.0, 1e9, true));
         s.farDepth = float(r.number(j, "depth_far", path, 0.0, 1e9, true));
         s.minDepth = float(r.number(j, "depth_min", path, 0.0, 1e9));
@@ -401,12 +409,13 @@ LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
             throw Error(manifestPath, path + "file",
                         "expected a plain file name inside the probe folder");
         const std::string full = (dir / s.file).string();
-        if (!fs::exists(full)) throw Error(manifestPath, path + "file", "names missing file " + full);
+        if (!fs::exists(full))
+            throw Error(manifestPath, path + "file", "names missing file " + full);
         s.checksum = r.string(j, "checksum", path);
         if (const std::string actual = fileChecksum(full); actual != s.checksum)
             throw Error(manifestPath, path + "checksum",
-                        "mismatch for " + s.file + ": manifest says " + s.checksum +
-                            ", file has " + actual);
+                        "mismatch for " + s.file + ": manifest says " + s.checksum + ", file has " +
+                            actual);
         const std::size_t size = std::size_t(fs::file_size(full));
         if (size != a.layerBytes())
             throw Error(full, "size",

@@ -37,10 +37,10 @@ struct LightFieldSlab {
     // the focal plane; minDepth/maxDepth the extremes of the hits beyond the plane.
     float nearDepth = 0.f, farDepth = 0.f; // farDepth = +inf when the sky is in range
     float minDepth = 0.f, maxDepth = 0.f;
-    float skyFraction = 0.f;       // share of those samples that see the sky
-    float intrudingFraction = 0.f; // share that hit geometry before the camera plane
-    float focalDepth = 0.f;        // harmonic mean of near and far (+inf: far is the sky)
-    float disparity = 0.f;         // focal-plane disparity, pixels per camera step
+    float skyFraction = 0.f;        // share of those samples that see the sky
+    float intrudingFraction = 0.f;  // share that hit geometry before the camera plane
+    float focalDepth = 0.f;         // harmonic mean of near and far (+inf: far is the sky)
+    float disparity = 0.f;          // focal-plane disparity, pixels per camera step
     std::vector<std::uint8_t> data; // the atlas layer as uploaded (see the header comment)
     std::string file, checksum;
 };

@@ -63,7 +63,8 @@ CpuLightFieldProbe::CpuLightFieldProbe(const LightFieldAsset& a, float disparity
     glsl::LightFieldTwin& t = twin_->lookup;
     t.size = a.atlasSize();
     t.disparity = &disparity_;
-    for (int i = 0; i < 256; ++i) t.toLinear[i] = srgbToLinearValue(float(i) / 255.f);
+    for (int i = 0; i < 256; ++i)
+        t.toLinear[i] = srgbToLinearValue(float(i) / 255.f);
     for (int k = 0; k < 6; ++k) {
         const auto& data = a.slabs[std::size_t(k)].data;
         t.rgb[std::size_t(k)] = a.compression == LightFieldCompression::BC1

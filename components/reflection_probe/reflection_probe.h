@@ -14,13 +14,13 @@ enum class ProbeFlavour { DistanceCubemap, LightFieldSlab };
 
 // How a reflected ray is turned into a texture lookup (distance-cubemap flavour).
 enum class LookupMethod {
-    Envmap,    // classic: direction only
-    BoxProj,   // box-projected cube map (finite box as the environment)
-    Bisection, // per-pixel rectification by bisection (Wang et al. 2012)
-    Secant,    // bisection bracket refined by the secant rule
-    AvgDist,   // one fetch at x + d-bar l
-    Layered,   // object layers near to far, each with its own method, sky last
-    Planned,   // whatever the cooked effect plan chose (mode and per-layer methods)
+    Envmap,     // classic: direction only
+    BoxProj,    // box-projected cube map (finite box as the environment)
+    Bisection,  // per-pixel rectification by bisection (Wang et al. 2012)
+    Secant,     // bisection bracket refined by the secant rule
+    AvgDist,    // one fetch at x + d-bar l
+    Layered,    // object layers near to far, each with its own method, sky last
+    Planned,    // whatever the cooked effect plan chose (mode and per-layer methods)
     LightField, // light-field slabs (Yu et al. 2005): needs flavour LightFieldSlab
 };
 

@@ -69,7 +69,8 @@ gpu::Program& ReflectionProbeSystem::program(std::uint32_t f, int output) {
             gpu::ShaderSource::file(background
                                         ? "components/reflection_probe/shaders/fullscreen.vert"
                                         : "components/reflection_probe/shaders/reflector.vert"),
-            gpu::ShaderSource::file("components/reflection_probe/shaders/lightfield_reflector.frag"),
+            gpu::ShaderSource::file(
+                "components/reflection_probe/shaders/lightfield_reflector.frag"),
             {std::string("HAS_FRESNEL=") + bit(kFeatureFresnel),
              std::string("BACKGROUND=") + bit(kFeatureLightFieldBackground),
              "OUTPUT=" + std::to_string(output)});

@@ -63,8 +63,8 @@ protected:
             o.res = res;
             o.compression = c;
             o.sky = &scene_->sky();
-            writeLightFieldProbe(bakeLightFieldProbe(scene_->registry(), scene_->markup(), o),
-                                 dir, scene_->path());
+            writeLightFieldProbe(bakeLightFieldProbe(scene_->registry(), scene_->markup(), o), dir,
+                                 scene_->path());
         }
         return dir + "/manifest.json";
     }
@@ -229,9 +229,9 @@ TEST_F(LightFieldRoom, BackgroundFromEyeRaysInsideTheCell) {
     // eye rays, it must match the rasterised environment (tolerance: the light field's own
     // sampling error, 20 dB over the whole frame).
     const glm::vec3 eye = scene_->probeCentre() + glm::vec3(0.f, 0.55f, 0.6f);
-    const CameraView cam = CameraView::lookAt(eye, eye + glm::vec3(0.f, -0.1f, -1.f),
-                                              glm::vec3(0, 1, 0), glm::radians(60.f), kWidth,
-                                              kHeight);
+    const CameraView cam =
+        CameraView::lookAt(eye, eye + glm::vec3(0.f, -0.1f, -1.f), glm::vec3(0, 1, 0),
+                           glm::radians(60.f), kWidth, kHeight);
     const Image raster = renderer_->renderEnvironment(cam);
     ReflectionProbe p = lightFieldProbe(lightField(16, 64));
     p.lightFieldBackground = true;
@@ -241,7 +241,8 @@ TEST_F(LightFieldRoom, BackgroundFromEyeRaysInsideTheCell) {
     const GroundTruthImage truth = scene_->groundTruth(cam, true);
     Image envMask(kWidth, kHeight, 1);
     for (int y = 0; y < kHeight; ++y)
-        for (int x = 0; x < kWidth; ++x) envMask.at(x, y)[0] = 1.f - truth.mirrorMask.at(x, y)[0];
+        for (int x = 0; x < kWidth; ++x)
+            envMask.at(x, y)[0] = 1.f - truth.mirrorMask.at(x, y)[0];
     const double db = compareImages(img, raster, &envMask).psnr;
     std::printf("background from the light field vs rasterised environment: %.2f dB\n", db);
     EXPECT_GT(db, 20.0);
@@ -263,7 +264,8 @@ TEST_F(LightFieldRoom, BadManifestsAreRefusedNamingFileAndField) {
     const std::string copy = dir_ + "/corrupt";
     std::filesystem::copy(std::filesystem::path(m).parent_path(), copy);
     {
-        std::fstream f(copy + "/" + a.slabs[2].file, std::ios::in | std::ios::out | std::ios::binary);
+        std::fstream f(copy + "/" + a.slabs[2].file,
+                       std::ios::in | std::ios::out | std::ios::binary);
         f.seekp(10);
         f.put('\x7f');
     }
@@ -296,8 +298,7 @@ TEST_F(LightFieldRoom, MeasurementTable) {
                 const double zero = psnr(lightFieldProbe(m, 0.f), truth, mask, cam);
                 std::printf("NUM %2d RES %3d %-4s: %.2f dB (disparity 0: %.2f dB), %zu GPU "
                             "bytes\n",
-                            num, res, toString(c), cooked, zero,
-                            renderer_->stats().probeGpuBytes);
+                            num, res, toString(c), cooked, zero, renderer_->stats().probeGpuBytes);
                 std::filesystem::remove_all(std::filesystem::path(m).parent_path());
             }
 }

@@ -22,7 +22,8 @@ LightFieldAsset emptyAsset(int num, int res, float cell) {
     a.cellSize = cell;
     a.cameras = num;
     a.res = res;
-    for (auto& s : a.slabs) s.data.assign(a.layerBytes(), 0);
+    for (auto& s : a.slabs)
+        s.data.assign(a.layerBytes(), 0);
     return a;
 }
 
@@ -50,7 +51,8 @@ template <typename F> void fill(LightFieldAsset& a, F radiance) {
                         d[c] = -1.f + 2.f * (float(y) + 0.5f) / float(a.res);
                         const glm::vec3 L = radiance(cam, d);
                         std::uint8_t* p =
-                            &data[(std::size_t(j * a.res + y) * n + std::size_t(i * a.res + x)) * 3];
+                            &data[(std::size_t(j * a.res + y) * n + std::size_t(i * a.res + x)) *
+                                  3];
                         for (int k = 0; k < 3; ++k)
                             p[k] = std::uint8_t(
                                 std::lround(255.f * linearToSrgbValue(std::clamp(L[k], 0.f, 1.f))));
@@ -123,27 +125,41 @@ TEST(LightFieldLookup, SlabIndicesStayInRangeForMillionsOfHardRays) {
             if (pick(rng) < 3) p[k] = (u(rng) < 0.f ? -h : h);
         glm::vec3 d(u(rng), u(rng), u(rng));
         switch (pick(rng)) {
-        case 0: d.y = d.x; break;                                  // tie X = Y (edge)
-        case 1: d.z = -d.y; break;                                 // tie |Y| = |Z|
-        case 2: d = glm::vec3(d.x, (u(rng) < 0 ? -1.f : 1.f) * std::abs(d.x), -d.x); break; // corner
-        case 3: d[pick(rng) % 3] = 0.f; break;                     // parallel to a plane
-        case 4: d[pick(rng) % 3] = 0.f, d[pick(rng) % 3] = 0.f; break; // along an axis or 0
-        case 5: d *= 1e-30f; break;                                // tiny
-        default: break;
+        case 0:
+            d.y = d.x;
+            break; // tie X = Y (edge)
+        case 1:
+            d.z = -d.y;
+            break; // tie |Y| = |Z|
+        case 2:
+            d = glm::vec3(d.x, (u(rng) < 0 ? -1.f : 1.f) * std::abs(d.x), -d.x);
+            break; // corner
+        case 3:
+            d[pick(rng) % 3] = 0.f;
+            break; // parallel to a plane
+        case 4:
+            d[pick(rng) % 3] = 0.f, d[pick(rng) % 3] = 0.f;
+            break; // along an axis or 0
+        case 5:
+            d *= 1e-30f;
+            break; // tiny
+        default:
+            break;
         }
         check(p, d);
     }
     // The special directions exactly, from the corners and the centre.
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
-    const glm::vec3 dirs[] = {{1, 1, 1},   {-1, 1, -1}, {1, -1, 0}, {0, 1, 1},  {0, 0, -1},
-                              {0, 0, 0},   {nan, 0, 1}, {inf, 1, 0}, {1e-38f, 1e-38f, 0},
-                              {-0.f, -0.f, 1}};
+    const glm::vec3 dirs[] = {{1, 1, 1},           {-1, 1, -1},    {1, -1, 0},  {0, 1, 1},
+                              {0, 0, -1},          {0, 0, 0},      {nan, 0, 1}, {inf, 1, 0},
+                              {1e-38f, 1e-38f, 0}, {-0.f, -0.f, 1}};
     for (int corner = 0; corner < 9; ++corner) {
-        const glm::vec3 p = corner == 8 ? glm::vec3(0.f)
-                                        : glm::vec3(corner & 1 ? h : -h, corner & 2 ? h : -h,
-                                                    corner & 4 ? h : -h);
-        for (const glm::vec3& d : dirs) check(p, d);
+        const glm::vec3 p =
+            corner == 8 ? glm::vec3(0.f)
+                        : glm::vec3(corner & 1 ? h : -h, corner & 2 ? h : -h, corner & 4 ? h : -h);
+        for (const glm::vec3& d : dirs)
+            check(p, d);
     }
     check(glm::vec3(nan, 0.f, 0.f), glm::vec3(0.f, 1.f, 0.f));
     std::printf("coverage: %ld rays, %ld out of range\n", checked, bad);
@@ -180,9 +196,9 @@ TEST(LightFieldLookup, FocalDisparityMakesAWallAtThatDepthExact) {
     // Each slab looks at a wall at axial depth z0 beyond its camera plane, with a wavy
     // pattern. With the disparity of that depth (Yu eq. 6), each of the four cameras is
     // sampled where it saw the true hit point, so the blend is exact up to quantisation and
-    // bilinear error between pixels (0.02); with disparity 0 the four cameras disagree. This pins the
-    // plane intersection, the camera/pixel mapping and the sign of the disparity shift.
-    // Rays keep |slope| <= 0.5 so the shifted pixel never reaches a tile's clamped edge.
+    // bilinear error between pixels (0.02); with disparity 0 the four cameras disagree. This pins
+    // the plane intersection, the camera/pixel mapping and the sign of the disparity shift. Rays
+    // keep |slope| <= 0.5 so the shifted pixel never reaches a tile's clamped edge.
     LightFieldAsset a = emptyAsset(8, 64, 1.f);
     const float h = a.halfCell(), z0 = 1.5f;
     fill(a, [&](glm::vec3 o, glm::vec3 d) { return traceWalls(o, d, h, z0); });
