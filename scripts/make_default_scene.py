@@ -214,8 +214,8 @@ def build():
     b = Builder()
     quad = b.geometry(unit_quad())
     box = b.geometry(unit_box())
-    sphere = b.geometry(uv_sphere(0.5, 32, 32))
-    ring = b.geometry(torus(0.32, 0.11, 48, 24))
+    sphere = b.geometry(uv_sphere(0.32, 32, 32))
+    ring = b.geometry(torus(0.2, 0.07, 48, 24))
 
     tex_floor, tex_stripes, tex_grid = 0, 1, 2
     roots = []
@@ -264,17 +264,18 @@ def build():
                                scale=(0.06, 0.72, 0.06)))
     roots.append(b.node("table", translation=(0, 0, -2.6), children=children))
 
-    # Reflectors, within 0.7 m of the probe, keeping its centre clear.
+    # Reflectors inside the probe's 2 m cell (both reach 0.74 m at most from the probe,
+    # leaving 0.26 m for the sandbox to move them), keeping the probe centre clear.
     mirror = b.material("mirror", (0.95, 0.95, 0.95))
     roots.append(b.node("sphere", mesh=b.mesh("sphere", sphere, mirror),
-                        translation=(PROBE[0] - 0.65, PROBE[1], PROBE[2]),
+                        translation=(PROBE[0] - 0.42, PROBE[1], PROBE[2]),
                         extras={"specula_reflector": {"f0": 1.0}}))
     roots.append(b.node("torus", mesh=b.mesh("torus", ring, mirror),
-                        translation=(PROBE[0] + 0.6, PROBE[1], PROBE[2]),
+                        translation=(PROBE[0] + 0.42, PROBE[1], PROBE[2]),
                         rotation=quat_axis((1, 0, 0), 60),
                         extras={"specula_reflector": True}))
 
-    roots.append(b.node("probe", translation=PROBE, extras={"specula_probe": {"cell_size": 1.5}}))
+    roots.append(b.node("probe", translation=PROBE, extras={"specula_probe": {"cell_size": 2.0}}))
 
     # Camera 3.5 m from the probe, looking at it (glTF cameras look down local -Z).
     eye = (0.0, 1.6, 3.48)

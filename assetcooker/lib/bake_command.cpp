@@ -124,9 +124,10 @@ int runLightFieldBake(Flags& flags, const std::optional<std::string>& outDir,
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out << "baked light field: 6 slabs x " << cameras << "^2 cameras x " << res << "^2 px, cell "
-        << o.cellSize << " m, " << toString(o.compression) << ", " << asset.gpuBytes()
-        << " bytes of atlas, bake " << asset.bakeSeconds << " s, total " << seconds << " s -> "
-        << *outDir << "/manifest.json\n";
+        << o.cellSize << " m, " << toString(o.compression) << ", " << asset.diskBytes()
+        << " bytes on disk, " << asset.gpuBytes() << " bytes of GPU memory, bake "
+        << asset.bakeSeconds << " s, total " << seconds << " s -> " << *outDir
+        << "/manifest.json\n";
     for (int k = 0; k < 6; ++k) {
         const LightFieldSlab& s = asset.slabs[std::size_t(k)];
         out << "  slab " << slabName(k) << ": depth " << s.nearDepth << " .. " << s.farDepth
@@ -179,16 +180,7 @@ int runBake(std::span<const std::string> args, std::ostream& out, std::ostream& 
     o.sky = sky.empty() ? nullptr : &sky;
     o.reflectorReach = markupReflectorReach(registry, markup, o.centre, markupCellSize(markup));
     const EffectPlan plan = planEffects(registry, markup, o.centre, o.reflectorReach);
-    if (layers == "plan") {
-        if (plan.mode == "layered") {
-            for (const PlannedLayer& l : plan.layers) o.layers.push_back({l.name, l.objects, l.method});
-        } else {
-            // One lookup over the composite: no object layers to bake or upload.
-            o.layers = {};
-            o.compositeOnly = true;
-            o.compositeMethod = plan.layers.empty() ? "envmap" : plan.layers.front().method;
-        }
-    }
+    if (layers == "plan") applyPlan(plan, o);
     SignalGuard guard;
     o.cancelled = [] { return gInterrupted.load(); };
     DistanceProbeAsset asset;

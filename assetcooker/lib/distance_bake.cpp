@@ -105,7 +105,7 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
 
     const auto& mirrors = markup.mirrorEntities;
     const EmbreeScene environment(registry, [&](ecs::Entity e) { return !mirrors.count(e); });
-    if (environment.empty()) throw Error("", "scene", "has no environment geometry to bake");
+    // An empty environment is legal (a reflector under the sky alone): every texel misses.
 
     const std::size_t layerCount = opt.compositeOnly  ? 0
                                    : opt.layers.empty() ? markup.objects.size()

@@ -167,49 +167,35 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
         plan.objects.push_back(po);
     }
 
-    // Layers near to far: an object joins the first layer after every layer holding an
-    // object it can overlap (as seen from some reflector point), so occlusion order holds
-    // and objects that never overlap share a layer (one lookup instead of several).
+    // Near to far. Where objects can overlap (as seen from some reflector point) occlusion
+    // can show in the reflection, so each keeps a layer of its own: with tight per-layer
+    // bounds a ray that misses an object skips its layer without a fetch, which is cheaper
+    // than merging objects into wide layers every ray must search.
     std::sort(nears.begin(), nears.end(), [&](const Near& a, const Near& b) {
         return plan.objects[a.object].nearest < plan.objects[b.object].nearest;
     });
-    std::vector<std::vector<std::size_t>> groups; // indices into nears
     bool anyOverlap = false;
-    float occluderParallax = 0.f; // worst parallax of a small object in front of another
-    for (std::size_t i = 0; i < nears.size(); ++i) {
-        std::size_t first = 0;
-        for (std::size_t g = 0; g < groups.size(); ++g)
-            for (std::size_t j : groups[g])
-                if (overlaps(nears[i].mask, nears[j].mask)) {
-                    first = g + 1;
-                    anyOverlap = true;
-                    const PlannedObject& front = plan.objects[nears[j].object];
-                    if (front.decision == "avgdist")
-                        occluderParallax = std::max(occluderParallax, front.parallaxDeg);
+    float occluderParallax = 0.f; // widest band a small occluder can uncover, degrees
+    for (std::size_t i = 0; i < nears.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (overlaps(nears[i].mask, nears[j].mask)) {
+                anyOverlap = true;
+                // What a small occluder uncovers as the reflector moves by `reach`: its
+                // parallax relative to what lies behind it, reach (1/d_front - 1/d_back).
+                const PlannedObject& front = plan.objects[nears[j].object];
+                const PlannedObject& back = plan.objects[nears[i].object];
+                if (front.decision == "avgdist" && back.nearest > front.nearest) {
+                    const float uncovered =
+                        reach * (1.f / front.nearest - 1.f / back.nearest) * 180.f / kPi;
+                    occluderParallax = std::max(occluderParallax, uncovered);
                 }
-        if (first == groups.size()) groups.emplace_back();
-        groups[first].push_back(i);
-    }
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-        PlannedLayer layer;
-        bool rectify = false;
-        float lo = 1e30f, hi = 0.f;
-        for (std::size_t i : groups[g]) {
-            const PlannedObject& po = plan.objects[nears[i].object];
-            layer.objects.push_back(po.name);
-            rectify |= po.decision == "rectify";
-            lo = std::min(lo, po.average);
-            hi = std::max(hi, po.average);
-        }
-        layer.name = layer.objects.size() == 1 ? layer.objects[0] : "group" + std::to_string(g);
-        // One d-bar cannot serve objects at different distances.
-        const bool spread = hi > 1.2f * lo;
-        layer.method = rectify || spread ? "bisection" : "avgdist";
-        layer.reason = rectify ? "holds an object that needs per-pixel rectification"
-                       : spread ? "its objects lie at different distances (d-bar " + fmt(lo) +
-                                      " to " + fmt(hi) + " m)"
-                                : "small objects at one distance: one fetch at d-bar";
-        plan.layers.push_back(std::move(layer));
+            }
+    for (const Near& n : nears) {
+        const PlannedObject& po = plan.objects[n.object];
+        const bool rectify = po.decision == "rectify";
+        plan.layers.push_back({po.name, {po.name}, rectify ? "bisection" : "avgdist",
+                               rectify ? "large: per-pixel rectification"
+                                       : "small: one fetch at its average distance"});
     }
     if (!distant.empty())
         plan.layers.push_back({"distant", distant, "envmap",
@@ -241,21 +227,23 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     // Flavour: the light field only for near occluding geometry the distance cube cannot
     // represent (Wang et al. 2012: surfaces hidden from the probe centre but seen from the
     // reflector). Enclosing surfaces (floor, walls) hide nothing; a small object in front of
-    // another does, and beyond 45 degrees of parallax what it uncovers dominates.
+    // another uncovers a band of it as the reflector moves. Past 30 degrees (a third of a
+    // cube face) the layered cube map would show that band as seen from the centre: wrong
+    // over a large part of the reflection.
     if (forcedFlavour) {
         plan.flavour = *forcedFlavour;
         plan.flavourReason = "the user asked for it (specula_probe.flavour)";
-    } else if (occluderParallax > 45.f) {
+    } else if (occluderParallax > 30.f) {
         plan.flavour = "lightfield";
-        plan.flavourReason = "a small occluder moves across what is behind it by " +
-                             fmt(occluderParallax, 1) +
-                             " deg: disocclusions a distance cube map cannot show";
+        plan.flavourReason = "a small occluder can uncover " + fmt(occluderParallax, 1) +
+                             " deg of what is behind it: disocclusions a distance cube map "
+                             "cannot show";
     } else {
         plan.flavour = "distance";
-        plan.flavourReason = anyOverlap ? "occluders move by at most " +
+        plan.flavourReason = anyOverlap ? "occluders uncover at most " +
                                               fmt(occluderParallax, 1) +
-                                              " deg over what is behind them: layered distance "
-                                              "cube maps represent it"
+                                              " deg behind them: layered distance cube maps "
+                                              "represent the occlusion"
                                         : "no occlusion parallax to represent";
     }
 
@@ -293,6 +281,17 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
         plan.features += name;
     }
     return plan;
+}
+
+void applyPlan(const EffectPlan& plan, DistanceBakeOptions& bake) {
+    bake.layers.clear();
+    if (plan.mode == "layered") {
+        for (const PlannedLayer& l : plan.layers) bake.layers.push_back({l.name, l.objects, l.method});
+        bake.compositeOnly = false;
+    } else {
+        bake.compositeOnly = true;
+        bake.compositeMethod = plan.layers.empty() ? "envmap" : plan.layers.front().method;
+    }
 }
 
 nlohmann::json EffectPlan::toJson() const {

@@ -61,6 +61,11 @@ struct EffectPlan {
     std::string toText() const;
 };
 
+struct DistanceBakeOptions;
+// Makes `bake` follow the plan: the plan's layers and methods when layered, else the
+// composite alone with the plan's single method (nothing else is baked or uploaded).
+void applyPlan(const EffectPlan& plan, DistanceBakeOptions& bake);
+
 // Analyses the environment from `centre` (a low-resolution visibility bake) with reflector
 // points anywhere within `reach` of it. Markup needs override `thresholds`.
 EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::vec3 centre,

@@ -66,9 +66,14 @@ struct LightFieldAsset {
     float halfCell() const { return 0.5f * cellSize; }
     // Distance between neighbouring cameras: 3l / (NUM - 1).
     float cameraSpacing() const { return 3.f * cellSize / float(cameras - 1); }
-    // Bytes of one slab's atlas layer in the asset's texel format (on disk and on the GPU).
+    // Bytes of one slab's atlas layer as stored on disk (RGB8 or BC1).
     std::size_t layerBytes() const;
-    std::size_t gpuBytes() const { return 6 * layerBytes(); }
+    std::size_t diskBytes() const { return 6 * layerBytes(); }
+    // Texture memory of the atlas array: RGB8 is held as GL_SRGB8_ALPHA8, 4 bytes a texel.
+    std::size_t gpuBytes() const {
+        const std::size_t n = std::size_t(atlasSize());
+        return compression == LightFieldCompression::BC1 ? diskBytes() : 6 * n * n * 4;
+    }
 };
 
 // Disparity (pixels per camera step) that puts the focal plane at axial depth z: a point at

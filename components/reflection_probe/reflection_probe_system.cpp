@@ -310,8 +310,7 @@ void ReflectionProbeSystem::syncLightField(ProbeGpu& g) {
     if (const GLenum err = glGetError(); err != GL_NO_ERROR)
         throw Error(probe.asset, "", "uploading the light-field atlas failed (GL error " +
                                          std::to_string(err) + ")");
-    // What the GPU holds: RGB8 is stored as 4 bytes a texel (GL_SRGB8_ALPHA8).
-    g.bytes = bc1 ? a.gpuBytes() : std::size_t(n) * n * 6 * 4;
+    g.bytes = a.gpuBytes();
 }
 
 void ReflectionProbeSystem::bindLightField(gpu::Program& prog, const ProbeGpu& p) {

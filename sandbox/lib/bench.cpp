@@ -31,6 +31,10 @@ namespace fs = std::filesystem;
 
 namespace specula {
 
+std::string skyOnlyPath() {
+    return std::string(SPECULA_SOURCE_ROOT) + "/assets/sky_only/sky_only.gltf";
+}
+
 std::string truckRoomPath() {
     return std::string(SPECULA_SOURCE_ROOT) + "/assets/truck_room/truck_room.gltf";
 }
@@ -195,7 +199,7 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
     const int minFrames = std::min(maxFrames, opt.quick ? 6 : 16);
     const int gtRuns = opt.quick ? 1 : 3;
     std::vector<std::string> scenes = opt.scenes;
-    if (scenes.empty()) scenes = {defaultScenePath(), truckRoomPath()};
+    if (scenes.empty()) scenes = {defaultScenePath(), truckRoomPath(), skyOnlyPath()};
     const std::string sky = opt.sky.empty() ? defaultSkyPath() : opt.sky;
     for (const std::string& s : scenes)
         if (!fs::exists(s)) throw Error(s, "", "no such scene");
@@ -217,14 +221,20 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
             << std::flush;
         const double bakeSeconds =
             bakeDistanceProbeInto(scene, probeDir, report.faceRes, opt.progress);
+        const std::string planDir = probeDir + "_plan";
+        const double planBakeSeconds =
+            bakeDistanceProbeInto(scene, planDir, report.faceRes, opt.progress, true);
         if (lightFieldMethodAvailable() && lightFieldBakeAvailable())
             log << name << ": baking the light fields\n" << std::flush;
-        const std::vector<LightFieldBake> lfs =
-            lightFieldMethodAvailable()
-                ? bakeLightFieldsForBench(
-                      scene, (fs::path(opt.outDir) / "probes" / (name + "_lightfield")).string(),
-                      opt.quick)
-                : std::vector<LightFieldBake>{};
+        std::vector<LightFieldBake> lfs;
+        try {
+            if (lightFieldMethodAvailable())
+                lfs = bakeLightFieldsForBench(
+                    scene, (fs::path(opt.outDir) / "probes" / (name + "_lightfield")).string(),
+                    opt.quick);
+        } catch (const Error& e) {
+            log << name << ": no light-field rows (" << e.what() << ")\n";
+        }
         BenchSweep sweep;
         if (opt.quick) sweep.tolerances = {0.1f, 0.01f};
         for (const LightFieldBake& b : lfs)
@@ -271,8 +281,19 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
                 const LightFieldBake* lf =
                     v.lightField >= 0 ? &lfs[std::size_t(v.lightField)] : nullptr;
                 ReflectionProbe probe = v.probe;
-                probe.asset = lf ? lf->manifest : probeDir + "/manifest.json";
+                probe.asset = lf          ? lf->manifest
+                              : v.planned ? planDir + "/manifest.json"
+                                          : probeDir + "/manifest.json";
                 scene.setProbe(probe);
+                try {
+                    fr.probes().sync(scene.registry());
+                } catch (const Error& e) {
+                    // A method the asset cannot serve (layers of a scene without objects):
+                    // say so and leave the row out rather than abort the bench.
+                    log << "  " << name << " " << v.method << " " << v.params
+                        << ": skipped (" << e.what() << ")\n";
+                    continue;
+                }
                 row.msMedian = timeReflectorPass(fr, cam, minFrames, maxFrames, row.frames);
                 const Image img = fr.render(cam);
                 const ImageStats env = compareImages(img, envTruth.color, &mask);
@@ -280,7 +301,7 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
                 row.psnr = env.psnr, row.rmse = env.rmse;
                 row.psnrFull = full.psnr, row.rmseFull = full.rmse;
                 row.gpuBytes = fr.stats().probeGpuBytes;
-                row.bakeSeconds = lf ? lf->seconds : bakeSeconds;
+                row.bakeSeconds = lf ? lf->seconds : v.planned ? planBakeSeconds : bakeSeconds;
                 row.fetchesPerPixel = lf ? lf->fetchesPerPixel : countFetches(fr, scene, cam, mask);
                 const std::string key = v.method + " " + v.params;
                 shots[key] = img;

@@ -39,6 +39,7 @@ struct BenchReport {
 
 // `second scene` of the default set.
 std::string truckRoomPath();
+std::string skyOnlyPath(); // a mirror under the sky alone: the plan must be the plain envmap
 
 // Runs the whole bench and writes its files; progress lines go to `log`. Throws Error
 // naming the file on bad input.

@@ -20,6 +20,7 @@ struct MethodVariant {
     VariantKind kind = VariantKind::Probe;
     ReflectionProbe probe; // asset left empty: filled with the scene's manifest
     int lightField = -1;   // >= 0: index of the light-field asset it uses (else the distance probe)
+    bool planned = false;  // uses the probe baked by the effect plan
 };
 
 struct BenchSweep {

@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "assetcooker/lib/effect_plan.h"
+
 #include <glm/gtc/constants.hpp>
 #include <nlohmann/json.hpp>
 
@@ -20,13 +22,19 @@ namespace fs = std::filesystem;
 namespace specula {
 
 double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int faceRes,
-                             bool showProgress) {
+                             bool showProgress, bool planned) {
     const auto start = std::chrono::steady_clock::now();
     DistanceBakeOptions o;
     o.centre = scene.probeCentre();
     o.faceRes = faceRes;
     o.sky = scene.sky().empty() ? nullptr : &scene.sky();
     o.reflectorReach = scene.reflectorReach();
+    std::string planJson;
+    if (planned) {
+        const EffectPlan plan = planEffects(scene.registry(), scene.markup(), o.centre, o.reflectorReach);
+        applyPlan(plan, o);
+        planJson = plan.toJson().dump();
+    }
     DistanceProbeAsset asset;
     {
         std::optional<ProgressBar> bar;
@@ -38,6 +46,7 @@ double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    asset.effectPlan = planJson;
     writeDistanceProbe(asset, dir, scene.path());
     return seconds;
 }
@@ -124,8 +133,8 @@ const char* toString(WalkPath p) {
     return "?";
 }
 
-glm::vec3 walkOffset(WalkPath path, float t, float cellSize) {
-    const float a = 0.2f * cellSize;
+glm::vec3 walkOffset(WalkPath path, float t, float amplitude) {
+    const float a = amplitude;
     const float w = glm::two_pi<float>() * t;
     switch (path) {
     case WalkPath::Orbit:

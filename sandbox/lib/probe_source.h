@@ -32,15 +32,16 @@ ProbeSource resolveProbeSource(const std::string& input,
                                bool lightField = false);
 
 // Bakes the distance probe of a loaded scene into `dir`; returns the seconds it took.
+// planned: the layers and methods of the effect plan (else one layer per object).
 double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int faceRes,
-                             bool showProgress);
+                             bool showProgress, bool planned = false);
 
 // Walk paths: where the reflectors are at time t in [0, 1), as an offset from their authored
 // position. Every path stays within 0.2 cell sizes of it on each axis, inside the cell.
 enum class WalkPath { Orbit, Line, Figure8 };
 bool parseWalkPath(const std::string& s, WalkPath& out);
 const char* toString(WalkPath p);
-glm::vec3 walkOffset(WalkPath path, float t, float cellSize);
+glm::vec3 walkOffset(WalkPath path, float t, float amplitude);
 
 // Mirror pixels whose 3x3 neighbourhood is all mirror: the rasteriser and the tracer may
 // disagree on which silhouette pixels a reflector covers, never on its interior.

@@ -42,6 +42,21 @@ float ReflectionScene::reflectorReach() const {
     return markupReflectorReach(registry_, markup_, probeCentre(), cellSize());
 }
 
+float ReflectionScene::walkAmplitude() const {
+    const glm::vec3 c = probeCentre();
+    const float half = 0.5f * cellSize();
+    float slack = half;
+    for (ecs::Entity e : markup_.mirrorEntities) {
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        meshWorldBounds(registry_, e, lo, hi);
+        // Bounds at the authored position: take away the current offset.
+        for (int k = 0; k < 3; ++k)
+            slack = std::min({slack, half - (hi[k] - offset_[k] - c[k]),
+                              half + (lo[k] - offset_[k] - c[k])});
+    }
+    return std::clamp(slack, 0.f, 0.2f * cellSize());
+}
+
 CameraView ReflectionScene::camera(int width, int height) const {
     for (ecs::Entity e : loaded_.entities) {
         const Camera* cam = registry_.find<Camera>(e);

@@ -36,6 +36,9 @@ public:
     float cellSize() const;
     // Largest distance from the probe centre to any reflector vertex (with the cell).
     float reflectorReach() const;
+    // How far the reflectors may move from where they were authored on every axis and stay
+    // inside the cell: at most a fifth of the cell, never more than the room they have.
+    float walkAmplitude() const;
 
     // The scene's first camera node, or a view of the reflectors from 3.5 m.
     CameraView camera(int width, int height) const;

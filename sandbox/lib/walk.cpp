@@ -73,7 +73,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
         if (o.progress) bar.emplace("walk " + std::string(toString(o.path)));
         for (int i = 0; i < o.frames; ++i) {
             const float t = float(i) / float(o.frames);
-            scene.setReflectorOffset(walkOffset(o.path, t, scene.cellSize()));
+            scene.setReflectorOffset(walkOffset(o.path, t, scene.walkAmplitude()));
             const float angle = angle0 + 0.4f * std::sin(glm::two_pi<float>() * t);
             const CameraView cam = walkCamera(scene, o.width, o.height, angle, dist, h);
             const Image img = fr.render(cam);

@@ -159,7 +159,7 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             }
             if (playing) {
                 t = std::fmod(t + 1.f / 120.f, 1.f);
-                offset = walkOffset(o.path, t, scene.cellSize());
+                offset = walkOffset(o.path, t, scene.walkAmplitude());
                 changed = true;
             }
 

@@ -29,8 +29,8 @@ const std::filesystem::path& scratchDir() {
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    const bool glb = size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' &&
-                     data[3] == 'F';
+    const bool glb =
+        size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' && data[3] == 'F';
     const std::filesystem::path path = scratchDir() / (glb ? "input.glb" : "input.gltf");
     {
         std::ofstream out(path, std::ios::binary | std::ios::trunc);

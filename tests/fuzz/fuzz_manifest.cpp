@@ -12,8 +12,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
     try {
-        (void)specula::parseDistanceProbe(text, std::string(SPECULA_FUZZ_PROBE_DIR) +
-                                                    "/manifest.json");
+        (void)specula::parseDistanceProbe(text,
+                                          std::string(SPECULA_FUZZ_PROBE_DIR) + "/manifest.json");
     } catch (const specula::Error&) {
     }
     return 0;

@@ -84,20 +84,27 @@ TEST_F(BadManifest, EveryMalformedFieldIsNamed) {
     expectRefused([](json& m) { m["box"] = 7; }, "box.min");
     expectRefused([](json& m) { m["layers"] = json::object(); }, "layers");
     expectRefused([](json& m) { m["layers"] = json::array(); }, "layers");
-    expectRefused([](json& m) {
-        json many = json::array();
-        for (int i = 0; i < 300; ++i) many.push_back(m["layers"][0]);
-        m["layers"] = many;
-    }, "layers");
+    expectRefused(
+        [](json& m) {
+            json many = json::array();
+            for (int i = 0; i < 300; ++i)
+                many.push_back(m["layers"][0]);
+            m["layers"] = many;
+        },
+        "layers");
     expectRefused([](json& m) { m["layers"][0]["avg_distance"] = "x"; }, "layers[0].avg_distance");
-    expectRefused([](json& m) { m["layers"][0]["solid_angle_sr"] = 99; }, "layers[0].solid_angle_sr");
+    expectRefused([](json& m) { m["layers"][0]["solid_angle_sr"] = 99; },
+                  "layers[0].solid_angle_sr");
     expectRefused([](json& m) { m["layers"][0]["file"] = "../etc/passwd"; }, "layers[0].file");
     expectRefused([](json& m) { m["layers"][0]["file"] = "/etc/passwd"; }, "layers[0].file");
     expectRefused([](json& m) { m["layers"][0]["file"] = "missing.exr"; }, "layers[0].file");
     expectRefused([](json& m) { m["layers"][0]["checksum"] = "fnv1a64:0000000000000000"; },
                   "layers[0].checksum");
-    expectRefused([](json& m) { m["sky"] = {{"file", "missing.exr"}, {"checksum", "x"}}; },
-                  "sky.file");
+    expectRefused(
+        [](json& m) {
+            m["sky"] = {{"file", "missing.exr"}, {"checksum", "x"}};
+        },
+        "sky.file");
 }
 
 TEST_F(BadManifest, NotJsonAndTruncatedFiles) {

@@ -43,7 +43,8 @@ const DistanceProbeAsset& boxProbe() {
 
 Reference boxIdeal(const DistanceProbeAsset& a) {
     const float avg = a.layers[0].avgDistance;
-    return [avg](LookupMethod m, glm::vec3 x, glm::vec3 d) { return idealBox(room(), m, avg, x, d); };
+    return
+        [avg](LookupMethod m, glm::vec3 x, glm::vec3 d) { return idealBox(room(), m, avg, x, d); };
 }
 
 // Runs `rays` through twin and shader for every method in `bounds` and checks both.
@@ -69,7 +70,8 @@ void checkCase(const std::string& name, const DistanceProbeAsset& asset,
             gr.push_back({r.x, r.d});
         }
         const auto out = gpuLookup().run(a, cfg, gr);
-        for (std::size_t i = 0; i < out.size(); ++i) gpu.add(out[i].radiance, want[i]);
+        for (std::size_t i = 0; i < out.size(); ++i)
+            gpu.add(out[i].radiance, want[i]);
         report(name, toString(m), "cpu", cpu, bound);
         report(name, toString(m), "glsl", gpu, bound);
         EXPECT_EQ(cpu.nonFinite, 0) << name << " " << toString(m);
@@ -82,7 +84,8 @@ void checkCase(const std::string& name, const DistanceProbeAsset& asset,
 glm::vec3 randomUnit(std::mt19937& rng) {
     std::normal_distribution<float> g;
     glm::vec3 d;
-    do d = glm::vec3(g(rng), g(rng), g(rng));
+    do
+        d = glm::vec3(g(rng), g(rng), g(rng));
     while (glm::dot(d, d) < 1e-6f);
     return glm::normalize(d);
 }
@@ -144,10 +147,10 @@ TEST(CubeFaceTies, EveryTieMapsToTheRuleFaceWithFiniteUvAndRoundTrips) {
 }
 
 TEST(CubeFaceTies, NonFiniteDirectionsMapToAFiniteTexel) {
-    for (glm::vec3 d : {glm::vec3(0.f), glm::vec3(kNaN, 0.f, 0.f), glm::vec3(0.f, kNaN, 1.f),
-                        glm::vec3(kInf, 0.f, 0.f), glm::vec3(kInf, kInf, 0.f),
-                        glm::vec3(-kInf, 1.f, kInf), glm::vec3(kInf, kInf, kInf),
-                        glm::vec3(1e-45f, 0.f, -1e-45f)}) {
+    for (glm::vec3 d :
+         {glm::vec3(0.f), glm::vec3(kNaN, 0.f, 0.f), glm::vec3(0.f, kNaN, 1.f),
+          glm::vec3(kInf, 0.f, 0.f), glm::vec3(kInf, kInf, 0.f), glm::vec3(-kInf, 1.f, kInf),
+          glm::vec3(kInf, kInf, kInf), glm::vec3(1e-45f, 0.f, -1e-45f)}) {
         const glm::vec3 f = glsl::cubeFaceUv(d);
         EXPECT_TRUE(finite3(f)) << d.x << "," << d.y << "," << d.z;
         EXPECT_GE(f.x, 0.f);
@@ -250,11 +253,13 @@ TEST(DistanceHardCases, SilhouettesAgainstDInf) {
         rays.push_back({x, glm::normalize(target - x)});
     }
     for (LookupMethod m : {LookupMethod::Bisection, LookupMethod::Secant, LookupMethod::Layered}) {
-        const DistanceProbeAsset al = m == LookupMethod::Layered ? withObjectLayer(a, "bisection") : a;
+        const DistanceProbeAsset al =
+            m == LookupMethod::Layered ? withObjectLayer(a, "bisection") : a;
         const DistanceLookupConfig cfg = configFor(al, m);
         CpuDistanceProbe twin(al, cfg);
         std::vector<GpuRay> gr;
-        for (const Ray& r : rays) gr.push_back({r.x, r.d});
+        for (const Ray& r : rays)
+            gr.push_back({r.x, r.d});
         const auto out = gpuLookup().run(al, cfg, gr);
         for (int path = 0; path < 2; ++path) {
             Worst agree;
@@ -271,8 +276,10 @@ TEST(DistanceHardCases, SilhouettesAgainstDInf) {
                 }
                 const bool hit = s.hit(rays[i].x, rays[i].d).has_value();
                 if (!finite3(c)) ++agree.nonFinite;
-                if (sky == hit) ++swapped;
-                else agree.add(c, s.trace(rays[i].x, rays[i].d));
+                if (sky == hit)
+                    ++swapped;
+                else
+                    agree.add(c, s.trace(rays[i].x, rays[i].d));
             }
             const double share = double(swapped) / double(rays.size());
             report("silhouette vs d_inf (hit/miss right)", toString(m), path ? "glsl" : "cpu",
@@ -297,7 +304,8 @@ TEST(DistanceHardCases, SilhouettesAgainstDInf) {
 TEST(DistanceHardCases, ToleranceToZero) {
     std::mt19937 rng(17);
     std::vector<Ray> rays;
-    for (int i = 0; i < 3000; ++i) rays.push_back({randomInCell(rng), randomUnit(rng)});
+    for (int i = 0; i < 3000; ++i)
+        rays.push_back({randomInCell(rng), randomUnit(rng)});
     for (float de : {0.f, FLT_MIN, 1e-40f, -1.f, kNaN, kInf}) {
         const DistanceLookupConfig c = configFor(boxProbe(), LookupMethod::Bisection, de);
         EXPECT_GT(c.tolerance, 0.f);
@@ -320,8 +328,11 @@ TEST(DistanceHardCases, RangeSmallerThanTheScene) {
     // without a bracket the search does worse than envmap; D must come from the bake.
     std::mt19937 rng(19);
     std::vector<Ray> rays;
-    for (int i = 0; i < 3000; ++i) rays.push_back({randomInCell(rng), randomUnit(rng)});
-    const Reference exact = [](LookupMethod, glm::vec3 x, glm::vec3 d) { return room().trace(x, d); };
+    for (int i = 0; i < 3000; ++i)
+        rays.push_back({randomInCell(rng), randomUnit(rng)});
+    const Reference exact = [](LookupMethod, glm::vec3 x, glm::vec3 d) {
+        return room().trace(x, d);
+    };
     for (float D : {0.5f, 0.05f, 1e-6f}) {
         char name[64];
         std::snprintf(name, sizeof name, "D smaller than scene (D = %g)", double(D));
@@ -339,8 +350,11 @@ TEST(DistanceHardCases, RangeFarLargerThanTheScene) {
     // 40 the search ends far from the wall: only finiteness and the stored range hold.
     std::mt19937 rng(23);
     std::vector<Ray> rays;
-    for (int i = 0; i < 1000; ++i) rays.push_back({randomInCell(rng), randomUnit(rng)});
-    const Reference exact = [](LookupMethod, glm::vec3 x, glm::vec3 d) { return room().trace(x, d); };
+    for (int i = 0; i < 1000; ++i)
+        rays.push_back({randomInCell(rng), randomUnit(rng)});
+    const Reference exact = [](LookupMethod, glm::vec3 x, glm::vec3 d) {
+        return room().trace(x, d);
+    };
     // Up to 1e4 (10x d_inf) the 40 steps still reach the wall; from ~1e7 on, x is lost in
     // x + D l-hat (ulp(1e7) = 1 m) and only finiteness and the colour range hold.
     for (float D : {1e4f, 1e7f, 1e30f, FLT_MAX}) {
@@ -363,7 +377,8 @@ TEST(DistanceHardCases, ReflectorOnTheCellBoundary) {
     std::mt19937 rng(29);
     std::vector<Ray> rays;
     for (glm::vec3 t : tieDirections())
-        for (int i = 0; i < 40; ++i) rays.push_back({kCell * t, randomUnit(rng)});
+        for (int i = 0; i < 40; ++i)
+            rays.push_back({kCell * t, randomUnit(rng)});
     checkCase("reflector on the cell boundary", boxProbe(), rays, boxIdeal(boxProbe()),
               {{LookupMethod::Envmap, 0.02},
                {LookupMethod::BoxProj, 0.02},
@@ -378,10 +393,14 @@ TEST(DistanceHardCases, ReflectorOnTheCellBoundary) {
 
 TEST(DistanceHardCases, ZeroAndNanNormals) {
     std::mt19937 rng(31);
-    const std::vector<glm::vec3> badNormals = {
-        glm::vec3(0.f),           glm::vec3(kNaN),           glm::vec3(kNaN, 0.f, 1.f),
-        glm::vec3(kInf, 0.f, 0.f), glm::vec3(-kInf, kInf, 0.f), glm::vec3(1e-40f, 0.f, 0.f),
-        glm::vec3(1e-12f, 0.f, 1e-12f), glm::vec3(1e20f, 1e20f, 0.f)};
+    const std::vector<glm::vec3> badNormals = {glm::vec3(0.f),
+                                               glm::vec3(kNaN),
+                                               glm::vec3(kNaN, 0.f, 1.f),
+                                               glm::vec3(kInf, 0.f, 0.f),
+                                               glm::vec3(-kInf, kInf, 0.f),
+                                               glm::vec3(1e-40f, 0.f, 0.f),
+                                               glm::vec3(1e-12f, 0.f, 1e-12f),
+                                               glm::vec3(1e20f, 1e20f, 0.f)};
     std::vector<GpuRay> gr;
     std::vector<glm::vec3> wantDir;
     double worstDir = 0.0;
@@ -393,8 +412,7 @@ TEST(DistanceHardCases, ZeroAndNanNormals) {
         const glm::dvec3 gd(g), vd(v);
         const glm::dvec3 nf = glm::dot(gd, vd) > 0.0 ? -gd : gd;
         const glm::vec3 want(glm::normalize(vd - 2.0 * glm::dot(vd, nf) * nf));
-        const glm::vec3 got =
-            glm::normalize(glsl::mirrorDirection(v, glsl::safeNormal(n, g)));
+        const glm::vec3 got = glm::normalize(glsl::mirrorDirection(v, glsl::safeNormal(n, g)));
         ASSERT_TRUE(finite3(got));
         worstDir = std::max(worstDir, double(glm::length(got - want)));
         gr.push_back({randomInCell(rng), v, n, g});
@@ -426,8 +444,8 @@ TEST(DistanceHardCases, ZeroAndNanNormals) {
     }
     // Geometric normal NaN as well (a sliver triangle): l-hat is NaN; the lookup must still
     // give a finite colour that the probe holds.
-    std::vector<GpuRay> nanAll(64, GpuRay{glm::vec3(0.1f), glm::vec3(0.f, 0.f, -1.f),
-                                          glm::vec3(kNaN), glm::vec3(kNaN)});
+    std::vector<GpuRay> nanAll(
+        64, GpuRay{glm::vec3(0.1f), glm::vec3(0.f, 0.f, -1.f), glm::vec3(kNaN), glm::vec3(kNaN)});
     for (LookupMethod m : kAllMethods) {
         const DistanceProbeAsset a =
             m == LookupMethod::Layered ? withObjectLayer(boxProbe(), "bisection") : boxProbe();
@@ -437,7 +455,8 @@ TEST(DistanceHardCases, ZeroAndNanNormals) {
         const glm::vec3 c = twin.radiance(glm::vec3(0.1f), glm::vec3(kNaN), f);
         EXPECT_TRUE(finite3(c)) << toString(m);
         const auto out = gpuLookup().run(a, cfg, nanAll, 1);
-        for (const GpuResult& r : out) EXPECT_TRUE(finite3(r.radiance)) << toString(m);
+        for (const GpuResult& r : out)
+            EXPECT_TRUE(finite3(r.radiance)) << toString(m);
     }
 }
 
@@ -479,7 +498,8 @@ TEST(DistanceHardCases, HugeWorldCoordinates) {
                 cpu.add(twin.radiance(xs[i], ds[i], f), want[i]);
             }
             const auto out = gpuLookup().run(boxProbe(), cfg, gr, 2, glm::vec3(centre));
-            for (std::size_t i = 0; i < out.size(); ++i) gpu.add(out[i].radiance, want[i]);
+            for (std::size_t i = 0; i < out.size(); ++i)
+                gpu.add(out[i].radiance, want[i]);
             char name[64];
             std::snprintf(name, sizeof name, "world coordinates ~%g m", far);
             report(name, toString(m), "cpu", cpu, bound);
@@ -509,8 +529,11 @@ TEST(DistanceHardCases, HalfFloatDistanceStorage) {
                 "half-float distances", worstStore, 4.0 / 2048.0);
     std::mt19937 rng(41);
     std::vector<Ray> rays;
-    for (int i = 0; i < 20000; ++i) rays.push_back({randomInCell(rng), randomUnit(rng)});
-    const Reference exact = [](LookupMethod, glm::vec3 x, glm::vec3 d) { return room().trace(x, d); };
+    for (int i = 0; i < 20000; ++i)
+        rays.push_back({randomInCell(rng), randomUnit(rng)});
+    const Reference exact = [](LookupMethod, glm::vec3 x, glm::vec3 d) {
+        return room().trace(x, d);
+    };
     for (float de : {0.01f, 0.001f})
         for (LookupMethod m : {LookupMethod::Bisection, LookupMethod::Secant}) {
             Worst w[2];
@@ -524,8 +547,8 @@ TEST(DistanceHardCases, HalfFloatDistanceStorage) {
             }
             std::printf("[numerics] %-34s %-9s d_e=%-5g float: worst %.3e rms %.3e | half: "
                         "worst %.3e rms %.3e | cost: rms x%.3f\n",
-                        "half vs float distances", toString(m), double(de), w[0].err,
-                        w[0].rms(), w[1].err, w[1].rms(), w[1].rms() / w[0].rms());
+                        "half vs float distances", toString(m), double(de), w[0].err, w[0].rms(),
+                        w[1].err, w[1].rms(), w[1].rms() / w[0].rms());
             EXPECT_EQ(w[1].nonFinite, 0);
             // Half stores 4 m to 2 mm: its RMS may grow by at most 25 % over float, and its
             // worst error by at most 0.05.

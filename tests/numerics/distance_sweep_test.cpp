@@ -24,7 +24,9 @@ std::uint64_t splitmix(std::uint64_t& s) {
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
     return z ^ (z >> 31);
 }
-float uniform(std::uint64_t& s) { return float(splitmix(s) >> 40) * (1.f / 16777216.f); }
+float uniform(std::uint64_t& s) {
+    return float(splitmix(s) >> 40) * (1.f / 16777216.f);
+}
 
 // Ray i depends only on (seed, i): the sweep is the same however TBB splits it.
 void rayOf(std::uint64_t i, glm::vec3& x, glm::vec3& d) {
@@ -55,11 +57,12 @@ TEST(DistanceSweep, TenMillionRandomRaysPerMethod) {
     const long rays = sweepRays();
     // Worst error allowed against the method's ideal answer. Bisection/secant/layered end
     // within d_e = 0.01 of the surface along |l|, which at grazing incidence moves the hit
-    // point along the wall by up to d_e / cos; envmap, boxproj and avgdist only filter.
+    // point along the wall by up to d_e / cos; envmap, boxproj and avgdist only filter
+    // (worst at face edges, where clamp-to-edge bilinear cannot blend across faces).
+    // Measured at 10^7 rays: 0.019 / 0.019 / 0.062 / 0.060 / 0.019 / 0.062.
     const std::map<LookupMethod, double> bound = {
-        {LookupMethod::Envmap, 0.02},   {LookupMethod::BoxProj, 0.02},
-        {LookupMethod::Bisection, 0.3}, {LookupMethod::Secant, 0.3},
-        {LookupMethod::AvgDist, 0.02},  {LookupMethod::Layered, 0.3}};
+        {LookupMethod::Envmap, 0.03}, {LookupMethod::BoxProj, 0.03}, {LookupMethod::Bisection, 0.1},
+        {LookupMethod::Secant, 0.1},  {LookupMethod::AvgDist, 0.03}, {LookupMethod::Layered, 0.1}};
     const float avg = box.layers[0].avgDistance;
     double total = 0.0;
     for (LookupMethod m : kAllMethods) {
@@ -107,9 +110,8 @@ TEST(DistanceSweep, TenMillionRandomRaysPerMethod) {
         std::printf("[numerics] %-34s %-9s rays %ld  worst %.3e  rms %.3e  bound %.1e  "
                     "%.2f fetches/ray  %.2f s  (worst at x=(%.3f,%.3f,%.3f) d=(%.4f,%.4f,%.4f))\n",
                     "random sweep (seed 0x5eed20120005)", toString(m), rays, t.worst,
-                    std::sqrt(t.sum2 / double(rays)), bound.at(m),
-                    double(t.fetches) / double(rays), s, t.worstX.x, t.worstX.y, t.worstX.z,
-                    t.worstD.x, t.worstD.y, t.worstD.z);
+                    std::sqrt(t.sum2 / double(rays)), bound.at(m), double(t.fetches) / double(rays),
+                    s, t.worstX.x, t.worstX.y, t.worstX.z, t.worstD.x, t.worstD.y, t.worstD.z);
         std::fflush(stdout);
         EXPECT_EQ(t.nonFinite, 0) << toString(m);
         EXPECT_LE(t.worst, bound.at(m)) << toString(m);

@@ -156,14 +156,16 @@ inline DistanceProbeAsset withObjectLayer(DistanceProbeAsset a, const char* meth
     return a;
 }
 
-inline const char* methodName(LookupMethod m) { return toString(m); }
+inline const char* methodName(LookupMethod m) {
+    return toString(m);
+}
 
 inline constexpr LookupMethod kAllMethods[] = {LookupMethod::Envmap,    LookupMethod::BoxProj,
                                                LookupMethod::Bisection, LookupMethod::Secant,
                                                LookupMethod::AvgDist,   LookupMethod::Layered};
 
-inline DistanceLookupConfig configFor(const DistanceProbeAsset& a, LookupMethod m,
-                                      float de = 0.01f, float range = 0.f) {
+inline DistanceLookupConfig configFor(const DistanceProbeAsset& a, LookupMethod m, float de = 0.01f,
+                                      float range = 0.f) {
     ReflectionProbe p;
     p.method = m;
     p.layerMethod = LookupMethod::Bisection;
@@ -179,9 +181,12 @@ inline DistanceLookupConfig configFor(const DistanceProbeAsset& a, LookupMethod 
 inline glm::vec3 idealBox(const AnalyticBox& box, LookupMethod m, float avgDistance, glm::vec3 x,
                           glm::vec3 d) {
     switch (m) {
-    case LookupMethod::Envmap: return box.trace(glm::vec3(0.f), d);
-    case LookupMethod::AvgDist: return box.trace(glm::vec3(0.f), glm::normalize(x + avgDistance * d));
-    default: return box.trace(x, d);
+    case LookupMethod::Envmap:
+        return box.trace(glm::vec3(0.f), d);
+    case LookupMethod::AvgDist:
+        return box.trace(glm::vec3(0.f), glm::normalize(x + avgDistance * d));
+    default:
+        return box.trace(x, d);
     }
 }
 
@@ -241,7 +246,8 @@ public:
             std::vector<float> data(std::size_t(w) * std::size_t(h) * 4, 0.f);
             for (int i = 0; i < count; ++i) {
                 const glm::vec3 v = get(rays[std::size_t(i)]);
-                for (int k = 0; k < 3; ++k) data[std::size_t(i) * 4 + std::size_t(k)] = v[k];
+                for (int k = 0; k < 3; ++k)
+                    data[std::size_t(i) * 4 + std::size_t(k)] = v[k];
             }
             gpu::Texture t = gpu::Texture::create(GL_TEXTURE_2D);
             glTextureStorage2D(t.id(), 1, GL_RGBA32F, w, h);
@@ -285,8 +291,7 @@ public:
         prog.setUniform("uLayerCount", c.layerCount);
         for (std::size_t i = 0; i < c.layerMethods.size(); ++i) {
             prog.setUniform("uLayerMethod[" + std::to_string(i) + "]", c.layerMethods[i]);
-            prog.setUniform("uLayerAvgDistance[" + std::to_string(i) + "]",
-                            c.layerAvgDistance[i]);
+            prog.setUniform("uLayerAvgDistance[" + std::to_string(i) + "]", c.layerAvgDistance[i]);
             prog.setUniform("uLayerBoxMin[" + std::to_string(i) + "]", c.layerBoxMin[i]);
             prog.setUniform("uLayerBoxMax[" + std::to_string(i) + "]", c.layerBoxMax[i]);
         }
@@ -334,9 +339,9 @@ private:
             std::string("HAS_AVGDIST=") + bit(kFeatureAvgDist),
             std::string("HAS_LAYERS=") + bit(kFeatureLayers)};
         return programs_
-            .emplace(features, gpu::buildProgram(gpu::ShaderSource::text("numerics.vert", kVert),
-                                                 gpu::ShaderSource::text("numerics.frag", kFrag),
-                                                 defines))
+            .emplace(features,
+                     gpu::buildProgram(gpu::ShaderSource::text("numerics.vert", kVert),
+                                       gpu::ShaderSource::text("numerics.frag", kFrag), defines))
             .first->second;
     }
 

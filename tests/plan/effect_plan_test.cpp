@@ -146,7 +146,8 @@ TEST(EffectPlan, SolidAngleThresholdSeparatesTheMethods) {
         s.reflectorAndProbe();
         const float r = 3.f * std::sin(halfDeg * 3.14159265f / 180.f);
         s.node("ball", glm::vec3(0, 0, -3), SceneBuilder::sphere(r));
-        const PlannedObject& ball = object(s.plan(), "ball");
+        const EffectPlan plan = s.plan();
+        const PlannedObject& ball = object(plan, "ball");
         std::printf("half-angle %.0f deg: %.3f sr -> %s\n", halfDeg, ball.solidAngle,
                     ball.decision.c_str());
         EXPECT_EQ(ball.decision, halfDeg < 20.f ? "avgdist" : "rectify");
@@ -168,9 +169,9 @@ TEST(EffectPlan, ObjectBehindAnotherGetsLayers) {
 }
 
 TEST(EffectPlan, NearOccluderWithLargeParallaxAsksForTheLightField) {
-    // A thin post 1.6 m away (nearest point 1.5 m): asin(1.3 / 1.5) = 60 degrees of parallax
-    // over the wall behind it; what it uncovers as the reflector moves was never seen from
-    // the probe centre.
+    // A thin post 1.6 m away (nearest point 1.5 m) before a wall at 4.95 m: moving the
+    // reflector by the reach (1.3 m) uncovers 1.3 (1/1.5 - 1/4.95) = 0.6 rad = 34 degrees of
+    // wall never seen from the probe centre.
     SceneBuilder s;
     s.reflectorAndProbe();
     s.node("post", glm::vec3(0, 0, -1.6f), SceneBuilder::box(glm::vec3(0.1f, 0.5f, 0.1f)));

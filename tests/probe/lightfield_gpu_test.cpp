@@ -154,19 +154,23 @@ TEST_F(LightFieldRoom, BeatsEnvmapAndBoxProjAndImprovesWithNumResAndFocus) {
     const double lfZero = psnr(lightFieldProbe(lightField(8, 64), 0.f), truth, mask, cam);
     const double lf4 = psnr(lightFieldProbe(lightField(4, 64)), truth, mask, cam);
     const double lf16 = psnr(lightFieldProbe(lightField(16, 64)), truth, mask, cam);
+    const double lf16Zero = psnr(lightFieldProbe(lightField(16, 64), 0.f), truth, mask, cam);
     const double lf16Res32 = psnr(lightFieldProbe(lightField(16, 32)), truth, mask, cam);
     std::printf("PSNR vs env-only ground truth: envmap %.2f, boxproj %.2f | light field "
-                "NUM 8 RES 64 %.2f (disparity 0: %.2f), NUM 4 %.2f, NUM 16 %.2f, NUM 16 RES 32 "
-                "%.2f dB\n",
-                envmap, boxproj, lf, lfZero, lf4, lf16, lf16Res32);
-    // Margins: about half of what the room measures (21.8, 14.5, 17.1, 24.2 dB, ...), so a
-    // regression shows and rasteriser noise does not.
-    EXPECT_GT(lf, envmap + 4.0);
-    EXPECT_GT(lf, boxproj + 2.0);
+                "NUM 8 RES 64 %.2f (disparity 0: %.2f), NUM 4 %.2f, NUM 16 %.2f (disparity 0: "
+                "%.2f), NUM 16 RES 32 %.2f dB\n",
+                envmap, boxproj, lf, lfZero, lf4, lf16, lf16Zero, lf16Res32);
+    // Margins: about half of what the room (2 m cell) measures, so a regression shows and
+    // rasteriser noise does not. NUM 8 is too sparse for the floor 0.2 m below the -Y
+    // plane, so the comparison with the baselines is made at NUM 16.
+    EXPECT_GT(lf16, envmap + 4.0);
+    EXPECT_GT(lf16, boxproj + 2.0);
+    EXPECT_GT(lf, envmap + 2.0);
     EXPECT_GT(lf, lf4 + 1.0);
     EXPECT_GT(lf16, lf + 1.0);
     EXPECT_GT(lf16, lf16Res32 + 0.2);
-    EXPECT_GT(lf, lfZero + 1.0) << "the cooked focal plane must beat disparity 0";
+    EXPECT_GT(lf, lfZero + 0.5) << "the cooked focal plane must beat disparity 0";
+    EXPECT_GT(lf16, lf16Zero + 0.5) << "the cooked focal plane must beat disparity 0";
 }
 
 TEST_F(LightFieldRoom, ParallaxFollowsTheGroundTruthAtThreePositions) {
@@ -190,8 +194,10 @@ TEST_F(LightFieldRoom, ParallaxFollowsTheGroundTruthAtThreePositions) {
 
 TEST_F(LightFieldRoom, ReflectorLeavingTheCellIsReported) {
     const CameraView cam = scene_->camera(kWidth, kHeight);
-    // A 2.6 m cell holds both reflectors as authored (the sphere reaches 1.15 m out).
-    scene_->setProbe(lightFieldProbe(lightField(4, 16, LightFieldCompression::None, 2.6f)));
+    // The room's cell holds both reflectors as authored; moved 0.5 m along +X the torus
+    // (reaching 0.69 m from the centre) leaves it, the sphere does not.
+    scene_->setReflectorOffset(glm::vec3(0.f));
+    scene_->setProbe(lightFieldProbe(lightField(4, 16)));
     renderer_->render(cam);
     EXPECT_FALSE(renderer_->stats().reflectorLeftCell);
     EXPECT_EQ(renderer_->stats().reflectorsOutsideCell, 0u);

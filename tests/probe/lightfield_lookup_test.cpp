@@ -255,7 +255,8 @@ TEST(LightFieldLookup, StorageFitsTheGlLimitsAndBadSizesAreRefused) {
     LightFieldAsset paper = emptyAsset(2, 4, 1.f);
     paper.cameras = 32, paper.res = 128;
     EXPECT_EQ(paper.atlasSize(), 4096);
-    EXPECT_EQ(paper.gpuBytes(), std::size_t(6) * 4096 * 4096 * 3);
+    EXPECT_EQ(paper.diskBytes(), std::size_t(6) * 4096 * 4096 * 3);
+    EXPECT_EQ(paper.gpuBytes(), std::size_t(6) * 4096 * 4096 * 4);
     paper.compression = LightFieldCompression::BC1;
     EXPECT_LE(paper.gpuBytes(), std::size_t(64) << 20);
     EXPECT_NO_THROW(validateLightFieldSize(32, 128, 1.5f, LightFieldCompression::BC1, ""));

@@ -15,7 +15,7 @@ namespace specula::test {
 
 class RoomProbe : public ::testing::Test {
 protected:
-    static constexpr int kWidth = 200, kHeight = 150;
+    static constexpr int kWidth = 320, kHeight = 240;
 
     static void SetUpTestSuite() {
         context_ = gpu::GlContext::createHeadless().release();

@@ -2,6 +2,7 @@
 #include "sandbox/lib/accuracy_plot.h"
 #include "sandbox/lib/bench_methods.h"
 #include "sandbox/lib/probe_source.h"
+#include "sandbox/lib/reflection_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -65,10 +66,29 @@ TEST(BenchMethods, EnvmapFirstGroundTruthLastEveryToleranceSwept) {
 TEST(WalkPaths, StayInsideTheCell) {
     for (WalkPath p : {WalkPath::Orbit, WalkPath::Line, WalkPath::Figure8})
         for (int i = 0; i <= 100; ++i) {
-            const glm::vec3 o = walkOffset(p, float(i) / 100.f, 1.5f);
+            const glm::vec3 o = walkOffset(p, float(i) / 100.f, 0.3f);
             EXPECT_LE(std::abs(o.x), 0.3f + 1e-5f);
             EXPECT_LE(std::abs(o.y), 0.3f + 1e-5f);
             EXPECT_LE(std::abs(o.z), 0.3f + 1e-5f);
+        }
+    // The default room's reflectors keep inside the cell over the whole path.
+    ReflectionScene room(defaultScenePath(), "");
+    const float a = room.walkAmplitude();
+    EXPECT_GT(a, 0.1f);
+    EXPECT_LE(a, 0.2f * room.cellSize() + 1e-6f);
+    const float half = 0.5f * room.cellSize();
+    for (WalkPath p : {WalkPath::Orbit, WalkPath::Line, WalkPath::Figure8})
+        for (int i = 0; i <= 40; ++i) {
+            room.setReflectorOffset(walkOffset(p, float(i) / 40.f, a));
+            for (ecs::Entity e : room.markup().mirrorEntities) {
+                glm::vec3 lo(1e30f), hi(-1e30f);
+                meshWorldBounds(room.registry(), e, lo, hi);
+                const glm::vec3 c = room.probeCentre();
+                for (int k = 0; k < 3; ++k) {
+                    EXPECT_GE(lo[k] - c[k], -half - 1e-4f);
+                    EXPECT_LE(hi[k] - c[k], half + 1e-4f);
+                }
+            }
         }
     WalkPath w;
     EXPECT_TRUE(parseWalkPath("figure8", w));

@@ -286,7 +286,7 @@ TEST(DefaultRoom, LoadsWithNamedNodesAndMarkup) {
 
     const ecs::Entity probe = byName(reg, s, "probe");
     const auto probeJson = nlohmann::json::parse(reg.get<Extras>(probe).json);
-    EXPECT_DOUBLE_EQ(probeJson["specula_probe"]["cell_size"].get<double>(), 1.5);
+    EXPECT_DOUBLE_EQ(probeJson["specula_probe"]["cell_size"].get<double>(), 2.0);
     const glm::vec3 probePos(reg.get<Transform>(probe).world[3]);
     EXPECT_NEAR(probePos.y, 1.2f, 1e-5f);
 

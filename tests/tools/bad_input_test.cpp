@@ -7,8 +7,8 @@
 
 #include <chrono>
 #include <csignal>
-#include <fcntl.h>
 #include <cstdio>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -41,12 +41,13 @@ std::string slurp(const fs::path& p) {
 
 // Runs specula-cook with `args` (no shell: each argument passed as is).
 CookRun cook(const std::vector<std::string>& args, const fs::path& scratch, double signalAfter = -1,
-         int sig = SIGINT) {
+             int sig = SIGINT) {
     const fs::path outFile = scratch / "stdout.txt", errFile = scratch / "stderr.txt";
     std::vector<std::string> argv = {kCook.string()};
     argv.insert(argv.end(), args.begin(), args.end());
     std::vector<char*> cargv;
-    for (auto& a : argv) cargv.push_back(a.data());
+    for (auto& a : argv)
+        cargv.push_back(a.data());
     cargv.push_back(nullptr);
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
@@ -99,9 +100,9 @@ protected:
         fs::create_directories(root_ / "work");
         fs::create_directories(root_ / "scratch");
         // A previously cooked probe that every failing run must leave alone.
-        const CookRun r = cook({"bake", kRoom.string(), "--out", (root_ / "work" / "probe").string(),
-                            "--face-res", "8"},
-                           root_ / "scratch");
+        const CookRun r = cook({"bake", kRoom.string(), "--out",
+                                (root_ / "work" / "probe").string(), "--face-res", "8"},
+                               root_ / "scratch");
         ASSERT_EQ(r.status, 0) << r.err;
         // Inputs of every kind of wrong.
         std::ofstream(root_ / "notgltf.glb") << "this is not a glTF file at all";
@@ -126,7 +127,8 @@ protected:
     static void expectRefused(const std::vector<std::string>& args, const std::string& mustName,
                               int status) {
         std::string shown;
-        for (const auto& a : args) shown += a + " ";
+        for (const auto& a : args)
+            shown += a + " ";
         const CookRun r = cook(args, root_ / "scratch");
         EXPECT_EQ(r.status, status) << shown << "\n" << r.err;
         EXPECT_TRUE(r.out.empty()) << shown << "\n" << r.out;
@@ -145,7 +147,9 @@ protected:
 fs::path BadInput::root_;
 Snapshot BadInput::before_;
 
-std::string p(const fs::path& x) { return x.string(); }
+std::string p(const fs::path& x) {
+    return x.string();
+}
 
 } // namespace
 
@@ -192,8 +196,8 @@ TEST_F(BadInput, BakeArguments) {
     expectRefused({"bake", p(root_ / "wrongtypes.gltf"), "--out", out}, "wrongtypes.gltf", 1);
     expectRefused({"bake", scene, "--out", out, "--sky", p(root_ / "missing.exr")}, "missing.exr",
                   1);
-    expectRefused({"bake", scene, "--out", out, "--sky", p(root_ / "notimage.exr")},
-                  "notimage.exr", 1);
+    expectRefused({"bake", scene, "--out", out, "--sky", p(root_ / "notimage.exr")}, "notimage.exr",
+                  1);
     expectRefused({"bake", scene, "--out", out, "--sky", p(root_ / "truncated.exr")},
                   "truncated.exr", 1);
     // An output that cannot be a probe folder: under a regular file, or a regular file.
@@ -204,7 +208,8 @@ TEST_F(BadInput, BakeArguments) {
     // An existing folder that is not a cooked probe is never replaced.
     fs::create_directories(root_ / "precious");
     std::ofstream(root_ / "precious" / "notes.txt") << "keep me";
-    expectRefused({"bake", scene, "--face-res", "4", "--out", p(root_ / "precious")}, "precious", 1);
+    expectRefused({"bake", scene, "--face-res", "4", "--out", p(root_ / "precious")}, "precious",
+                  1);
     EXPECT_EQ(slurp(root_ / "precious" / "notes.txt"), "keep me");
 }
 
@@ -227,10 +232,10 @@ TEST_F(BadInput, InterruptedBakeLeavesThePreviousAssetAndNoTemporaries) {
         for (double after : {0.05, 0.8, 2.5}) {
             const auto t0 = std::chrono::steady_clock::now();
             const CookRun r = cook({"bake", p(kRoom), "--out", p(out), "--face-res", "2048"},
-                               root_ / "scratch", after, sig);
+                                   root_ / "scratch", after, sig);
             const double s =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            std::printf("[bad-input] %s after %.2f s: exit %d in %.2f s, stderr: %s", 
+            std::printf("[bad-input] %s after %.2f s: exit %d in %.2f s, stderr: %s",
                         sig == SIGINT ? "SIGINT" : "SIGTERM", after, r.status, s,
                         r.err.empty() ? "(empty)\n" : r.err.c_str());
             EXPECT_NE(r.status, 0);
