@@ -69,6 +69,8 @@ DistanceLookupConfig makeLookupConfig(const ReflectionProbe& probe, const Distan
     c.boxMin = a.boxMin;
     c.boxMax = a.boxMax;
     c.range = probe.range > 0.f ? probe.range : a.range;
+    // A range past the sentinel only loses x in x + D l (float) and searches nothing real.
+    c.range = std::min(c.range, 0.5f * a.dInf);
     c.tolerance = std::isfinite(probe.errorTolerance) && probe.errorTolerance > 0.f
                       ? probe.errorTolerance
                       : std::numeric_limits<float>::min();
