@@ -36,6 +36,34 @@ ReflectionProbe buildKey(ReflectionProbe p) {
 }
 } // namespace
 
+void setDistanceLookupUniforms(gpu::Program& prog, const DistanceLookupConfig& c, int faceRes,
+                               glm::vec3 probeCentre) {
+    prog.setUniform("uFaceRes", faceRes);
+    prog.setUniform("uProbeCentre", probeCentre);
+    prog.setUniform("uBoxMin", c.boxMin);
+    prog.setUniform("uBoxMax", c.boxMax);
+    prog.setUniform("uRange", c.range);
+    prog.setUniform("uTolerance", c.tolerance);
+    prog.setUniform("uDInf", c.dInf);
+    prog.setUniform("uMaxSteps", c.maxSteps);
+    prog.setUniform("uMethod", c.method);
+    prog.setUniform("uLayerCount", c.layerCount);
+    for (std::size_t i = 0; i < c.layerMethods.size(); ++i) {
+        // Appended piecewise: GCC 12's -Wrestrict misfires on chained string operator+.
+        auto element = [i](const char* array) {
+            std::string name(array);
+            name += '[';
+            name += std::to_string(i);
+            name += ']';
+            return name;
+        };
+        prog.setUniform(element("uLayerMethod"), c.layerMethods[i]);
+        prog.setUniform(element("uLayerAvgDistance"), c.layerAvgDistance[i]);
+        prog.setUniform(element("uLayerBoxMin"), c.layerBoxMin[i]);
+        prog.setUniform(element("uLayerBoxMax"), c.layerBoxMax[i]);
+    }
+}
+
 std::string featureName(std::uint32_t f) {
     std::string s;
     auto add = [&](std::uint32_t bit, const char* name) {
@@ -228,24 +256,8 @@ void ReflectionProbeSystem::render(ecs::Registry& registry, const CameraView& ca
         prog.setUniform("uLayers", 1);
         prog.setUniform("uSky", 2);
         prog.setUniform("uHasSky", p.sky.id() != 0 ? 1 : 0);
-        prog.setUniform("uFaceRes", p.asset->faceRes);
-        prog.setUniform("uProbeCentre", p.asset->centre);
-        prog.setUniform("uBoxMin", c.boxMin);
-        prog.setUniform("uBoxMax", c.boxMax);
-        prog.setUniform("uRange", c.range);
-        prog.setUniform("uTolerance", c.tolerance);
-        prog.setUniform("uDInf", c.dInf);
-        prog.setUniform("uMaxSteps", c.maxSteps);
-        prog.setUniform("uMethod", c.method);
-        prog.setUniform("uLayerCount", c.layerCount);
+        setDistanceLookupUniforms(prog, c, p.asset->faceRes, p.asset->centre);
         prog.setUniform("uF0", r.fresnelF0);
-        for (std::size_t i = 0; i < c.layerMethods.size(); ++i) {
-            prog.setUniform("uLayerMethod[" + std::to_string(i) + "]", c.layerMethods[i]);
-            prog.setUniform("uLayerAvgDistance[" + std::to_string(i) + "]",
-                            c.layerAvgDistance[i]);
-            prog.setUniform("uLayerBoxMin[" + std::to_string(i) + "]", c.layerBoxMin[i]);
-            prog.setUniform("uLayerBoxMax[" + std::to_string(i) + "]", c.layerBoxMax[i]);
-        }
         scene.drawEntity(e, prog);
         ++stats_.reflectorsDrawn;
     });

@@ -80,6 +80,10 @@ private:
 inline constexpr std::uint32_t kFeatureLightField = 1u << 16;
 inline constexpr std::uint32_t kFeatureLightFieldBackground = 1u << 17;
 
+// Fills the uniforms of shaders/distance_probe_gpu.glsl from a lookup configuration.
+void setDistanceLookupUniforms(gpu::Program& program, const DistanceLookupConfig& config,
+                               int faceRes, glm::vec3 probeCentre);
+
 // Human-readable name of a feature mask, e.g. "layers+bisection+avgdist+fresnel".
 std::string featureName(std::uint32_t features);
 

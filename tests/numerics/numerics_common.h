@@ -4,6 +4,7 @@
 // real shared lookup (shaders/distance_lookup.glsl.h) over a list of rays on the GPU, so each
 // hard case drives both the C++ twin and the shader through exactly the same inputs.
 #include "components/reflection_probe/distance_probe_cpu.h"
+#include "components/reflection_probe/reflection_probe_system.h"
 #include "engine/gpu/context.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/gpu/render_target.h"
@@ -279,22 +280,7 @@ public:
         prog.setUniform("uB", 3);
         prog.setUniform("uC", 4);
         prog.setUniform("uMode", mode);
-        prog.setUniform("uFaceRes", n);
-        prog.setUniform("uProbeCentre", centre);
-        prog.setUniform("uBoxMin", c.boxMin);
-        prog.setUniform("uBoxMax", c.boxMax);
-        prog.setUniform("uRange", c.range);
-        prog.setUniform("uTolerance", c.tolerance);
-        prog.setUniform("uDInf", c.dInf);
-        prog.setUniform("uMaxSteps", c.maxSteps);
-        prog.setUniform("uMethod", c.method);
-        prog.setUniform("uLayerCount", c.layerCount);
-        for (std::size_t i = 0; i < c.layerMethods.size(); ++i) {
-            prog.setUniform("uLayerMethod[" + std::to_string(i) + "]", c.layerMethods[i]);
-            prog.setUniform("uLayerAvgDistance[" + std::to_string(i) + "]", c.layerAvgDistance[i]);
-            prog.setUniform("uLayerBoxMin[" + std::to_string(i) + "]", c.layerBoxMin[i]);
-            prog.setUniform("uLayerBoxMax[" + std::to_string(i) + "]", c.layerBoxMax[i]);
-        }
+        setDistanceLookupUniforms(prog, c, n, centre);
         gpu::RenderTarget colour(w, h);
         gpu::RenderTarget dir(w, h);
         std::vector<GpuResult> out(rays.size());
@@ -357,45 +343,20 @@ void main() {
 #include "engine/scene/shading.glsl.h"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
 
-uniform sampler2DArray uLayers;
+#include "components/reflection_probe/shaders/distance_lookup_types.glsl.h"
+#include "components/reflection_probe/shaders/distance_probe_gpu.glsl"
+
 uniform sampler2D uX;
 uniform sampler2D uA;
 uniform sampler2D uB;
 uniform sampler2D uC;
 uniform int uMode;
 uniform int uOutput;
-uniform int uFaceRes;
-uniform vec3 uProbeCentre;
-uniform vec3 uBoxMin;
-uniform vec3 uBoxMax;
-uniform float uRange;
-uniform float uTolerance;
-uniform float uDInf;
-uniform int uMaxSteps;
-uniform int uMethod;
-uniform int uLayerCount;
-uniform int uLayerMethod[64];
-uniform float uLayerAvgDistance[64];
-uniform vec3 uLayerBoxMin[64];
-uniform vec3 uLayerBoxMax[64];
 out vec4 fragColor;
 
 bool gSky = false;
 
-float fetchDistance(int layer, vec3 dir) {
-    vec3 f = cubeFaceUv(dir);
-    ivec2 texel = min(ivec2(f.xy * float(uFaceRes)), ivec2(uFaceRes - 1));
-    return texelFetch(uLayers, ivec3(texel, layer * 6 + int(f.z)), 0).a;
-}
-vec3 fetchRadiance(int layer, vec3 dir) {
-    vec3 f = cubeFaceUv(dir);
-    return textureLod(uLayers, vec3(f.xy, float(layer * 6) + f.z), 0.0).rgb;
-}
 vec3 fetchSky(vec3 dir) { gSky = true; return vec3(0.0); }
-int layerMethod(int layer) { return uLayerMethod[layer]; }
-float layerAvgDistance(int layer) { return uLayerAvgDistance[layer]; }
-vec3 layerBoxMin(int layer) { return uLayerBoxMin[layer]; }
-vec3 layerBoxMax(int layer) { return uLayerBoxMax[layer]; }
 
 #include "components/reflection_probe/shaders/distance_lookup.glsl.h"
 
@@ -414,15 +375,7 @@ void main() {
         lhat = normalize(mirrorDirection(v, safeNormal(texelFetch(uB, px, 0).xyz,
                                                        texelFetch(uC, px, 0).xyz)));
     }
-    ProbeLookupParams p;
-    p.boxMin = uBoxMin;
-    p.boxMax = uBoxMax;
-    p.range = uRange;
-    p.tolerance = uTolerance;
-    p.dInf = uDInf;
-    p.maxSteps = uMaxSteps;
-    p.method = uMethod;
-    p.layerCount = uLayerCount;
+    ProbeLookupParams p = lookupParams();
     int fetches = 0;
     vec3 colour = probeRadiance(x, lhat, p, fetches);
     fragColor = uOutput == 0 ? vec4(colour, gSky ? 2.0 : 1.0) : vec4(lhat, 1.0);

@@ -37,7 +37,7 @@ inline DistanceProbeAsset makeBoxProbe(const AnalyticBox& box, int n) {
     a.dInf = 1000.f;
     a.boxMin = box.lo;
     a.boxMax = box.hi;
-    float maxD = 0.f;
+    float maxD = 0.f, minD = 1e30f;
     DistanceProbeLayer L;
     L.name = "box";
     for (int f = 0; f < 6; ++f) {
@@ -51,9 +51,12 @@ inline DistanceProbeAsset makeBoxProbe(const AnalyticBox& box, int n) {
                 float* p = L.faces[std::size_t(f)].at(x, y);
                 p[0] = c.r, p[1] = c.g, p[2] = c.b, p[3] = t;
                 maxD = std::max(maxD, t);
+                minD = std::min(minD, t);
             }
     }
     L.avgDistance = 4.f;
+    L.minDistance = minD;
+    L.maxDistance = maxD;
     L.solidAngle = 12.566f;
     a.range = 0.5f * (maxD + 1.f) * 1.05f;
     a.layers.push_back(L);
