@@ -1,5 +1,7 @@
 #include "distance_probe_asset.h"
 
+#include "components/reflection_probe/probe_folder.h"
+
 #include "engine/core/error.h"
 #include "engine/image/image_io.h"
 
@@ -36,7 +38,9 @@ std::string fileChecksum(const std::string& path) {
 
 namespace {
 
-json vec3Json(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
+json vec3Json(glm::vec3 v) {
+    return json::array({v.x, v.y, v.z});
+}
 
 Image stackFaces(const std::array<Image, 6>& faces) {
     const int n = faces[0].width;
@@ -82,8 +86,8 @@ struct Reader {
         const double d = v.get<double>();
         if (!std::isfinite(d) || d < lo || d > hi)
             throw Error(file, path + key,
-                        "expected a number in [" + std::to_string(lo) + ", " +
-                            std::to_string(hi) + "], got " + v.dump());
+                        "expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                            "], got " + v.dump());
         return float(d);
     }
     std::string string(const json& obj, const std::string& key, const std::string& path) const {
@@ -115,8 +119,8 @@ struct Reader {
         const std::string actual = fileChecksum(full);
         if (actual != checksumOut)
             throw Error(file, path + "checksum",
-                        "mismatch for " + name + ": manifest says " + checksumOut +
-                            ", file has " + actual);
+                        "mismatch for " + name + ": manifest says " + checksumOut + ", file has " +
+                            actual);
         return full;
     }
 };
@@ -125,20 +129,7 @@ struct Reader {
 
 void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
                         const std::string& sourceScene) {
-    const fs::path target = fs::absolute(dir);
-    const fs::path tmp = target.string() + ".tmp-" + std::to_string(::getpid());
-    std::error_code ec;
-    // DIR is replaced wholesale: only ever replace a cooked probe (or an empty folder), never
-    // a file or a folder of something else that a mistyped --out happens to name.
-    if (fs::exists(target, ec) && !fs::is_directory(target, ec))
-        throw Error(dir, "", "exists and is not a folder; refusing to replace it");
-    if (fs::is_directory(target, ec) && !fs::exists(target / "manifest.json", ec) &&
-        !fs::is_empty(target, ec))
-        throw Error(dir, "", "is a folder without manifest.json (not a cooked probe); refusing "
-                             "to replace it");
-    fs::remove_all(tmp, ec);
-    fs::create_directories(tmp);
-    try {
+    writeProbeFolder(dir, [&](const fs::path& tmp) {
         json layers = json::array();
         for (std::size_t i = 0; i < asset.layers.size(); ++i) {
             const DistanceProbeLayer& L = asset.layers[i];
@@ -159,44 +150,27 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
                               {"file", name},
                               {"checksum", fileChecksum(path)}});
         }
-        json manifest = {{"format", "specula-probe"},
-                         {"version", kProbeFormatVersion},
-                         {"flavour", "distance"},
-                         {"source", sourceScene},
-                         {"centre", vec3Json(asset.centre)},
-                         {"range_D", asset.range},
-                         {"d_inf", asset.dInf},
-                         {"face_res", asset.faceRes},
-                         {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
-                         {"face_layout", "N x 6N EXR, faces +X -X +Y -Y +Z -Z top to bottom, "
-                                         "RGB radiance, A distance from the centre"},
-                         {"layers", layers}};
+        json manifest = {
+            {"format", "specula-probe"},
+            {"version", kProbeFormatVersion},
+            {"flavour", "distance"},
+            {"source", sourceScene},
+            {"centre", vec3Json(asset.centre)},
+            {"range_D", asset.range},
+            {"d_inf", asset.dInf},
+            {"face_res", asset.faceRes},
+            {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
+            {"face_layout", "N x 6N EXR, faces +X -X +Y -Y +Z -Z top to bottom, "
+                            "RGB radiance, A distance from the centre"},
+            {"layers", layers}};
         if (!asset.effectPlan.empty()) manifest["effect_plan"] = json::parse(asset.effectPlan);
         if (!asset.sky.empty()) {
             const std::string path = (tmp / "sky.exr").string();
             writeImage(path, asset.sky);
             manifest["sky"] = {{"file", "sky.exr"}, {"checksum", fileChecksum(path)}};
         }
-        std::ofstream out(tmp / "manifest.json");
-        out << manifest.dump(2) << "\n";
-        out.close();
-        if (!out) throw Error((tmp / "manifest.json").string(), "", "write failed");
-
-        // Swap the finished folder in; the old one is removed only after the rename worked.
-        const fs::path old = target.string() + ".old-" + std::to_string(::getpid());
-        const bool hadOld = fs::exists(target);
-        if (hadOld) fs::rename(target, old);
-        try {
-            fs::rename(tmp, target);
-        } catch (...) {
-            if (hadOld) fs::rename(old, target);
-            throw;
-        }
-        if (hadOld) fs::remove_all(old, ec);
-    } catch (...) {
-        fs::remove_all(tmp, ec);
-        throw;
-    }
+        return manifest;
+    });
 }
 
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {
@@ -260,9 +234,8 @@ DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
             throw Error(file, "size",
                         "expected " + std::to_string(a.faceRes) + " x " +
                             std::to_string(6 * a.faceRes) + " RGBA, got " +
-                            std::to_string(stacked.width) + " x " +
-                            std::to_string(stacked.height) + " with " +
-                            std::to_string(stacked.channels) + " channels");
+                            std::to_string(stacked.width) + " x " + std::to_string(stacked.height) +
+                            " with " + std::to_string(stacked.channels) + " channels");
         L.faces = splitFaces(stacked);
         a.layers.push_back(std::move(L));
     }

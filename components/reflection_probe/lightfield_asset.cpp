@@ -1,5 +1,7 @@
 #include "lightfield_asset.h"
 
+#include "components/reflection_probe/probe_folder.h"
+
 #include "components/reflection_probe/distance_probe_asset.h" // fileChecksum, kProbeFormatVersion
 #include "engine/core/error.h"
 
@@ -245,12 +247,7 @@ std::vector<std::uint8_t> decodeBC1(const std::uint8_t* blocks, int width, int h
 void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
                           const std::string& sourceScene) {
     validateLightFieldSize(a.cameras, a.res, a.cellSize, a.compression, "");
-    const fs::path target = fs::absolute(dir);
-    const fs::path tmp = target.string() + ".tmp-" + std::to_string(::getpid());
-    std::error_code ec;
-    fs::remove_all(tmp, ec);
-    fs::create_directories(tmp);
-    try {
+    writeProbeFolder(dir, [&](const fs::path& tmp) {
         json slabs = json::array();
         for (int k = 0; k < 6; ++k) {
             const LightFieldSlab& s = a.slabs[std::size_t(k)];
@@ -309,26 +306,8 @@ void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
             {"bake", {{"tracer", "embree"}, {"seconds", a.bakeSeconds}}},
             {"intrusions", intrusions},
             {"slabs", slabs}};
-        std::ofstream out(tmp / "manifest.json");
-        out << manifest.dump(2) << "\n";
-        out.close();
-        if (!out) throw Error((tmp / "manifest.json").string(), "", "write failed");
-
-        // Swap the finished folder in; the old one is removed only after the rename worked.
-        const fs::path old = target.string() + ".old-" + std::to_string(::getpid());
-        const bool hadOld = fs::exists(target);
-        if (hadOld) fs::rename(target, old);
-        try {
-            fs::rename(tmp, target);
-        } catch (...) {
-            if (hadOld) fs::rename(old, target);
-            throw;
-        }
-        if (hadOld) fs::remove_all(old, ec);
-    } catch (...) {
-        fs::remove_all(tmp, ec);
-        throw;
-    }
+        return manifest;
+    });
 }
 
 namespace {

@@ -4,6 +4,7 @@
 #include "assetcooker/lib/distance_bake.h"
 #include "engine/gpu/context.h"
 #include "sandbox/lib/frame_renderer.h"
+#include "sandbox/lib/probe_source.h"
 #include "sandbox/lib/reflection_scene.h"
 
 #include <gtest/gtest.h>
@@ -58,22 +59,8 @@ inline ReflectionScene* RoomProbe::scene_ = nullptr;
 inline FrameRenderer* RoomProbe::renderer_ = nullptr;
 inline std::string RoomProbe::dir_;
 
-// Mirror pixels whose 3x3 neighbourhood is all mirror: rasteriser and tracer may disagree on
-// which pixels the silhouette covers, never on the interior.
-inline Image erodedMask(const Image& mask) {
-    Image out(mask.width, mask.height, 1);
-    for (int y = 0; y < mask.height; ++y)
-        for (int x = 0; x < mask.width; ++x) {
-            bool all = true;
-            for (int dy = -1; dy <= 1 && all; ++dy)
-                for (int dx = -1; dx <= 1 && all; ++dx) {
-                    const int xx = x + dx, yy = y + dy;
-                    all = xx >= 0 && yy >= 0 && xx < mask.width && yy < mask.height &&
-                          mask.at(xx, yy)[0] > 0.5f;
-                }
-            out.at(x, y)[0] = all ? 1.f : 0.f;
-        }
-    return out;
-}
+// Mirror pixels away from the silhouette: the sandbox's own mask (rasteriser and tracer may
+// disagree on which pixels a silhouette covers, never on the interior).
+using specula::erodedMask;
 
 } // namespace specula::test
