@@ -22,12 +22,12 @@ public:
     explicit View(std::tuple<SparseSet<Ts>*...> pools) : pools_(pools) {}
 
     template <typename Fn> void each(Fn&& fn) {
-        if (((std::get<SparseSet<Ts>*>(pools_) == nullptr) || ...)) return;
+        if ((!std::get<SparseSet<Ts>*>(pools_) || ...)) return;
         const std::vector<Entity>* smallest = nullptr;
         std::apply(
             [&](auto*... p) {
-                ((smallest = (!smallest || p->size() < smallest->size()) ? &p->entities()
-                                                                         : smallest),
+                ((smallest =
+                      (!smallest || p->size() < smallest->size()) ? &p->entities() : smallest),
                  ...);
             },
             pools_);
@@ -73,7 +73,8 @@ public:
     // Destroying a stale handle is a no-op: the slot may already belong to someone else.
     void destroy(Entity e) {
         if (!valid(e)) return;
-        for (auto& [type, pool] : pools_) pool->remove(e);
+        for (auto& [type, pool] : pools_)
+            pool->remove(e);
         ++generations_[e.index];
         free_.push_back(e.index);
     }
