@@ -2,6 +2,9 @@
 
 #include "engine/core/error.h"
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,14 +13,22 @@ namespace specula {
 
 const char* toString(LookupMethod m) {
     switch (m) {
-    case LookupMethod::Envmap: return "envmap";
-    case LookupMethod::BoxProj: return "boxproj";
-    case LookupMethod::Bisection: return "bisection";
-    case LookupMethod::Secant: return "secant";
-    case LookupMethod::AvgDist: return "avgdist";
-    case LookupMethod::Layered: return "layered";
-    case LookupMethod::Planned: return "plan";
-    case LookupMethod::LightField: return "lightfield";
+    case LookupMethod::Envmap:
+        return "envmap";
+    case LookupMethod::BoxProj:
+        return "boxproj";
+    case LookupMethod::Bisection:
+        return "bisection";
+    case LookupMethod::Secant:
+        return "secant";
+    case LookupMethod::AvgDist:
+        return "avgdist";
+    case LookupMethod::Layered:
+        return "layered";
+    case LookupMethod::Planned:
+        return "plan";
+    case LookupMethod::LightField:
+        return "lightfield";
     }
     return "?";
 }
@@ -36,25 +47,38 @@ bool parseLookupMethod(const std::string& s, LookupMethod& out) {
 
 int methodIndex(LookupMethod m) {
     switch (m) {
-    case LookupMethod::Envmap: return 0;
-    case LookupMethod::BoxProj: return 1;
-    case LookupMethod::Bisection: return 2;
-    case LookupMethod::Secant: return 3;
-    case LookupMethod::AvgDist: return 4;
-    case LookupMethod::Layered: return -1;
-    case LookupMethod::Planned: return -1;
-    case LookupMethod::LightField: return -1;
+    case LookupMethod::Envmap:
+        return 0;
+    case LookupMethod::BoxProj:
+        return 1;
+    case LookupMethod::Bisection:
+        return 2;
+    case LookupMethod::Secant:
+        return 3;
+    case LookupMethod::AvgDist:
+        return 4;
+    case LookupMethod::Layered:
+        return -1;
+    case LookupMethod::Planned:
+        return -1;
+    case LookupMethod::LightField:
+        return -1;
     }
     return 0;
 }
 
 static std::uint32_t featureOf(int method) {
     switch (method) {
-    case 1: return kFeatureBoxProj;
-    case 2: return kFeatureBisection;
-    case 3: return kFeatureSecant;
-    case 4: return kFeatureAvgDist;
-    default: return kFeatureEnvmap;
+    case 1:
+        return kFeatureBoxProj;
+    case 2:
+        return kFeatureBisection;
+    case 3:
+        return kFeatureSecant;
+    case 4:
+        return kFeatureAvgDist;
+    default:
+        return kFeatureEnvmap;
     }
 }
 
@@ -82,6 +106,13 @@ DistanceLookupConfig makeLookupConfig(const ReflectionProbe& probe, const Distan
         c.layerAvgDistance[i] = a.layers[i].avgDistance;
         c.layerBoxMin.push_back(a.layers[i].boxMin);
         c.layerBoxMax.push_back(a.layers[i].boxMax);
+    }
+    c.layerReach.assign(a.layers.size(), 0.f);
+    float reach = std::numeric_limits<float>::max();
+    for (std::size_t i = a.layers.size(); i-- > 1;) {
+        const glm::vec3 closest = glm::clamp(glm::vec3(0.f), c.layerBoxMin[i], c.layerBoxMax[i]);
+        reach = std::min(reach, glm::length(closest));
+        c.layerReach[i] = reach;
     }
 
     if (probe.method == LookupMethod::Planned) {
@@ -120,8 +151,7 @@ DistanceLookupConfig makeLookupConfig(const ReflectionProbe& probe, const Distan
     c.features = kFeatureLayers;
     for (int i = 1; i <= c.layerCount; ++i) {
         LookupMethod m = probe.layerMethod;
-        if (m == LookupMethod::Envmap || m == LookupMethod::BoxProj ||
-            m == LookupMethod::Layered) {
+        if (m == LookupMethod::Envmap || m == LookupMethod::BoxProj || m == LookupMethod::Layered) {
             // The cooked plan decides: a layer without a usable plan gets bisection.
             if (!parseLookupMethod(a.layers[std::size_t(i)].method, m) ||
                 (m != LookupMethod::AvgDist && m != LookupMethod::Secant))

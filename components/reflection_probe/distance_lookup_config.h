@@ -31,6 +31,9 @@ struct DistanceLookupConfig {
     std::vector<int> layerMethods;   // index = layer (0 unused)
     std::vector<float> layerAvgDistance;
     std::vector<glm::vec3> layerBoxMin, layerBoxMax; // probe-local
+    // Closest that layers i.. (every later one too) come to the probe centre: once a hit is
+    // nearer than that, no later layer can occlude it and the layered loop ends.
+    std::vector<float> layerReach;
     std::uint32_t features = 0;      // DistanceFeature bits (Fresnel is added per reflector)
 };
 

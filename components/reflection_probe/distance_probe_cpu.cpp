@@ -43,6 +43,7 @@ struct TwinFetches {
     }
     vec3 layerBoxMin(int layer) const { return config->layerBoxMin[std::size_t(layer)]; }
     vec3 layerBoxMax(int layer) const { return config->layerBoxMax[std::size_t(layer)]; }
+    float layerReach(int layer) const { return config->layerReach[std::size_t(layer)]; }
 };
 
 // The shared lookup is included inside a struct so that its calls to fetchDistance and

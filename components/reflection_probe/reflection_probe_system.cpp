@@ -61,6 +61,7 @@ void setDistanceLookupUniforms(gpu::Program& prog, const DistanceLookupConfig& c
         prog.setUniform(element("uLayerAvgDistance"), c.layerAvgDistance[i]);
         prog.setUniform(element("uLayerBoxMin"), c.layerBoxMin[i]);
         prog.setUniform(element("uLayerBoxMax"), c.layerBoxMax[i]);
+        prog.setUniform(element("uLayerReach"), c.layerReach[i]);
     }
 }
 

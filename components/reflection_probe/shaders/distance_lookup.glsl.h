@@ -10,6 +10,7 @@
 //   int   layerMethod(int layer)               method of each object layer (layered mode)
 //   float layerAvgDistance(int layer)          d-bar of each layer
 //   vec3  layerBoxMin(int layer), layerBoxMax(int layer)   probe-local bounds of a layer
+//   float layerReach(int layer)                the closest layers layer.. come to the centre
 // and defines HAS_ENVMAP, HAS_BOXPROJ, HAS_BISECTION, HAS_SECANT, HAS_AVGDIST, HAS_LAYERS
 // as 0 or 1: a method the probe does not use is not compiled into its shader.
 //
@@ -20,29 +21,35 @@
 
 #include "components/reflection_probe/shaders/distance_lookup_types.glsl.h"
 
-bool isInfiniteDistance(float d, float dInf) { return d >= 0.5f * dInf; }
+bool isInfiniteDistance(float d, float dInf) {
+    return d >= 0.5f * dInf;
+}
 
-LayerHit makeHit(vec3 radiance, bool hit, int fetches) {
+LayerHit makeHit(vec3 radiance, bool hit, int fetches, float t) {
     LayerHit h;
     h.radiance = radiance;
     h.hit = hit;
     h.fetches = fetches;
+    h.t = t;
     return h;
 }
 
-// Finishes a rectified lookup: the d_inf rule says a lookup that ends on a texel that sees
-// nothing has no hit in this layer, which is what keeps silhouettes from smearing.
-LayerHit finishRectified(int layer, vec3 l, float d, int fetches, float dInf) {
-    if (isInfiniteDistance(d, dInf)) return makeHit(vec3(0.0f), false, fetches);
-    return makeHit(fetchRadiance(layer, l), true, fetches + 1);
+// Finishes a rectified lookup that ended at probe-local point l, where the stored distance
+// is d: the d_inf rule says a lookup that ends on a texel that sees nothing has no hit in
+// this layer, which is what keeps silhouettes from smearing. The hit's ray distance is
+// that of the stored surface point d l/|l| projected onto the ray x + t lhat.
+LayerHit finishRectified(int layer, vec3 x, vec3 lhat, vec3 l, float d, int fetches, float dInf) {
+    if (isInfiniteDistance(d, dInf)) return makeHit(vec3(0.0f), false, fetches, dInf);
+    float t = dot(d * normalize(l) - x, lhat);
+    return makeHit(fetchRadiance(layer, l), true, fetches + 1, t);
 }
 
 #if HAS_BOXPROJ
 // Distance along l from x (inside the box) to the box wall it leaves through.
 float boxExitDistance(vec3 x, vec3 l, vec3 boxMin, vec3 boxMax) {
     // Keep the sign of each component but never divide by less than 1e-8 in magnitude.
-    vec3 s = vec3(l.x >= 0.0f ? 1.0f : -1.0f, l.y >= 0.0f ? 1.0f : -1.0f,
-                  l.z >= 0.0f ? 1.0f : -1.0f);
+    vec3 s =
+        vec3(l.x >= 0.0f ? 1.0f : -1.0f, l.y >= 0.0f ? 1.0f : -1.0f, l.z >= 0.0f ? 1.0f : -1.0f);
     vec3 safeL = s * max(abs(l), vec3(1e-8f));
     vec3 t1 = (boxMax - x) / safeL;
     vec3 t2 = (boxMin - x) / safeL;
@@ -51,23 +58,41 @@ float boxExitDistance(vec3 x, vec3 l, vec3 boxMin, vec3 boxMax) {
 }
 #endif
 
+// A search for the hit along x + t lhat within t in [t0, t1] in at most `steps` fetches:
+// the whole range (0, 2D) with N = ceil(log2(2D / d_e)) steps for a single layer, the
+// stretch of the ray inside an object layer's bounding box for layered lookups.
+struct RaySpan {
+    float t0;
+    float t1;
+    int steps;
+};
+
+RaySpan makeSpan(float t0, float t1, int steps) {
+    RaySpan s;
+    s.t0 = t0;
+    s.t1 = t1;
+    s.steps = steps;
+    return s;
+}
+
 #if HAS_BISECTION
-// Bisection along x + t l, t in (0, 2D): start at t = D and move by D/2^n towards the
-// surface until the stored distance agrees with |l| within d_e (condition 1) or N steps.
-LayerHit lookupBisection(int layer, vec3 x, vec3 lhat, ProbeLookupParams p) {
-    float step = p.range;
-    vec3 l = x + p.range * lhat;
+// Bisection: start mid-span (t = D for the whole range) and move by half the remaining
+// width towards the surface until the stored distance agrees with |l| within d_e
+// (condition 1) or the steps run out.
+LayerHit lookupBisection(int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RaySpan span) {
+    float step = 0.5f * (span.t1 - span.t0);
+    vec3 l = x + (span.t0 + step) * lhat;
     float d = p.dInf;
     int fetches = 0;
-    for (int n = 1; n <= p.maxSteps; ++n) {
+    for (int n = 1; n <= span.steps; ++n) {
         d = fetchDistance(layer, l);
         fetches += 1;
         float delta = d - length(l);
-        if (abs(delta) < p.tolerance || n == p.maxSteps) break;
+        if (abs(delta) < p.tolerance || n == span.steps) break;
         step *= 0.5f;
         l += (delta > 0.0f ? step : -step) * lhat;
     }
-    return finishRectified(layer, l, d, fetches, p.dInf);
+    return finishRectified(layer, x, lhat, l, d, fetches, p.dInf);
 }
 #endif
 
@@ -76,18 +101,18 @@ LayerHit lookupBisection(int layer, vec3 x, vec3 lhat, ProbeLookupParams p) {
 // bracketed by a point before it (f > 0) and one beyond it (f < 0) the next t comes from
 // the secant through both, with the Illinois weighting so one end cannot stall. A secant
 // step that leaves the bracket, or an end that saw only d_inf, falls back to the midpoint.
-LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, ProbeLookupParams p) {
-    float ta = 0.0f;
+LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RaySpan span) {
+    float ta = span.t0;
     float fa = 0.0f;
     bool haveA = false; // ta: last t before the surface with a finite stored distance
-    float tb = 2.0f * p.range;
+    float tb = span.t1;
     float fb = 0.0f;
     bool haveB = false; // tb: last t beyond the surface
     int lastSide = 0;
-    vec3 l = x + p.range * lhat;
+    vec3 l = x + 0.5f * (ta + tb) * lhat;
     float d = p.dInf;
     int fetches = 0;
-    for (int n = 1; n <= p.maxSteps; ++n) {
+    for (int n = 1; n <= span.steps; ++n) {
         float t = 0.5f * (ta + tb);
         if (haveA && haveB) {
             float candidate = ta + fa * (tb - ta) / (fa - fb);
@@ -112,7 +137,7 @@ LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, ProbeLookupParams p) {
             lastSide = -1;
         }
     }
-    return finishRectified(layer, l, d, fetches, p.dInf);
+    return finishRectified(layer, x, lhat, l, d, fetches, p.dInf);
 }
 #endif
 
@@ -120,14 +145,17 @@ LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, ProbeLookupParams p) {
 // One fetch at x + d-bar l: exact when the object lies at the layer's mean distance.
 LayerHit lookupAvgDist(int layer, vec3 x, vec3 lhat, ProbeLookupParams p) {
     vec3 l = x + layerAvgDistance(layer) * lhat;
-    return finishRectified(layer, l, fetchDistance(layer, l), 1, p.dInf);
+    return finishRectified(layer, x, lhat, l, fetchDistance(layer, l), 1, p.dInf);
 }
 #endif
 
 #if HAS_LAYERS
-// Whether the ray x + t lhat (t >= 0) can meet the layer's bounding box: a layer the ray
-// misses costs no fetch at all, which is what keeps many layers affordable.
-bool layerMayHit(int layer, vec3 x, vec3 lhat) {
+// Where the ray x + t lhat (t >= 0) enters and leaves the layer's bounding box; enter > leave
+// when it misses. A layer the ray misses, or enters only behind a nearer hit, costs no fetch
+// at all, which is what keeps many layers affordable; one it meets is searched only over
+// the stretch inside the box, where the directions from the centre see the object (the
+// rest of the ray sees d_inf, which would lead the search away from the object).
+vec2 layerSpan(int layer, vec3 x, vec3 lhat) {
     vec3 s = vec3(lhat.x >= 0.0f ? 1.0f : -1.0f, lhat.y >= 0.0f ? 1.0f : -1.0f,
                   lhat.z >= 0.0f ? 1.0f : -1.0f);
     vec3 inv = s / max(abs(lhat), vec3(1e-12f));
@@ -137,47 +165,73 @@ bool layerMayHit(int layer, vec3 x, vec3 lhat) {
     vec3 tFar = max(t1, t2);
     float enter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0f));
     float leave = min(min(tFar.x, tFar.y), tFar.z);
-    return enter <= leave;
+    return vec2(enter, leave);
+}
+
+// Steps that bring a span of the given width down to d_e: the layered counterpart of N.
+// In logarithms, and clamped as a float, so d_e -> 0 (FLT_MIN) cannot overflow the int.
+int spanSteps(float width, ProbeLookupParams p) {
+    float n = ceil(log2(max(width, 1e-6f)) - log2(p.tolerance));
+    return int(clamp(n, 1.0f, float(p.maxSteps)));
 }
 #endif
 
-LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, ProbeLookupParams p) {
+LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RaySpan span) {
 #if HAS_BISECTION
-    if (method == kMethodBisection) return lookupBisection(layer, x, lhat, p);
+    if (method == kMethodBisection) return lookupBisection(layer, x, lhat, p, span);
 #endif
 #if HAS_SECANT
-    if (method == kMethodSecant) return lookupSecant(layer, x, lhat, p);
+    if (method == kMethodSecant) return lookupSecant(layer, x, lhat, p, span);
 #endif
 #if HAS_AVGDIST
     if (method == kMethodAvgDist) return lookupAvgDist(layer, x, lhat, p);
 #endif
 #if HAS_BOXPROJ
     if (method == kMethodBoxProj) {
-        vec3 l = x + boxExitDistance(x, lhat, p.boxMin, p.boxMax) * lhat;
-        return makeHit(fetchRadiance(layer, l), true, 1);
+        float t = boxExitDistance(x, lhat, p.boxMin, p.boxMax);
+        return makeHit(fetchRadiance(layer, x + t * lhat), true, 1, t);
     }
 #endif
     // Classic environment map: direction only. The composite (layer 0) holds the sky where
     // it sees nothing, so it always answers; an object layer of distant things (layered
     // mode) answers only where it has something, else the layers behind it and the sky do.
-    if (layer == 0) return makeHit(fetchRadiance(layer, lhat), true, 1);
-    return finishRectified(layer, lhat, fetchDistance(layer, lhat), 1, p.dInf);
+    if (layer == 0) return makeHit(fetchRadiance(layer, lhat), true, 1, p.dInf);
+    return finishRectified(layer, x, lhat, lhat, fetchDistance(layer, lhat), 1, p.dInf);
 }
 
 // Radiance seen from probe-local point x along the unit reflected direction lhat.
 vec3 probeRadiance(vec3 x, vec3 lhat, ProbeLookupParams p, INOUT(int) fetches) {
 #if HAS_LAYERS
-    // Near to far: the first layer with a hit occludes everything behind it.
+    // The hit nearest along the ray occludes the others. Wang et al. let the first layer
+    // with a hit win, which holds for nested shells; per-object layers overlap in depth
+    // (the floor is the nearest object below the probe, yet a grazing ray meets it far
+    // behind a column), so layers compete on ray distance. Sorted near to far, a nearer
+    // layer usually answers first; the box test skips a layer entered only behind the best
+    // hit, and the loop ends once no later layer can come nearer: a point of those layers
+    // lies at least layerReach from the centre, so at least layerReach - |x| along the ray.
+    bool found = false;
+    float bestT = p.dInf;
+    vec3 best = vec3(0.0f);
+    float fromCentre = length(x);
     for (int i = 1; i <= p.layerCount; ++i) {
-        if (!layerMayHit(i, x, lhat)) continue;
-        LayerHit h = lookupLayer(layerMethod(i), i, x, lhat, p);
+        if (layerReach(i) - fromCentre >= bestT) break;
+        vec2 span = layerSpan(i, x, lhat);
+        float t1 = min(span.y, 2.0f * p.range); // every hit lies within 2D
+        if (span.x > t1 || span.x >= bestT) continue;
+        RaySpan s = makeSpan(span.x, t1, spanSteps(t1 - span.x, p));
+        LayerHit h = lookupLayer(layerMethod(i), i, x, lhat, p, s);
         fetches += h.fetches;
-        if (h.hit) return h.radiance;
+        if (h.hit && h.t < bestT) {
+            found = true;
+            bestT = h.t;
+            best = h.radiance;
+        }
     }
+    if (found) return best;
     fetches += 1;
     return fetchSky(lhat);
 #else
-    LayerHit h = lookupLayer(p.method, 0, x, lhat, p);
+    LayerHit h = lookupLayer(p.method, 0, x, lhat, p, makeSpan(0.0f, 2.0f * p.range, p.maxSteps));
     fetches += h.fetches;
     if (h.hit) return h.radiance;
     fetches += 1;

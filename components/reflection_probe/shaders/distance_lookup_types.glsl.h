@@ -24,6 +24,7 @@ struct LayerHit {
     vec3 radiance;
     bool hit;    // false: this layer has nothing in that direction (d_inf)
     int fetches; // texture fetches spent (distance and radiance)
+    float t;     // distance along the ray to the surface found (layers compete on it)
 };
 
 #endif

@@ -20,6 +20,7 @@ uniform int uLayerMethod[64];
 uniform float uLayerAvgDistance[64];
 uniform vec3 uLayerBoxMin[64];
 uniform vec3 uLayerBoxMax[64];
+uniform float uLayerReach[64];
 
 float fetchDistance(int layer, vec3 dir) {
     vec3 f = cubeFaceUv(dir);
@@ -36,6 +37,7 @@ int layerMethod(int layer) { return uLayerMethod[layer]; }
 float layerAvgDistance(int layer) { return uLayerAvgDistance[layer]; }
 vec3 layerBoxMin(int layer) { return uLayerBoxMin[layer]; }
 vec3 layerBoxMax(int layer) { return uLayerBoxMax[layer]; }
+float layerReach(int layer) { return uLayerReach[layer]; }
 
 ProbeLookupParams lookupParams() {
     ProbeLookupParams p;
