@@ -53,7 +53,9 @@ const std::string_view kBakeUsage =
 
 namespace {
 std::atomic<bool> gInterrupted{false};
-extern "C" void onSignal(int) { gInterrupted = true; }
+extern "C" void onSignal(int) {
+    gInterrupted = true;
+}
 
 // SIGINT/SIGTERM during a bake: stop at the next row, write nothing, leave DIR as it was.
 struct SignalGuard {
@@ -195,8 +197,8 @@ int runBake(std::span<const std::string> args, std::ostream& out, std::ostream& 
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out << "baked " << asset.layers.size() << " layers (" << asset.objectLayerCount()
-        << " objects + composite) at " << faceRes << "^2 x 6 in " << seconds << " s -> "
-        << *outDir << "/manifest.json\n";
+        << " objects + composite) at " << faceRes << "^2 x 6 in " << seconds << " s -> " << *outDir
+        << "/manifest.json\n";
     for (std::size_t i = 0; i < asset.layers.size(); ++i) {
         const DistanceProbeLayer& L = asset.layers[i];
         out << "  layer " << i << " " << L.name << ": d-bar " << L.avgDistance << " m, "

@@ -4,8 +4,8 @@
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
-#include "engine/scene/shading.h"
 #include "engine/raytrace/embree_scene.h"
+#include "engine/scene/shading.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -107,7 +107,7 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
     const EmbreeScene environment(registry, [&](ecs::Entity e) { return !mirrors.count(e); });
     // An empty environment is legal (a reflector under the sky alone): every texel misses.
 
-    const std::size_t layerCount = opt.compositeOnly  ? 0
+    const std::size_t layerCount = opt.compositeOnly    ? 0
                                    : opt.layers.empty() ? markup.objects.size()
                                                         : opt.layers.size();
     const long rowsTotal = long(opt.faceRes) * 6 * long(1 + layerCount);
@@ -128,7 +128,8 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
     // The layers: the plan's groups, or one per object.
     std::vector<DistanceBakeOptions::LayerSpec> specs = opt.layers;
     if (specs.empty() && !opt.compositeOnly)
-        for (const EnvironmentObject& o : markup.objects) specs.push_back({o.name, {o.name}, ""});
+        for (const EnvironmentObject& o : markup.objects)
+            specs.push_back({o.name, {o.name}, ""});
     std::vector<DistanceProbeLayer> objects;
     for (const DistanceBakeOptions::LayerSpec& spec : specs) {
         std::unordered_set<ecs::Entity> members;

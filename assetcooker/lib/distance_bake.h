@@ -28,9 +28,9 @@ struct DistanceBakeOptions {
         std::string method;
     };
     std::vector<LayerSpec> layers;
-    bool withSky = true; // false: the composite sees black where nothing is hit
-    bool compositeOnly = false;  // bake no object layers (the plan needs one lookup only)
-    std::string compositeMethod; // the composite's planned method (empty: by solid angle)
+    bool withSky = true;                  // false: the composite sees black where nothing is hit
+    bool compositeOnly = false;           // bake no object layers (the plan needs one lookup only)
+    std::string compositeMethod;          // the composite's planned method (empty: by solid angle)
     std::function<void(double)> progress; // fraction done, from the baking thread
     std::function<bool()> cancelled;      // polled between rows; true aborts with Error
 };

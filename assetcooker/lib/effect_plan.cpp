@@ -87,7 +87,8 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
         }
         if (o.contains("fresnel") && o["fresnel"].is_boolean()) {
             forcedFresnel = o["fresnel"].get<bool>();
-            plan.userNeeds.push_back(std::string("fresnel = ") + (*forcedFresnel ? "true" : "false"));
+            plan.userNeeds.push_back(std::string("fresnel = ") +
+                                     (*forcedFresnel ? "true" : "false"));
         }
         if (o.contains("background") && o["background"].is_boolean()) {
             forcedBackground = o["background"].get<bool>();
@@ -102,7 +103,8 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     bo.faceRes = t.analysisFaceRes;
     bo.reflectorReach = reach;
     bo.withSky = false;
-    for (const EnvironmentObject& o : markup.objects) bo.layers.push_back({o.name, {o.name}, "-"});
+    for (const EnvironmentObject& o : markup.objects)
+        bo.layers.push_back({o.name, {o.name}, "-"});
     DistanceProbeAsset analysis;
     if (!markup.objects.empty()) analysis = bakeDistanceProbe(registry, markup, bo);
 
@@ -125,9 +127,9 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
         if (L.solidAngle <= 0.f) {
             // Smaller than the analysis texels (or hidden from the centre): judge it by its
             // bounding sphere instead, which errs on the side of correcting it.
-            const EnvironmentObject& o = *std::find_if(
-                markup.objects.begin(), markup.objects.end(),
-                [&](const EnvironmentObject& e) { return e.name == L.name; });
+            const EnvironmentObject& o =
+                *std::find_if(markup.objects.begin(), markup.objects.end(),
+                              [&](const EnvironmentObject& e) { return e.name == L.name; });
             const glm::vec3 mid = 0.5f * (o.boundsMin + o.boundsMax) - centre;
             const float radius = 0.5f * glm::length(o.boundsMax - o.boundsMin);
             const float dist = glm::length(mid);
@@ -155,13 +157,13 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
         } else {
             po.decision = po.solidAngle >= t.rectifySolidAngle ? "rectify" : "avgdist";
             po.reason = "parallax up to " + fmt(po.parallaxDeg, 1) + " deg; covers " +
-                        fmt(po.solidAngle, 3) + " sr " +
-                        (po.decision == "rectify" ? ">= " : "< ") + fmt(t.rectifySolidAngle, 3) +
-                        " sr -> " +
+                        fmt(po.solidAngle, 3) + " sr " + (po.decision == "rectify" ? ">= " : "< ") +
+                        fmt(t.rectifySolidAngle, 3) + " sr -> " +
                         (po.decision == "rectify" ? "per-pixel rectification" : "average distance");
             const int grow = int(std::ceil(parallax / texelAngle));
             std::vector<char> mask = coverage(L, analysis.dInf, grow);
-            for (std::size_t k = 0; k < cone.size(); ++k) mask[k] |= cone[k];
+            for (std::size_t k = 0; k < cone.size(); ++k)
+                mask[k] |= cone[k];
             nears.push_back({plan.objects.size(), std::move(mask)});
         }
         plan.objects.push_back(po);
@@ -193,13 +195,15 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     for (const Near& n : nears) {
         const PlannedObject& po = plan.objects[n.object];
         const bool rectify = po.decision == "rectify";
-        plan.layers.push_back({po.name, {po.name}, rectify ? "bisection" : "avgdist",
+        plan.layers.push_back({po.name,
+                               {po.name},
+                               rectify ? "bisection" : "avgdist",
                                rectify ? "large: per-pixel rectification"
                                        : "small: one fetch at its average distance"});
     }
     if (!distant.empty())
-        plan.layers.push_back({"distant", distant, "envmap",
-                               "far enough for the direction-only lookup"});
+        plan.layers.push_back(
+            {"distant", distant, "envmap", "far enough for the direction-only lookup"});
 
     // Mode: the cheapest runtime path that represents the plan.
     if (nears.empty()) {
@@ -209,9 +213,12 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     } else if (!anyOverlap) {
         plan.mode = "single";
         plan.modeReason = "no two near objects overlap as seen from the cell: one layer, merged";
-        const bool rectify = std::any_of(plan.layers.begin(), plan.layers.end(),
-                                         [](const PlannedLayer& l) { return l.method == "bisection"; });
-        PlannedLayer merged{"composite", {}, rectify ? "bisection" : "avgdist",
+        const bool rectify =
+            std::any_of(plan.layers.begin(), plan.layers.end(),
+                        [](const PlannedLayer& l) { return l.method == "bisection"; });
+        PlannedLayer merged{"composite",
+                            {},
+                            rectify ? "bisection" : "avgdist",
                             "all objects merged into the composite"};
         for (const PlannedLayer& l : plan.layers)
             merged.objects.insert(merged.objects.end(), l.objects.begin(), l.objects.end());
@@ -240,8 +247,7 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
                              "cannot show";
     } else {
         plan.flavour = "distance";
-        plan.flavourReason = anyOverlap ? "occluders uncover at most " +
-                                              fmt(occluderParallax, 1) +
+        plan.flavourReason = anyOverlap ? "occluders uncover at most " + fmt(occluderParallax, 1) +
                                               " deg behind them: layered distance cube maps "
                                               "represent the occlusion"
                                         : "no occlusion parallax to represent";
@@ -261,12 +267,12 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
             if (!who.empty()) who += ", ";
             who += a;
         }
-        plan.fresnelReason = asking.empty() ? "every reflector is a perfect mirror"
-                                            : "asked for by " + who;
+        plan.fresnelReason =
+            asking.empty() ? "every reflector is a perfect mirror" : "asked for by " + who;
     }
     plan.lightFieldBackground = forcedBackground.value_or(false);
-    plan.backgroundReason = forcedBackground ? "the user said so (specula_probe.background)"
-                                             : "not asked for";
+    plan.backgroundReason =
+        forcedBackground ? "the user said so (specula_probe.background)" : "not asked for";
 
     std::vector<std::string> f;
     if (plan.mode == "layered") f.push_back("layers");
@@ -286,7 +292,8 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
 void applyPlan(const EffectPlan& plan, DistanceBakeOptions& bake) {
     bake.layers.clear();
     if (plan.mode == "layered") {
-        for (const PlannedLayer& l : plan.layers) bake.layers.push_back({l.name, l.objects, l.method});
+        for (const PlannedLayer& l : plan.layers)
+            bake.layers.push_back({l.name, l.objects, l.method});
         bake.compositeOnly = false;
     } else {
         bake.compositeOnly = true;
@@ -332,7 +339,8 @@ std::string EffectPlan::toText() const {
     s << "fresnel  " << (fresnel ? "on" : "off") << "  (" << fresnelReason << ")\n";
     s << "background from light field  " << (lightFieldBackground ? "on" : "off") << "  ("
       << backgroundReason << ")\n";
-    for (const std::string& n : userNeeds) s << "user need  " << n << "\n";
+    for (const std::string& n : userNeeds)
+        s << "user need  " << n << "\n";
     s << "objects:\n";
     for (const PlannedObject& o : objects)
         s << "  " << o.name << ": " << o.decision << " - " << o.reason << "\n";

@@ -26,15 +26,15 @@ struct DistanceLookupConfig {
     float tolerance = 0.01f;
     float dInf = 1e4f;
     int maxSteps = 1;
-    int method = 0;     // kMethod* of distance_lookup.glsl.h (single-layer mode)
-    int layerCount = 0; // object layers used in layered mode
-    std::vector<int> layerMethods;   // index = layer (0 unused)
+    int method = 0;                // kMethod* of distance_lookup.glsl.h (single-layer mode)
+    int layerCount = 0;            // object layers used in layered mode
+    std::vector<int> layerMethods; // index = layer (0 unused)
     std::vector<float> layerAvgDistance;
     std::vector<glm::vec3> layerBoxMin, layerBoxMax; // probe-local
     // Closest that layers i.. (every later one too) come to the probe centre: once a hit is
     // nearer than that, no later layer can occlude it and the layered loop ends.
     std::vector<float> layerReach;
-    std::uint32_t features = 0;      // DistanceFeature bits (Fresnel is added per reflector)
+    std::uint32_t features = 0; // DistanceFeature bits (Fresnel is added per reflector)
 };
 
 // N = ceil(log2(2D / d_e)), at least 1, at most 40 (d_e -> 0 must not loop forever).

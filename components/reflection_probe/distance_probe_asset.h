@@ -21,9 +21,9 @@ struct DistanceProbeLayer {
     float avgDistance = 0.f;          // d-bar over the valid texels (solid-angle weighted)
     float minDistance = 0.f;
     float maxDistance = 0.f;
-    float solidAngle = 0.f; // steradians covered (texels with a finite distance)
+    float solidAngle = 0.f;             // steradians covered (texels with a finite distance)
     glm::vec3 boxMin{0.f}, boxMax{0.f}; // probe-local bounds of the layer's geometry
-    std::string method;     // planned lookup method for this layer ("bisection", "avgdist")
+    std::string method; // planned lookup method for this layer ("bisection", "avgdist")
     std::array<Image, 6> faces;
     std::string file;     // relative to the manifest
     std::string checksum; // "fnv1a64:<hex>" of the file's bytes
@@ -34,7 +34,7 @@ struct DistanceProbeAsset {
     float range = 0.f; // D
     float dInf = 0.f;
     int faceRes = 0;
-    glm::vec3 boxMin{0.f}, boxMax{0.f}; // probe-local environment box
+    glm::vec3 boxMin{0.f}, boxMax{0.f};     // probe-local environment box
     std::vector<DistanceProbeLayer> layers; // [0] composite, then objects near to far
     Image sky;                              // equirectangular panorama (may be empty)
     std::string skyFile, skyChecksum;

@@ -5,7 +5,6 @@
 #include "engine/math/cube_face.h"
 #include "engine/scene/shading.h"
 
-
 namespace specula {
 namespace glsl {
 #include "components/reflection_probe/shaders/distance_lookup_types.glsl.h"
@@ -38,9 +37,7 @@ struct TwinFetches {
         return vec3(sampleBilinear(asset->sky, equirectUv(dir), Wrap::Repeat, Wrap::Clamp));
     }
     int layerMethod(int layer) const { return config->layerMethods[std::size_t(layer)]; }
-    float layerAvgDistance(int layer) const {
-        return config->layerAvgDistance[std::size_t(layer)];
-    }
+    float layerAvgDistance(int layer) const { return config->layerAvgDistance[std::size_t(layer)]; }
     vec3 layerBoxMin(int layer) const { return config->layerBoxMin[std::size_t(layer)]; }
     vec3 layerBoxMax(int layer) const { return config->layerBoxMax[std::size_t(layer)]; }
     float layerReach(int layer) const { return config->layerReach[std::size_t(layer)]; }

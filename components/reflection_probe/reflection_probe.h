@@ -49,7 +49,7 @@ struct ReflectionProbe {
 };
 
 struct Reflector {
-    ecs::Entity probe;       // which probe it reflects
+    ecs::Entity probe;      // which probe it reflects
     float fresnelF0 = -1.f; // < 0: perfect mirror; otherwise Schlick with this F0
 
     bool operator==(const Reflector&) const = default;

@@ -105,15 +105,15 @@ gpu::Program& ReflectionProbeSystem::program(std::uint32_t f, int output) {
              "OUTPUT=" + std::to_string(output)});
         return programs_.emplace(key, std::move(p)).first->second;
     }
-    const std::vector<std::string> defines = {
-        std::string("HAS_ENVMAP=") + bit(kFeatureEnvmap),
-        std::string("HAS_BOXPROJ=") + bit(kFeatureBoxProj),
-        std::string("HAS_BISECTION=") + bit(kFeatureBisection),
-        std::string("HAS_SECANT=") + bit(kFeatureSecant),
-        std::string("HAS_AVGDIST=") + bit(kFeatureAvgDist),
-        std::string("HAS_LAYERS=") + bit(kFeatureLayers),
-        std::string("HAS_FRESNEL=") + bit(kFeatureFresnel),
-        "OUTPUT=" + std::to_string(output)};
+    const std::vector<std::string> defines = {std::string("HAS_ENVMAP=") + bit(kFeatureEnvmap),
+                                              std::string("HAS_BOXPROJ=") + bit(kFeatureBoxProj),
+                                              std::string("HAS_BISECTION=") +
+                                                  bit(kFeatureBisection),
+                                              std::string("HAS_SECANT=") + bit(kFeatureSecant),
+                                              std::string("HAS_AVGDIST=") + bit(kFeatureAvgDist),
+                                              std::string("HAS_LAYERS=") + bit(kFeatureLayers),
+                                              std::string("HAS_FRESNEL=") + bit(kFeatureFresnel),
+                                              "OUTPUT=" + std::to_string(output)};
     gpu::Program p = gpu::buildProgram(
         gpu::ShaderSource::file("components/reflection_probe/shaders/reflector.vert"),
         gpu::ShaderSource::file("components/reflection_probe/shaders/distance_reflector.frag"),
@@ -147,7 +147,8 @@ void ReflectionProbeSystem::sync(ecs::Registry& registry) {
         auto& cached = assetCache_[probe.asset];
         gpuProbe->asset = cached.lock();
         if (!gpuProbe->asset) {
-            gpuProbe->asset = std::make_shared<const DistanceProbeAsset>(readDistanceProbe(probe.asset));
+            gpuProbe->asset =
+                std::make_shared<const DistanceProbeAsset>(readDistanceProbe(probe.asset));
             cached = gpuProbe->asset;
         }
         const DistanceProbeAsset& a = *gpuProbe->asset;
@@ -193,7 +194,8 @@ void ReflectionProbeSystem::sync(ecs::Registry& registry) {
         slot = std::move(gpuProbe);
     });
     stats_.probeGpuBytes = 0;
-    for (const auto& [e, p] : probes_) stats_.probeGpuBytes += p->bytes;
+    for (const auto& [e, p] : probes_)
+        stats_.probeGpuBytes += p->bytes;
 }
 
 void ReflectionProbeSystem::render(ecs::Registry& registry, const CameraView& camera,
@@ -321,8 +323,9 @@ void ReflectionProbeSystem::syncLightField(ProbeGpu& g) {
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     if (const GLenum err = glGetError(); err != GL_NO_ERROR)
-        throw Error(probe.asset, "", "uploading the light-field atlas failed (GL error " +
-                                         std::to_string(err) + ")");
+        throw Error(probe.asset, "",
+                    "uploading the light-field atlas failed (GL error " + std::to_string(err) +
+                        ")");
     g.bytes = a.gpuBytes();
 }
 

@@ -24,7 +24,7 @@ namespace specula {
 struct ProbeFrameStats {
     double reflectorPassMs = 0.0; // GPU time of the last render() (timer query)
     std::size_t reflectorsDrawn = 0;
-    std::size_t probeGpuBytes = 0;          // texture memory of all probes
+    std::size_t probeGpuBytes = 0;         // texture memory of all probes
     std::vector<std::string> permutations; // the compiled feature sets, e.g. "bisection"
     // Light-field probes are exact only for reflectors inside their cell: reflectors whose
     // world bounds reach outside it in the last render() (each is also logged once).

@@ -45,8 +45,7 @@ void meshWorldBounds(const ecs::Registry& reg, ecs::Entity e, glm::vec3& lo, glm
         }
 }
 
-SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene,
-                            const std::string& file) {
+SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const std::string& file) {
     std::unordered_map<std::uint32_t, std::vector<ecs::Entity>> children;
     for (ecs::Entity e : scene.entities)
         if (const Transform* t = reg.find<Transform>(e); t && !t->parent.isNull())
@@ -58,7 +57,8 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene,
             ecs::Entity e = stack.back();
             stack.pop_back();
             if (reg.has<Mesh>(e)) out.push_back(e);
-            for (ecs::Entity c : children[e.index]) stack.push_back(c);
+            for (ecs::Entity c : children[e.index])
+                stack.push_back(c);
         }
         return out;
     };
@@ -112,7 +112,8 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene,
         // A lone mesh-less root is a wrapper around the whole scene, not one object.
         if (scene.roots.size() == 1 && !reg.has<Mesh>(r) && !children[r.index].empty() &&
             extrasOf(reg, r, file).empty())
-            for (ecs::Entity c : children[r.index]) objectRoots.push_back(c);
+            for (ecs::Entity c : children[r.index])
+                objectRoots.push_back(c);
         else
             objectRoots.push_back(r);
     }
@@ -147,11 +148,13 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene,
     return m;
 }
 
-glm::vec3 markupProbeCentre(const ecs::Registry& reg, const SceneMarkup& m, const LoadedScene& scene) {
+glm::vec3 markupProbeCentre(const ecs::Registry& reg, const SceneMarkup& m,
+                            const LoadedScene& scene) {
     if (!m.probes.empty()) return m.probes.front().position;
     if (!m.mirrorEntities.empty()) {
         glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-        for (ecs::Entity e : m.mirrorEntities) meshWorldBounds(reg, e, lo, hi);
+        for (ecs::Entity e : m.mirrorEntities)
+            meshWorldBounds(reg, e, lo, hi);
         return 0.5f * (lo + hi);
     }
     return 0.5f * (scene.boundsMin + scene.boundsMax);

@@ -55,8 +55,8 @@ glm::vec3 markupProbeCentre(const ecs::Registry& registry, const SceneMarkup& ma
 float markupCellSize(const SceneMarkup& markup);
 // How far from `centre` a reflector point can be: the farthest reflector vertex, and at
 // least the corner of the cell.
-float markupReflectorReach(const ecs::Registry& registry, const SceneMarkup& markup, glm::vec3 centre,
-                           float cellSize);
+float markupReflectorReach(const ecs::Registry& registry, const SceneMarkup& markup,
+                           glm::vec3 centre, float cellSize);
 
 // World-space bounds of an entity's mesh (through Transform::world).
 void meshWorldBounds(const ecs::Registry& registry, ecs::Entity e, glm::vec3& lo, glm::vec3& hi);

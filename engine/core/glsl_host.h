@@ -14,5 +14,7 @@
 namespace specula::glsl {
 using namespace glm;
 using uint = unsigned;
-inline float inversesqrt(float x) { return 1.0f / std::sqrt(x); }
+inline float inversesqrt(float x) {
+    return 1.0f / std::sqrt(x);
+}
 } // namespace specula::glsl

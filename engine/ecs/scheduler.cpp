@@ -36,10 +36,12 @@ void Scheduler::resolve() {
         if (pick == n) throw Error("", "systems", "the 'after' constraints form a cycle");
         done[pick] = true;
         order_.push_back(pick);
-        for (std::size_t j : next[pick]) --indegree[j];
+        for (std::size_t j : next[pick])
+            --indegree[j];
     }
     orderNames_.clear();
-    for (std::size_t i : order_) orderNames_.push_back(entries_[i].name);
+    for (std::size_t i : order_)
+        orderNames_.push_back(entries_[i].name);
     dirty_ = false;
 }
 
@@ -50,7 +52,8 @@ const std::vector<std::string>& Scheduler::order() {
 
 void Scheduler::run(Registry& registry, const FrameContext& ctx) {
     if (dirty_) resolve();
-    for (std::size_t i : order_) entries_[i].fn(registry, ctx);
+    for (std::size_t i : order_)
+        entries_[i].fn(registry, ctx);
 }
 
 } // namespace specula::ecs

@@ -61,9 +61,7 @@ public:
     std::size_t size() const override { return dense_.size(); }
 
     T* find(Entity e) { return contains(e) ? &components_[sparse_[e.index]] : nullptr; }
-    const T* find(Entity e) const {
-        return contains(e) ? &components_[sparse_[e.index]] : nullptr;
-    }
+    const T* find(Entity e) const { return contains(e) ? &components_[sparse_[e.index]] : nullptr; }
     T& get(Entity e) {
         assert(contains(e));
         return components_[sparse_[e.index]];

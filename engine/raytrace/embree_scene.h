@@ -30,7 +30,7 @@ struct Hit {
 };
 
 class EmbreeScene {
-  public:
+public:
     using Filter = std::function<bool(ecs::Entity)>;
 
     // Every entity with Mesh and Transform (and accepted by `include`, when given), in world
@@ -52,7 +52,7 @@ class EmbreeScene {
     std::size_t geometryCount() const;
     bool empty() const { return geometryCount() == 0; }
 
-  private:
+private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -1,5 +1,5 @@
-#include "engine/scene/shading.h"
 #include "engine/raytrace/ground_truth.h"
+#include "engine/scene/shading.h"
 
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
@@ -9,7 +9,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-
 
 namespace specula {
 

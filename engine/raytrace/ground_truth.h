@@ -42,7 +42,7 @@ struct GroundTruthImage {
 };
 
 class GroundTruthTracer {
-  public:
+public:
     // Builds the environment scene (every mesh not in options.mirrors) and the full scene
     // from Transform::world: run updateWorldTransforms first. The registry is not kept.
     GroundTruthTracer(ecs::Registry& registry, TraceOptions options);
@@ -67,7 +67,7 @@ class GroundTruthTracer {
     const EmbreeScene& environmentScene() const { return environment_; }
     const EmbreeScene& fullScene() const { return full_; }
 
-  private:
+private:
     glm::vec3 shade(const Hit& hit) const;
     // Radiance along `dir` given what the ray hit (nullopt: the sky).
     glm::vec3 resolve(const std::optional<Hit>& hit, glm::vec3 dir, int depth) const;

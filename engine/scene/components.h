@@ -31,8 +31,8 @@ struct Transform {
 
 struct MeshData {
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals; // generated (area-weighted) when the asset has none
-    std::vector<glm::vec2> uvs;     // empty when the asset has none
+    std::vector<glm::vec3> normals;     // generated (area-weighted) when the asset has none
+    std::vector<glm::vec2> uvs;         // empty when the asset has none
     std::vector<std::uint32_t> indices; // triangle list
     glm::vec3 boundsMin{0.f}, boundsMax{0.f};
 };
@@ -55,8 +55,8 @@ struct Mesh {
 };
 
 struct Camera {
-    float yfov = 0.8f;   // radians
-    float aspect = 0.f;  // 0: take the viewport's
+    float yfov = 0.8f;  // radians
+    float aspect = 0.f; // 0: take the viewport's
     float znear = 0.05f;
     float zfar = 200.f;
 };

@@ -325,7 +325,7 @@ struct Span {
 };
 
 class Converter {
-  public:
+public:
     Converter(std::string file, const tinygltf::Model& model, LoadedScene& out)
         : file_(std::move(file)), m_(model), out_(out) {}
 
@@ -983,7 +983,7 @@ class Converter {
         out_.nodes = descs.size();
     }
 
-  private:
+private:
     std::string file_;
     const tinygltf::Model& m_;
     LoadedScene& out_;

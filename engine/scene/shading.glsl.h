@@ -5,7 +5,9 @@
 #ifndef SPECULA_SHADING_GLSL_H
 #define SPECULA_SHADING_GLSL_H
 
-vec3 sunDirection() { return vec3(0.40824829f, 0.81649658f, 0.40824829f); }
+vec3 sunDirection() {
+    return vec3(0.40824829f, 0.81649658f, 0.40824829f);
+}
 
 vec3 shadeSurface(vec3 albedo, vec3 normal) {
     float lambert = max(dot(normal, sunDirection()), 0.0f);

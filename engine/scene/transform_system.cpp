@@ -28,9 +28,8 @@ glm::mat4 worldOf(ecs::Registry& reg, ecs::Entity e,
 
 void updateWorldTransforms(ecs::Registry& registry) {
     std::unordered_map<std::uint32_t, glm::mat4> memo;
-    registry.view<Transform>().each([&](ecs::Entity e, Transform& t) {
-        t.world = worldOf(registry, e, memo, 0);
-    });
+    registry.view<Transform>().each(
+        [&](ecs::Entity e, Transform& t) { t.world = worldOf(registry, e, memo, 0); });
 }
 
 } // namespace specula

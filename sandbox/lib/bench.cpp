@@ -290,8 +290,8 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
                 } catch (const Error& e) {
                     // A method the asset cannot serve (layers of a scene without objects):
                     // say so and leave the row out rather than abort the bench.
-                    log << "  " << name << " " << v.method << " " << v.params
-                        << ": skipped (" << e.what() << ")\n";
+                    log << "  " << name << " " << v.method << " " << v.params << ": skipped ("
+                        << e.what() << ")\n";
                     continue;
                 }
                 row.msMedian = timeReflectorPass(fr, cam, minFrames, maxFrames, row.frames);

@@ -42,7 +42,8 @@ std::vector<MethodVariant> benchVariants(const BenchSweep& sweep) {
     for (float de : sweep.tolerances)
         add(LookupMethod::Layered, formatTolerance(de), de);
     // The effect plan's choice, from its own bake (only the layers the plan keeps).
-    for (float de : sweep.tolerances) add(LookupMethod::Planned, formatTolerance(de), de)->planned = true;
+    for (float de : sweep.tolerances)
+        add(LookupMethod::Planned, formatTolerance(de), de)->planned = true;
 
     // The light field: its accuracy parameters are the cooked sizes (cameras, pixels), one
     // asset per row, with the cooked per-slab disparity.

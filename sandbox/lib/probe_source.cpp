@@ -31,7 +31,8 @@ double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int
     o.reflectorReach = scene.reflectorReach();
     std::string planJson;
     if (planned) {
-        const EffectPlan plan = planEffects(scene.registry(), scene.markup(), o.centre, o.reflectorReach);
+        const EffectPlan plan =
+            planEffects(scene.registry(), scene.markup(), o.centre, o.reflectorReach);
         applyPlan(plan, o);
         planJson = plan.toJson().dump();
     }

@@ -51,8 +51,8 @@ float ReflectionScene::walkAmplitude() const {
         meshWorldBounds(registry_, e, lo, hi);
         // Bounds at the authored position: take away the current offset.
         for (int k = 0; k < 3; ++k)
-            slack = std::min({slack, half - (hi[k] - offset_[k] - c[k]),
-                              half + (lo[k] - offset_[k] - c[k])});
+            slack = std::min(
+                {slack, half - (hi[k] - offset_[k] - c[k]), half + (lo[k] - offset_[k] - c[k])});
     }
     return std::clamp(slack, 0.f, 0.2f * cellSize());
 }

@@ -82,7 +82,8 @@ TEST(View, SkipsEntitiesMissingAComponent) {
 
 TEST(View, RemovalDuringIterationIsSafe) {
     Registry reg;
-    for (int i = 0; i < 10; ++i) reg.emplace<Position>(reg.create());
+    for (int i = 0; i < 10; ++i)
+        reg.emplace<Position>(reg.create());
     reg.view<Position>().each([&](Entity e, Position&) { reg.remove<Position>(e); });
     EXPECT_EQ(reg.view<Position>().count(), 0u);
 }

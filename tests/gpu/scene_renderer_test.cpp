@@ -1,15 +1,14 @@
-#include "engine/scene/shading.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
 #include "engine/render/scene_renderer.h"
+#include "engine/scene/shading.h"
 #include "engine/scene/transform_system.h"
 #include "gl_test_context.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
-
 
 namespace specula {
 namespace {

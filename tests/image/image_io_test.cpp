@@ -14,7 +14,7 @@ namespace specula {
 namespace {
 
 class ImageIoTest : public ::testing::Test {
-  protected:
+protected:
     void SetUp() override {
         dir_ = std::filesystem::temp_directory_path() /
                ("specula_image_io_" + std::to_string(::getpid()) + "_" +

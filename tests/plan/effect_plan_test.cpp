@@ -38,13 +38,13 @@ struct SceneBuilder {
     static std::shared_ptr<MeshData> box(glm::vec3 half) {
         auto m = std::make_shared<MeshData>();
         for (int i = 0; i < 8; ++i)
-            m->positions.push_back(glm::vec3((i & 1) ? half.x : -half.x,
-                                             (i & 2) ? half.y : -half.y,
+            m->positions.push_back(glm::vec3((i & 1) ? half.x : -half.x, (i & 2) ? half.y : -half.y,
                                              (i & 4) ? half.z : -half.z));
         const unsigned quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
                                       {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
         for (const auto& q : quads)
-            for (unsigned k : {q[0], q[1], q[2], q[0], q[2], q[3]}) m->indices.push_back(k);
+            for (unsigned k : {q[0], q[1], q[2], q[0], q[2], q[3]})
+                m->indices.push_back(k);
         m->normals.assign(8, glm::vec3(0, 1, 0));
         return m;
     }
@@ -55,20 +55,23 @@ struct SceneBuilder {
             for (int j = 0; j <= 2 * n; ++j) {
                 const float th = 3.14159265f * float(i) / float(n);
                 const float ph = 3.14159265f * float(j) / float(n);
-                const glm::vec3 d(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
+                const glm::vec3 d(std::sin(th) * std::cos(ph), std::cos(th),
+                                  std::sin(th) * std::sin(ph));
                 m->positions.push_back(r * d);
                 m->normals.push_back(d);
             }
         for (int i = 0; i < n; ++i)
             for (int j = 0; j < 2 * n; ++j) {
                 const unsigned a = unsigned(i * (2 * n + 1) + j), b = a + unsigned(2 * n + 1);
-                for (unsigned k : {a, b, a + 1, a + 1, b, b + 1}) m->indices.push_back(k);
+                for (unsigned k : {a, b, a + 1, a + 1, b, b + 1})
+                    m->indices.push_back(k);
             }
         return m;
     }
     // A mirror sphere at the probe, radius 0.5, and the probe node (cell 1.5 m).
-    void reflectorAndProbe(const std::string& probeExtras = "{\"specula_probe\": {\"cell_size\": 1.5}}",
-                           const std::string& reflectorExtras = "{\"specula_reflector\": true}") {
+    void
+    reflectorAndProbe(const std::string& probeExtras = "{\"specula_probe\": {\"cell_size\": 1.5}}",
+                      const std::string& reflectorExtras = "{\"specula_reflector\": true}") {
         node("mirror", glm::vec3(0.f), sphere(0.5f), reflectorExtras);
         node("probe", glm::vec3(0.f), nullptr, probeExtras);
     }

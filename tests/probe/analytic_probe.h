@@ -9,7 +9,6 @@
 
 namespace specula::test {
 
-
 struct AnalyticBox {
     glm::vec3 lo{-4.f, -1.2f, -4.f}, hi{4.f, 2.8f, 4.f};
 

@@ -36,7 +36,8 @@ TEST_F(RoomProbe, ShaderMatchesCpuTwinPerPixel) {
         const Image pos = renderer_->render(cam, 1);
         const Image dir = renderer_->render(cam, 2);
         const ecs::Entity probe = scene_->probeEntity();
-        CpuDistanceProbe twin(*renderer_->probes().asset(probe), *renderer_->probes().config(probe));
+        CpuDistanceProbe twin(*renderer_->probes().asset(probe),
+                              *renderer_->probes().config(probe));
         long n = 0, close = 0, skyN = 0;
         double sum = 0, worst = 0, worstSky = 0;
         for (int y = 0; y < kHeight; ++y)
@@ -136,6 +137,7 @@ TEST_F(RoomProbe, LayersShowOcclusionAndParallaxLikeTheGroundTruth) {
             ++n;
         }
     ASSERT_GT(n, 200);
-    std::printf("parallax: residual %.4f of the ground truth's change energy\n", errChange / errStatic);
+    std::printf("parallax: residual %.4f of the ground truth's change energy\n",
+                errChange / errStatic);
     EXPECT_LT(errChange, 0.25 * errStatic);
 }

@@ -34,7 +34,8 @@ Errors measure(const DistanceProbeAsset& a, LookupMethod method, float de, int r
     for (int i = 0; i < rays; ++i) {
         const glm::vec3 x(0.7f * u(rng), 0.7f * u(rng), 0.7f * u(rng));
         glm::vec3 d;
-        do d = glm::vec3(u(rng), u(rng), u(rng));
+        do
+            d = glm::vec3(u(rng), u(rng), u(rng));
         while (glm::dot(d, d) > 1.f || glm::dot(d, d) < 1e-4f);
         d = glm::normalize(d);
         int f = 0;
@@ -46,11 +47,15 @@ Errors measure(const DistanceProbeAsset& a, LookupMethod method, float de, int r
     return {std::sqrt(se / rays), double(fetches) / rays};
 }
 
-double psnr(double rmse) { return 20.0 * std::log10(1.0 / rmse); }
+double psnr(double rmse) {
+    return 20.0 * std::log10(1.0 / rmse);
+}
 
 class DistanceLookup : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() { asset_ = new DistanceProbeAsset(test::makeBoxProbe(AnalyticBox{}, 256)); }
+    static void SetUpTestSuite() {
+        asset_ = new DistanceProbeAsset(test::makeBoxProbe(AnalyticBox{}, 256));
+    }
     static void TearDownTestSuite() { delete asset_; }
     static DistanceProbeAsset* asset_;
 };
@@ -66,8 +71,9 @@ TEST_F(DistanceLookup, RectificationBeatsEnvmapAndBoxProjOnAClosedFormRoom) {
     const Errors bis = measure(*asset_, LookupMethod::Bisection, 0.01f);
     RecordProperty("psnr_envmap", std::to_string(psnr(env.rmse)));
     RecordProperty("psnr_bisection", std::to_string(psnr(bis.rmse)));
-    std::printf("closed-form box room: PSNR envmap %.2f dB, boxproj %.2f dB, bisection(0.01) %.2f dB\n",
-                psnr(env.rmse), psnr(box.rmse), psnr(bis.rmse));
+    std::printf(
+        "closed-form box room: PSNR envmap %.2f dB, boxproj %.2f dB, bisection(0.01) %.2f dB\n",
+        psnr(env.rmse), psnr(box.rmse), psnr(bis.rmse));
     EXPECT_GT(psnr(bis.rmse), psnr(env.rmse) + 15.0);
     EXPECT_GT(psnr(bis.rmse), 35.0);
     EXPECT_GT(psnr(box.rmse), 35.0);
@@ -112,7 +118,8 @@ TEST_F(DistanceLookup, AverageDistanceIsExactAtThatDistance) {
     // d-bar = R and one fetch at x + R l is exact for x = 0 and close for small |x|.
     DistanceProbeAsset a = *asset_;
     for (auto& face : a.layers[0].faces)
-        for (std::size_t i = 3; i < face.pixels.size(); i += 4) face.pixels[i] = 3.f;
+        for (std::size_t i = 3; i < face.pixels.size(); i += 4)
+            face.pixels[i] = 3.f;
     a.layers[0].avgDistance = 3.f;
     ReflectionProbe probe;
     probe.method = LookupMethod::AvgDist;
@@ -139,13 +146,15 @@ TEST_F(DistanceLookup, MissesFallToTheSky) {
             face.pixels[i + 3] = a.dInf;
         }
     a.sky = Image(8, 4, 4);
-    for (float& v : a.sky.pixels) v = 0.25f;
+    for (float& v : a.sky.pixels)
+        v = 0.25f;
     for (LookupMethod m : {LookupMethod::Bisection, LookupMethod::Secant, LookupMethod::AvgDist}) {
         ReflectionProbe probe;
         probe.method = m;
         CpuDistanceProbe twin(a, makeLookupConfig(probe, a));
         int fetches = 0;
-        const glm::vec3 c = twin.radiance(glm::vec3(0.1f, 0.2f, 0.f), glm::vec3(0.f, 0.f, 1.f), fetches);
+        const glm::vec3 c =
+            twin.radiance(glm::vec3(0.1f, 0.2f, 0.f), glm::vec3(0.f, 0.f, 1.f), fetches);
         EXPECT_NEAR(c.r, 0.25f, 1e-6f) << toString(m);
         // Every distance fetch sees d_inf, so no method can stop early: N distance fetches
         // (one for the average distance) and one sky fetch.

@@ -26,7 +26,9 @@ protected:
                    .string();
         DistanceBakeOptions o;
         o.centre = scene_->probeCentre();
-        o.faceRes = std::getenv("SPECULA_TEST_FACE_RES") ? std::atoi(std::getenv("SPECULA_TEST_FACE_RES")) : 128;
+        o.faceRes = std::getenv("SPECULA_TEST_FACE_RES")
+                        ? std::atoi(std::getenv("SPECULA_TEST_FACE_RES"))
+                        : 128;
         o.sky = &scene_->sky();
         o.reflectorReach = scene_->reflectorReach();
         writeDistanceProbe(bakeDistanceProbe(scene_->registry(), scene_->markup(), o), dir_,

@@ -79,7 +79,7 @@ Counts countsFromAccessors(const nlohmann::json& j) {
 
 // A scratch folder per test, removed afterwards.
 class TempDir {
-  public:
+public:
     TempDir() {
         path_ = fs::temp_directory_path() /
                 ("specula_scene_test_" + std::to_string(::getpid()) + "_" +
@@ -90,7 +90,7 @@ class TempDir {
     ~TempDir() { fs::remove_all(path_); }
     const fs::path& path() const { return path_; }
 
-  private:
+private:
     fs::path path_;
 };
 

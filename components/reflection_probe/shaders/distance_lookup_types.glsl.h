@@ -10,7 +10,7 @@ SHARED_CONST int kMethodSecant = 3;
 SHARED_CONST int kMethodAvgDist = 4;
 
 struct ProbeLookupParams {
-    vec3 boxMin;     // probe-local environment box (box projection)
+    vec3 boxMin; // probe-local environment box (box projection)
     vec3 boxMax;
     float range;     // D: every hit lies within (x, x + 2D l)
     float tolerance; // d_e: stop when |stored - |l|| < d_e
