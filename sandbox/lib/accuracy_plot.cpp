@@ -26,7 +26,8 @@ const std::string& plotFont() {
     return font;
 }
 
-// One colour per method, in order of appearance (linear RGB, bright enough on dark grey).
+// One colour per method, the same in every panel (linear RGB, bright enough on dark grey);
+// a method not listed in kMethodOrder gets the last (grey).
 constexpr std::array<std::array<float, 3>, 9> kPalette = {{{0.90f, 0.10f, 0.08f},
                                                            {0.95f, 0.45f, 0.02f},
                                                            {0.90f, 0.90f, 0.10f},
@@ -36,6 +37,15 @@ constexpr std::array<std::array<float, 3>, 9> kPalette = {{{0.90f, 0.10f, 0.08f}
                                                            {0.10f, 0.85f, 0.85f},
                                                            {0.90f, 0.25f, 0.65f},
                                                            {0.60f, 0.60f, 0.60f}}};
+
+constexpr std::array<const char*, 8> kMethodOrder = {
+    "envmap", "boxproj", "bisection", "secant", "avgdist", "layered", "plan", "lightfield"};
+
+int colourIndex(const std::string& method) {
+    for (std::size_t i = 0; i < kMethodOrder.size(); ++i)
+        if (method == kMethodOrder[i]) return int(i);
+    return int(kPalette.size()) - 1;
+}
 
 struct Canvas {
     OIIO::ImageBuf buf;
@@ -125,8 +135,7 @@ void drawPanel(Canvas& cv, int ox, int pw, int ph, const PlotPanel& panel) {
     std::map<std::string, int> colourOf;
     std::vector<std::string> order;
     for (const PlotPoint& p : pts)
-        if (colourOf.emplace(p.method, int(colourOf.size()) % int(kPalette.size())).second)
-            order.push_back(p.method);
+        if (colourOf.emplace(p.method, colourIndex(p.method)).second) order.push_back(p.method);
     for (const std::string& m : order) {
         std::vector<const PlotPoint*> line;
         for (const PlotPoint& p : pts)
