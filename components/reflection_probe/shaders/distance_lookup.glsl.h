@@ -75,10 +75,12 @@ RaySpan makeSpan(float t0, float t1, int steps) {
     return s;
 }
 
-#if HAS_BISECTION
+#if HAS_BISECTION || HAS_AVGDIST
 // Bisection: start mid-span (t = D for the whole range) and move by half the remaining
 // width towards the surface until the stored distance agrees with |l| within d_e
-// (condition 1) or the steps run out.
+// (condition 1) or the steps run out. The average-distance correction is its one-step
+// case on the empty span at d-bar (one fetch at x + d-bar l), so a shader that mixes the
+// two methods over its layers runs a single loop.
 LayerHit lookupBisection(int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RaySpan span) {
     float step = 0.5f * (span.t1 - span.t0);
     vec3 l = x + (span.t0 + step) * lhat;
@@ -141,14 +143,6 @@ LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RaySpan
 }
 #endif
 
-#if HAS_AVGDIST
-// One fetch at x + d-bar l: exact when the object lies at the layer's mean distance.
-LayerHit lookupAvgDist(int layer, vec3 x, vec3 lhat, ProbeLookupParams p) {
-    vec3 l = x + layerAvgDistance(layer) * lhat;
-    return finishRectified(layer, x, lhat, l, fetchDistance(layer, l), 1, p.dInf);
-}
-#endif
-
 #if HAS_LAYERS
 // Where the ray x + t lhat (t >= 0) enters and leaves the layer's bounding box; enter > leave
 // when it misses. A layer the ray misses, or enters only behind a nearer hit, costs no fetch
@@ -177,14 +171,17 @@ int spanSteps(float width, ProbeLookupParams p) {
 #endif
 
 LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RaySpan span) {
-#if HAS_BISECTION
-    if (method == kMethodBisection) return lookupBisection(layer, x, lhat, p, span);
+#if HAS_BISECTION || HAS_AVGDIST
+    if (method == kMethodBisection || method == kMethodAvgDist) {
+        // Average distance: one fetch at x + d-bar l, exact when the object lies at the
+        // layer's mean distance.
+        float avg = layerAvgDistance(layer);
+        RaySpan s = method == kMethodAvgDist ? makeSpan(avg, avg, 1) : span;
+        return lookupBisection(layer, x, lhat, p, s);
+    }
 #endif
 #if HAS_SECANT
     if (method == kMethodSecant) return lookupSecant(layer, x, lhat, p, span);
-#endif
-#if HAS_AVGDIST
-    if (method == kMethodAvgDist) return lookupAvgDist(layer, x, lhat, p);
 #endif
 #if HAS_BOXPROJ
     if (method == kMethodBoxProj) {
@@ -192,11 +189,15 @@ LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, ProbeLookupParams
         return makeHit(fetchRadiance(layer, x + t * lhat), true, 1, t);
     }
 #endif
+#if HAS_ENVMAP
     // Classic environment map: direction only. The composite (layer 0) holds the sky where
     // it sees nothing, so it always answers; an object layer of distant things (layered
     // mode) answers only where it has something, else the layers behind it and the sky do.
     if (layer == 0) return makeHit(fetchRadiance(layer, lhat), true, 1, p.dInf);
     return finishRectified(layer, x, lhat, lhat, fetchDistance(layer, lhat), 1, p.dInf);
+#else
+    return makeHit(vec3(0.0f), false, 0, p.dInf); // no method of this permutation applies
+#endif
 }
 
 // Radiance seen from probe-local point x along the unit reflected direction lhat.
