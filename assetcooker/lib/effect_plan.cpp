@@ -208,10 +208,8 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     // Mode: the cheapest runtime path that represents the plan.
     if (nears.empty()) {
         plan.mode = "envmap";
-        plan.modeReason = markup.objects.empty()
-                              ? "no environment geometry: the sky panorama itself is the "
-                                "environment map (exact, one fetch; a cube map would resample it)"
-                              : "every object is distant";
+        plan.modeReason = markup.objects.empty() ? "no environment geometry: only the distant sky"
+                                                 : "every object is distant";
     } else if (!anyOverlap) {
         plan.mode = "single";
         plan.modeReason = "no two near objects overlap as seen from the cell: one layer, merged";
@@ -278,12 +276,10 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
 
     std::vector<std::string> f;
     if (plan.mode == "layered") f.push_back("layers");
-    const bool skyOnly = plan.mode == "envmap" && markup.objects.empty();
-    if (skyOnly) f.push_back("sky");
     for (const char* m : {"envmap", "bisection", "avgdist"})
         if (std::any_of(plan.layers.begin(), plan.layers.end(),
                         [&](const PlannedLayer& l) { return l.method == m; }) ||
-            (plan.mode == "envmap" && !skyOnly && std::string(m) == "envmap"))
+            (plan.mode == "envmap" && std::string(m) == "envmap"))
             f.push_back(m);
     if (plan.fresnel) f.push_back("fresnel");
     for (const std::string& name : f) {
@@ -301,9 +297,7 @@ void applyPlan(const EffectPlan& plan, DistanceBakeOptions& bake) {
         bake.compositeOnly = false;
     } else {
         bake.compositeOnly = true;
-        // No environment geometry at all: the composite answers nothing, the sky does.
-        bake.compositeMethod = plan.layers.empty() ? (plan.objects.empty() ? "sky" : "envmap")
-                                                   : plan.layers.front().method;
+        bake.compositeMethod = plan.layers.empty() ? "envmap" : plan.layers.front().method;
     }
 }
 

@@ -77,8 +77,6 @@ static std::uint32_t featureOf(int method) {
         return kFeatureSecant;
     case 4:
         return kFeatureAvgDist;
-    case 5: // kMethodSky: the shader keeps nothing but the sky fetch
-        return 0;
     default:
         return kFeatureEnvmap;
     }
@@ -121,13 +119,12 @@ DistanceLookupConfig makeLookupConfig(const ReflectionProbe& probe, const Distan
         // The cooked plan: the composite alone when it baked no object layers, else every
         // baked layer with the method the plan gave it.
         auto planned = [&](std::size_t i) {
-            if (i == 0 && a.layers[0].method == "sky") return 5; // kMethodSky
             LookupMethod m = LookupMethod::Bisection;
             if (!parseLookupMethod(a.layers[i].method, m) || m == LookupMethod::Layered ||
                 m == LookupMethod::Planned)
                 throw Error(probe.asset, "layers[" + std::to_string(i) + "].method",
-                            std::string("expected envmap, boxproj, bisection, secant or avgdist") +
-                                (i == 0 ? " (or sky)" : "") + ", got '" + a.layers[i].method + "'");
+                            "expected envmap, boxproj, bisection, secant or avgdist, got '" +
+                                a.layers[i].method + "'");
             return methodIndex(m);
         };
         if (a.objectLayerCount() == 0) {

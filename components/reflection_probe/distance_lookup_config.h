@@ -19,11 +19,6 @@ enum DistanceFeature : std::uint32_t {
     kFeatureLayers = 1u << 5,
     kFeatureFresnel = 1u << 6,
 };
-// The bits that read the cube layers; a mask without any (the plan's sky-only lookup)
-// reads the sky panorama alone.
-inline constexpr std::uint32_t kFeatureCubeLookups = kFeatureEnvmap | kFeatureBoxProj |
-                                                     kFeatureBisection | kFeatureSecant |
-                                                     kFeatureAvgDist | kFeatureLayers;
 
 struct DistanceLookupConfig {
     glm::vec3 boxMin{0.f}, boxMax{0.f};

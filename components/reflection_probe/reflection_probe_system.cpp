@@ -66,8 +66,7 @@ void setDistanceLookupUniforms(gpu::Program& prog, const DistanceLookupConfig& c
 }
 
 std::string featureName(std::uint32_t f) {
-    // No lookup at all (the plan for a probe without environment geometry): the sky fetch.
-    std::string s = (f & (kFeatureCubeLookups | kFeatureLightField)) ? "" : "sky";
+    std::string s;
     auto add = [&](std::uint32_t bit, const char* name) {
         if (!(f & bit)) return;
         if (!s.empty()) s += '+';
@@ -157,28 +156,22 @@ void ReflectionProbeSystem::sync(ecs::Registry& registry) {
         if (gpuProbe->config.layerMethods.size() > 64)
             throw Error(probe.asset, "layers", "at most 63 object layers are supported");
 
-        // Only the layers the method reads go to the GPU: the composite alone unless layered,
-        // none for the sky-only plan.
-        const std::uint32_t features = gpuProbe->config.features;
-        const int layerCount = !(features & kFeatureCubeLookups) ? 0
-                               : (features & kFeatureLayers)     ? int(a.layers.size())
-                                                                 : 1;
+        // Only the layers the method reads go to the GPU: the composite alone unless layered.
+        const int layerCount =
+            (gpuProbe->config.features & kFeatureLayers) ? int(a.layers.size()) : 1;
         const int n = a.faceRes;
+        gpuProbe->layers = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+        const GLuint tex = gpuProbe->layers.id();
+        glTextureStorage3D(tex, 1, GL_RGBA32F, n, n, 6 * layerCount);
+        for (int L = 0; L < layerCount; ++L)
+            for (int f = 0; f < 6; ++f)
+                glTextureSubImage3D(tex, 0, 0, 0, 6 * L + f, n, n, 1, GL_RGBA, GL_FLOAT,
+                                    a.layers[std::size_t(L)].faces[std::size_t(f)].pixels.data());
+        glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         gpuProbe->bytes = std::size_t(n) * n * 6 * layerCount * 16;
-        if (layerCount > 0) {
-            gpuProbe->layers = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
-            const GLuint tex = gpuProbe->layers.id();
-            glTextureStorage3D(tex, 1, GL_RGBA32F, n, n, 6 * layerCount);
-            for (int L = 0; L < layerCount; ++L)
-                for (int f = 0; f < 6; ++f)
-                    glTextureSubImage3D(
-                        tex, 0, 0, 0, 6 * L + f, n, n, 1, GL_RGBA, GL_FLOAT,
-                        a.layers[std::size_t(L)].faces[std::size_t(f)].pixels.data());
-            glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-            glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-            glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-            glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        }
 
         if (!a.sky.empty()) {
             gpuProbe->sky = gpu::Texture::create(GL_TEXTURE_2D);

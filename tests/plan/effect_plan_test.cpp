@@ -97,8 +97,7 @@ TEST(EffectPlan, EmptyRoomUnderASkyIsAClassicEnvironmentMap) {
     const EffectPlan p = s.plan();
     std::printf("%s", p.toText().c_str());
     EXPECT_EQ(p.mode, "envmap");
-    // The environment map is the sky panorama itself: no cube lookup is compiled in.
-    EXPECT_EQ(p.features, "sky");
+    EXPECT_EQ(p.features, "envmap");
     EXPECT_FALSE(p.fresnel);
 }
 

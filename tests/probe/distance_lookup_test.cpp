@@ -162,25 +162,3 @@ TEST_F(DistanceLookup, MissesFallToTheSky) {
         EXPECT_EQ(fetches, m == LookupMethod::AvgDist ? 2 : n + 1) << toString(m);
     }
 }
-
-// The plan for a probe without environment geometry ("sky"): no cube lookup at all, one
-// fetch of the sky panorama by direction, and nothing of the lookup in the feature mask.
-TEST_F(DistanceLookup, PlannedSkyOnlyReadsThePanoramaAlone) {
-    DistanceProbeAsset a = *asset_;
-    a.layers[0].method = "sky";
-    ReflectionProbe probe;
-    probe.method = LookupMethod::Planned;
-    const DistanceLookupConfig cfg = makeLookupConfig(probe, a);
-    EXPECT_EQ(cfg.features, 0u);
-    CpuDistanceProbe twin(a, cfg);
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> u(-1.f, 1.f);
-    for (int i = 0; i < 1000; ++i) {
-        const glm::vec3 d = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + 1e-3f);
-        int fetches = 0;
-        bool sawSky = false;
-        twin.radiance(glm::vec3(0.3f * u(rng)), d, fetches, &sawSky);
-        ASSERT_TRUE(sawSky);
-        ASSERT_EQ(fetches, 1);
-    }
-}

@@ -171,7 +171,6 @@ int spanSteps(float width, ProbeLookupParams p) {
 #endif
 
 LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RaySpan span) {
-    if (method == kMethodSky) return makeHit(vec3(0.0f), false, 0, p.dInf);
 #if HAS_BISECTION || HAS_AVGDIST
     if (method == kMethodBisection || method == kMethodAvgDist) {
         // Average distance: one fetch at x + d-bar l, exact when the object lies at the

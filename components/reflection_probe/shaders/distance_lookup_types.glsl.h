@@ -8,9 +8,6 @@ SHARED_CONST int kMethodBoxProj = 1;
 SHARED_CONST int kMethodBisection = 2;
 SHARED_CONST int kMethodSecant = 3;
 SHARED_CONST int kMethodAvgDist = 4;
-// The plan's lookup for a probe with no environment geometry: the layer answers nothing and
-// the sky panorama itself does, by direction (exact, where a cube map would resample it).
-SHARED_CONST int kMethodSky = 5;
 
 struct ProbeLookupParams {
     vec3 boxMin; // probe-local environment box (box projection)
