@@ -5,7 +5,10 @@
 #include "components/reflection_probe/distance_probe_asset.h"
 #include "engine/math/cube_face.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 namespace specula::test {
 
@@ -29,6 +32,32 @@ struct AnalyticBox {
     glm::vec3 trace(glm::vec3 x, glm::vec3 d) const { return radianceAt(x + exit(x, d) * d); }
 };
 
+// One layer's six faces baked from the probe centre at face resolution n: `surface(dir)`
+// gives the distance along the unit direction (>= dInf where nothing is hit, stored as
+// dInf) and the radiance there. Sets minDistance/maxDistance over the texels that hit.
+template <typename Surface>
+inline DistanceProbeLayer bakeAnalyticLayer(const std::string& name, int n, float dInf,
+                                            Surface surface) {
+    DistanceProbeLayer L;
+    L.name = name;
+    L.minDistance = 1e30f;
+    for (int f = 0; f < 6; ++f) {
+        L.faces[std::size_t(f)] = Image(n, n, 4);
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const glm::vec2 uv((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
+                const glm::vec3 d = glm::normalize(glsl::cubeFaceDirection(f, uv));
+                const auto [t, c] = surface(d);
+                float* p = L.faces[std::size_t(f)].at(x, y);
+                p[0] = c.r, p[1] = c.g, p[2] = c.b, p[3] = std::min(t, dInf);
+                if (t >= dInf) continue;
+                L.maxDistance = std::max(L.maxDistance, t);
+                L.minDistance = std::min(L.minDistance, t);
+            }
+    }
+    return L;
+}
+
 // A one-layer (composite only) probe of the box at face resolution n.
 inline DistanceProbeAsset makeBoxProbe(const AnalyticBox& box, int n) {
     DistanceProbeAsset a;
@@ -36,26 +65,12 @@ inline DistanceProbeAsset makeBoxProbe(const AnalyticBox& box, int n) {
     a.dInf = 1000.f;
     a.boxMin = box.lo;
     a.boxMax = box.hi;
-    float maxD = 0.f, minD = 1e30f;
-    DistanceProbeLayer L;
-    L.name = "box";
-    for (int f = 0; f < 6; ++f) {
-        L.faces[std::size_t(f)] = Image(n, n, 4);
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                const glm::vec2 uv((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
-                const glm::vec3 d = glm::normalize(glsl::cubeFaceDirection(f, uv));
-                const float t = box.exit(glm::vec3(0.f), d);
-                const glm::vec3 c = AnalyticBox::radianceAt(t * d);
-                float* p = L.faces[std::size_t(f)].at(x, y);
-                p[0] = c.r, p[1] = c.g, p[2] = c.b, p[3] = t;
-                maxD = std::max(maxD, t);
-                minD = std::min(minD, t);
-            }
-    }
+    DistanceProbeLayer L = bakeAnalyticLayer("box", n, a.dInf, [&](glm::vec3 d) {
+        const float t = box.exit(glm::vec3(0.f), d);
+        return std::pair(t, AnalyticBox::radianceAt(t * d));
+    });
+    const float maxD = L.maxDistance;
     L.avgDistance = 4.f;
-    L.minDistance = minD;
-    L.maxDistance = maxD;
     L.solidAngle = 12.566f;
     a.range = 0.5f * (maxD + 1.f) * 1.05f;
     a.layers.push_back(L);

@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include <functional>
 #include <random>
+#include <utility>
 
 using namespace specula;
 
@@ -41,28 +41,17 @@ float hitPillar(glm::vec3 x, glm::vec3 d) {
     return enter <= leave ? enter : kNone;
 }
 
-using Intersect = std::function<float(glm::vec3, glm::vec3)>;
+using Intersect = float (*)(glm::vec3, glm::vec3);
 
-// One object layer baked from the probe centre by its closed-form intersection.
-DistanceProbeLayer bakeLayer(const char* name, const Intersect& hit, glm::vec3 colour,
-                             glm::vec3 boxLo, glm::vec3 boxHi, int n, float dInf) {
-    DistanceProbeLayer L;
-    L.name = name;
+// One object layer of a single colour, baked from the probe centre by its closed-form
+// intersection.
+DistanceProbeLayer bakeLayer(const char* name, Intersect hit, glm::vec3 colour, glm::vec3 boxLo,
+                             glm::vec3 boxHi, int n, float dInf) {
+    DistanceProbeLayer L = test::bakeAnalyticLayer(
+        name, n, dInf, [&](glm::vec3 d) { return std::pair(hit(glm::vec3(0.f), d), colour); });
     L.boxMin = boxLo;
     L.boxMax = boxHi;
     L.method = "bisection";
-    for (int f = 0; f < 6; ++f) {
-        L.faces[std::size_t(f)] = Image(n, n, 4);
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                const glm::vec2 uv((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
-                const glm::vec3 d = glm::normalize(glsl::cubeFaceDirection(f, uv));
-                const float t = hit(glm::vec3(0.f), d);
-                float* p = L.faces[std::size_t(f)].at(x, y);
-                p[0] = colour.r, p[1] = colour.g, p[2] = colour.b;
-                p[3] = t < kNone ? t : dInf;
-            }
-    }
     return L;
 }
 

@@ -210,8 +210,7 @@ vec3 probeRadiance(vec3 x, vec3 lhat, ProbeLookupParams p, INOUT(int) fetches) {
     // layer usually answers first; the box test skips a layer entered only behind the best
     // hit, and the loop ends once no later layer can come nearer: a point of those layers
     // lies at least layerReach from the centre, so at least layerReach - |x| along the ray.
-    bool found = false;
-    float bestT = p.dInf;
+    float bestT = p.dInf; // stays d_inf until some layer hits
     vec3 best = vec3(0.0f);
     float fromCentre = length(x);
     for (int i = 1; i <= p.layerCount; ++i) {
@@ -223,12 +222,11 @@ vec3 probeRadiance(vec3 x, vec3 lhat, ProbeLookupParams p, INOUT(int) fetches) {
         LayerHit h = lookupLayer(layerMethod(i), i, x, lhat, p, s);
         fetches += h.fetches;
         if (h.hit && h.t < bestT) {
-            found = true;
             bestT = h.t;
             best = h.radiance;
         }
     }
-    if (found) return best;
+    if (bestT < p.dInf) return best;
     fetches += 1;
     return fetchSky(lhat);
 #else
