@@ -4,6 +4,7 @@
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/effect_plan.h"
 #include "assetcooker/lib/lightfield_bake.h"
+#include "components/reflection_probe/probe_folder.h"
 #include "components/reflection_probe/scene_markup.h"
 #include "engine/core/error.h"
 #include "engine/core/flags.h"
@@ -11,7 +12,6 @@
 #include "engine/image/image_io.h"
 #include "engine/scene/gltf_loader.h"
 
-#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -49,20 +49,27 @@ const std::string_view kBakeUsage =
     "  --image-res RES    pixels per side of a camera image, a multiple of 4 (default 64)\n"
     "  --compress C       none (sRGB RGB8, default) or bc1 (DXT1); bc7 is not supported\n"
     "\n"
-    "exit status: 0 ok, 1 the scene could not be baked, 2 bad command line\n";
+    "Signals: SIGINT/SIGTERM at any moment before the final rename leave DIR as it was and\n"
+    "no temporary folder behind. DIR is replaced only if it is empty or a cooked probe that\n"
+    "holds nothing but the files its manifest lists, and never if it holds SCENE. Temporary\n"
+    "folders of killed bakes (DIR.tmp-PID of a process that no longer runs) are removed.\n"
+    "\n"
+    "exit status: 0 ok, 1 the scene could not be baked, 2 bad command line, 130 cancelled\n"
+    "by SIGINT/SIGTERM (DIR left as it was)\n";
 
 namespace {
-std::atomic<bool> gInterrupted{false};
 extern "C" void onSignal(int) {
-    gInterrupted = true;
+    requestCancel();
 }
 
-// SIGINT/SIGTERM during a bake: stop at the next row, write nothing, leave DIR as it was.
+// SIGINT/SIGTERM anywhere in a bake (load, plan, trace, write) only request a cancel: the
+// bake stops at its next check and throws Cancelled, and DIR stays as it was unless the
+// final rename already happened.
 struct SignalGuard {
     using Handler = void (*)(int);
     Handler oldInt, oldTerm;
     SignalGuard() {
-        gInterrupted = false;
+        clearCancelRequest();
         oldInt = std::signal(SIGINT, onSignal);
         oldTerm = std::signal(SIGTERM, onSignal);
     }
@@ -71,11 +78,38 @@ struct SignalGuard {
         std::signal(SIGTERM, oldTerm);
     }
 };
-} // namespace
 
-namespace {
+// Before any work: repair what killed bakes left beside DIR (a line each on `out`), and
+// refuse a DIR that may not be replaced now rather than after a long bake.
+void prepareOutput(const std::string& dir, const std::string& scene, std::ostream& out) {
+    removeStaleProbeTemporaries(dir, out);
+    checkProbeFolderReplaceable(dir, scene);
+}
+
+// Runs a baker. Polled cancelled, the bakers stop with a plain Error ("bake: cancelled");
+// reported as the cancel it is, naming DIR.
+template <class Bake> auto bakeUnlessCancelled(const std::string& dir, Bake&& bake) {
+    try {
+        return bake();
+    } catch (const Error&) {
+        throwIfCancelled(dir);
+        throw;
+    }
+}
+
+// What both flavours load: the scene, its markup and the optional sky panorama.
+struct BakeInput {
+    ecs::Registry registry;
+    LoadedScene scene;
+    SceneMarkup markup;
+    Image sky;
+    BakeInput(const std::string& scenePath, const std::optional<std::string>& skyPath)
+        : scene(loadGltf(scenePath, registry)), markup(readSceneMarkup(registry, scene, scenePath)),
+          sky(skyPath ? readImage(*skyPath) : Image()) {}
+};
+
 // `bake --flavour lightfield`: the remaining flags, the bake on all cores with a progress
-// bar, the same SIGINT guard and atomic write as the distance flavour.
+// bar, the same cancel checks and atomic write as the distance flavour.
 int runLightFieldBake(Flags& flags, const std::optional<std::string>& outDir,
                       const std::optional<glm::vec3>& probeAt,
                       const std::optional<std::string>& skyPath, std::ostream& out) {
@@ -96,32 +130,34 @@ int runLightFieldBake(Flags& flags, const std::optional<std::string>& outDir,
     if (cameras * res > 16384)
         throw UsageError{"--cameras x --image-res must be at most 16384 (the 2D texture side)"};
 
+    prepareOutput(*outDir, pos[0], out);
     const auto start = std::chrono::steady_clock::now();
-    ecs::Registry registry;
-    const LoadedScene scene = loadGltf(pos[0], registry);
-    const SceneMarkup markup = readSceneMarkup(registry, scene, pos[0]);
-    Image sky;
-    if (skyPath) sky = readImage(*skyPath);
+    BakeInput in(pos[0], skyPath);
+    throwIfCancelled(*outDir);
 
     LightFieldBakeOptions o;
     o.cellCentre = cellCentre ? *cellCentre
                    : probeAt  ? *probeAt
-                              : markupProbeCentre(registry, markup, scene);
+                              : markupProbeCentre(in.registry, in.markup, in.scene);
     o.cellSize =
-        cellSize ? parseFloat("--cell-size", *cellSize, 1e-3f, 1e4f) : markupCellSize(markup);
+        cellSize ? parseFloat("--cell-size", *cellSize, 1e-3f, 1e4f) : markupCellSize(in.markup);
     o.cameras = cameras;
     o.res = res;
     o.compression = compress == "bc1" ? LightFieldCompression::BC1 : LightFieldCompression::None;
-    o.sky = sky.empty() ? nullptr : &sky;
-    SignalGuard guard;
-    o.cancelled = [] { return gInterrupted.load(); };
+    o.sky = in.sky.empty() ? nullptr : &in.sky;
+    o.cancelled = [] { return cancelRequested(); };
+    std::vector<std::string> warnings; // the probe placement's (checkProbePlacement)
+    o.warnings = &warnings;
     LightFieldAsset asset;
     {
         ProgressBar bar("baking light field " + std::filesystem::path(pos[0]).filename().string());
         o.progress = [&](double f) { bar.update(f); };
-        asset = bakeLightFieldProbe(registry, markup, o);
+        asset = bakeUnlessCancelled(*outDir,
+                                    [&] { return bakeLightFieldProbe(in.registry, in.markup, o); });
     }
-    if (gInterrupted) throw Error(*outDir, "", "interrupted; nothing was written");
+    for (const std::string& w : warnings)
+        out << "  warning: " << w << '\n';
+    throwIfCancelled(*outDir);
     writeLightFieldProbe(asset, *outDir, pos[0]);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -144,7 +180,7 @@ int runLightFieldBake(Flags& flags, const std::optional<std::string>& outDir,
                                    : ": baked from where each line leaves the cell, so "
                                      "reflectors inside the cell still see it right\n");
     for (const ReflectorOverhang& r :
-         findReflectorOverhangs(registry, markup, o.cellCentre, o.cellSize))
+         findReflectorOverhangs(in.registry, in.markup, o.cellCentre, o.cellSize))
         out << "  warning: reflector " << r.node << " reaches " << r.metres
             << " m outside the cell (--cell-size " << o.cellSize + 2.f * r.metres
             << " would hold it)\n";
@@ -153,6 +189,7 @@ int runLightFieldBake(Flags& flags, const std::optional<std::string>& outDir,
 } // namespace
 
 int runBake(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
+    const SignalGuard guard; // first: a signal during the load and the plan is honoured too
     Flags flags(args);
     const auto outDir = flags.value("--out");
     const std::string flavour = flags.value("--flavour").value_or("distance");
@@ -169,29 +206,33 @@ int runBake(std::span<const std::string> args, std::ostream& out, std::ostream& 
     if (flavour != "distance")
         throw UsageError{"--flavour: expected 'distance' or 'lightfield', got '" + flavour + "'"};
 
+    prepareOutput(*outDir, pos[0], out);
     const auto start = std::chrono::steady_clock::now();
-    ecs::Registry registry;
-    const LoadedScene scene = loadGltf(pos[0], registry);
-    const SceneMarkup markup = readSceneMarkup(registry, scene, pos[0]);
-    Image sky;
-    if (skyPath) sky = readImage(*skyPath);
+    BakeInput in(pos[0], skyPath);
+    throwIfCancelled(*outDir);
 
     DistanceBakeOptions o;
-    o.centre = probeAt ? *probeAt : markupProbeCentre(registry, markup, scene);
+    o.centre = probeAt ? *probeAt : markupProbeCentre(in.registry, in.markup, in.scene);
     o.faceRes = faceRes;
-    o.sky = sky.empty() ? nullptr : &sky;
-    o.reflectorReach = markupReflectorReach(registry, markup, o.centre, markupCellSize(markup));
-    const EffectPlan plan = planEffects(registry, markup, o.centre, o.reflectorReach);
+    o.sky = in.sky.empty() ? nullptr : &in.sky;
+    o.reflectorReach =
+        markupReflectorReach(in.registry, in.markup, o.centre, markupCellSize(in.markup));
+    const EffectPlan plan = planEffects(in.registry, in.markup, o.centre, o.reflectorReach);
     if (layers == "plan") applyPlan(plan, o);
-    SignalGuard guard;
-    o.cancelled = [] { return gInterrupted.load(); };
+    throwIfCancelled(*outDir);
+    o.cancelled = [] { return cancelRequested(); };
+    std::vector<std::string> warnings; // the probe placement's (checkProbePlacement)
+    o.warnings = &warnings;
     DistanceProbeAsset asset;
     {
         ProgressBar bar("baking " + std::filesystem::path(pos[0]).filename().string());
         o.progress = [&](double f) { bar.update(f); };
-        asset = bakeDistanceProbe(registry, markup, o);
+        asset = bakeUnlessCancelled(*outDir,
+                                    [&] { return bakeDistanceProbe(in.registry, in.markup, o); });
     }
-    if (gInterrupted) throw Error(*outDir, "", "interrupted; nothing was written");
+    for (const std::string& w : warnings)
+        out << "  warning: " << w << '\n';
+    throwIfCancelled(*outDir);
     asset.effectPlan = plan.toJson().dump();
     writeDistanceProbe(asset, *outDir, pos[0]);
     const double seconds =

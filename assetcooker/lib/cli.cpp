@@ -116,6 +116,9 @@ int runCli(std::span<const std::string> args, std::ostream& out, std::ostream& e
         err << "usage: specula-cook " << sub->name << " --help\n"
             << "specula-cook " << sub->name << ": error: " << e.message << '\n';
         return kExitUsage;
+    } catch (const Cancelled& e) {
+        err << "specula-cook " << sub->name << ": cancelled: " << firstLine(e.what()) << '\n';
+        return kExitCancelled;
     } catch (const Error& e) {
         err << "specula-cook " << sub->name << ": error: " << firstLine(e.what()) << '\n';
     } catch (const std::exception& e) {

@@ -14,8 +14,9 @@ namespace specula::cook {
 
 // Exit codes shared by every subcommand.
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1; // the input could not be processed
-inline constexpr int kExitUsage = 2;   // the command line itself is wrong
+inline constexpr int kExitFailure = 1;     // the input could not be processed
+inline constexpr int kExitUsage = 2;       // the command line itself is wrong
+inline constexpr int kExitCancelled = 130; // 128 + SIGINT: stopped by a signal, nothing replaced
 
 // Thrown by argument parsing; runCli prints it with the usage line and exits kExitUsage.
 using UsageError = specula::UsageError;

@@ -1,5 +1,6 @@
 #include "distance_bake.h"
 
+#include "assetcooker/lib/probe_sanity.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
@@ -14,23 +15,13 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 namespace specula {
 
 namespace {
 
 constexpr float kMiss = -1.f; // marks texels with no hit until d_inf is known
-
-// Solid angle of texel (x, y) of an N x N cube face: the integral of dA cos / r^2 over the
-// texel, in closed form from the corner function atan(st / sqrt(s^2 + t^2 + 1)).
-float texelSolidAngle(int x, int y, int n) {
-    auto corner = [](float s, float t) {
-        return std::atan2(s * t, std::sqrt(s * s + t * t + 1.f));
-    };
-    const float s0 = 2.f * float(x) / float(n) - 1.f, s1 = 2.f * float(x + 1) / float(n) - 1.f;
-    const float t0 = 2.f * float(y) / float(n) - 1.f, t1 = 2.f * float(y + 1) / float(n) - 1.f;
-    return corner(s1, t1) - corner(s0, t1) - corner(s1, t0) + corner(s0, t0);
-}
 
 struct LayerStats {
     double weightedSum = 0, weight = 0;
@@ -79,7 +70,7 @@ LayerStats statsOf(const std::array<Image, 6>& faces) {
             for (int x = 0; x < n; ++x) {
                 const float d = img.at(x, y)[3];
                 if (d == kMiss) continue;
-                const float w = texelSolidAngle(x, y, n);
+                const float w = float(cubeTexelSolidAngle(x, y, n));
                 s.weightedSum += double(w) * d;
                 s.weight += w;
                 s.minD = std::min(s.minD, d);
@@ -103,9 +94,14 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(opt.centre[i])) throw Error("", "--probe", "expected finite numbers");
 
+    // Refuses nothing to reflect (no geometry met, no sky) and probes inside solids or on
+    // surfaces; an environment of sky alone is legal (every texel misses).
+    const bool sky = opt.withSky && opt.sky && !opt.sky->empty();
+    const std::vector<std::string> warnings =
+        checkProbePlacement(registry, markup, opt.centre, sky);
+    if (opt.warnings) opt.warnings->insert(opt.warnings->end(), warnings.begin(), warnings.end());
     const auto& mirrors = markup.mirrorEntities;
     const EmbreeScene environment(registry, [&](ecs::Entity e) { return !mirrors.count(e); });
-    // An empty environment is legal (a reflector under the sky alone): every texel misses.
 
     const std::size_t layerCount = opt.compositeOnly    ? 0
                                    : opt.layers.empty() ? markup.objects.size()
@@ -131,17 +127,21 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
         for (const EnvironmentObject& o : markup.objects)
             specs.push_back({o.name, {o.name}, ""});
     std::vector<DistanceProbeLayer> objects;
+    // By name, once: a search per layer made many-layer bakes quadratic.
+    std::unordered_map<std::string, const EnvironmentObject*> byName;
+    for (const EnvironmentObject& o : markup.objects)
+        byName.emplace(o.name, &o);
     for (const DistanceBakeOptions::LayerSpec& spec : specs) {
         std::unordered_set<ecs::Entity> members;
         glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
         for (const std::string& name : spec.objects) {
-            auto it = std::find_if(markup.objects.begin(), markup.objects.end(),
-                                   [&](const EnvironmentObject& o) { return o.name == name; });
-            if (it == markup.objects.end())
+            const auto found = byName.find(name);
+            if (found == byName.end())
                 throw Error("", "layer '" + spec.name + "'", "names unknown object '" + name + "'");
-            members.insert(it->meshes.begin(), it->meshes.end());
-            lo = glm::min(lo, it->boundsMin);
-            hi = glm::max(hi, it->boundsMax);
+            const EnvironmentObject& o = *found->second;
+            members.insert(o.meshes.begin(), o.meshes.end());
+            lo = glm::min(lo, o.boundsMin);
+            hi = glm::max(hi, o.boundsMax);
         }
         const EmbreeScene scene(registry, [&](ecs::Entity e) { return members.count(e) > 0; });
         DistanceProbeLayer layer;

@@ -8,6 +8,8 @@
 #include "engine/ecs/registry.h"
 
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace specula {
 
@@ -33,6 +35,9 @@ struct DistanceBakeOptions {
     std::string compositeMethod;          // the composite's planned method (empty: by solid angle)
     std::function<void(double)> progress; // fraction done, from the baking thread
     std::function<bool()> cancelled;      // polled between rows; true aborts with Error
+    // Where the probe placement's warnings go (checkProbePlacement); null: dropped. A
+    // placement that makes the bake meaningless throws Error instead.
+    std::vector<std::string>* warnings = nullptr;
 };
 
 DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup& markup,

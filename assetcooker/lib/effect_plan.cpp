@@ -1,55 +1,22 @@
 #include "effect_plan.h"
 
 #include "assetcooker/lib/distance_bake.h"
+#include "assetcooker/lib/plan_visibility.h"
 #include "engine/core/error.h"
-#include "engine/math/cube_face.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
+
+#include <glm/glm.hpp>
 
 namespace specula {
 
 namespace {
 
 constexpr float kPi = 3.14159265f;
-
-// Which texels of the analysis cube an object covers, grown by `grow` texels within each
-// face (a conservative stand-in for the parallax a moving reflector adds).
-std::vector<char> coverage(const DistanceProbeLayer& L, float dInf, int grow) {
-    const int n = L.faces[0].width;
-    std::vector<char> mask(std::size_t(6) * n * n, 0);
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                if (L.faces[std::size_t(f)].at(x, y)[3] >= 0.5f * dInf) continue;
-                for (int yy = std::max(0, y - grow); yy <= std::min(n - 1, y + grow); ++yy)
-                    for (int xx = std::max(0, x - grow); xx <= std::min(n - 1, x + grow); ++xx)
-                        mask[(std::size_t(f) * n + yy) * n + xx] = 1;
-            }
-    return mask;
-}
-
-// Texels whose centre direction lies within `halfAngle` of `axis` (a bounding cone).
-std::vector<char> coneCoverage(glm::vec3 axis, float halfAngle, int n) {
-    std::vector<char> mask(std::size_t(6) * n * n, 0);
-    const float cosHalf = std::cos(std::min(halfAngle + 0.5f * kPi / float(n), kPi));
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                const glm::vec2 uv((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
-                const glm::vec3 d = glm::normalize(glsl::cubeFaceDirection(f, uv));
-                if (glm::dot(d, axis) >= cosHalf) mask[(std::size_t(f) * n + y) * n + x] = 1;
-            }
-    return mask;
-}
-
-bool overlaps(const std::vector<char>& a, const std::vector<char>& b) {
-    for (std::size_t i = 0; i < a.size(); ++i)
-        if (a[i] && b[i]) return true;
-    return false;
-}
 
 std::string fmt(float v, int digits = 2) {
     std::ostringstream s;
@@ -97,39 +64,38 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
         }
     }
 
-    // Visibility from the probe centre, one layer per object, at low resolution.
-    DistanceBakeOptions bo;
-    bo.centre = centre;
-    bo.faceRes = t.analysisFaceRes;
-    bo.reflectorReach = reach;
-    bo.withSky = false;
-    for (const EnvironmentObject& o : markup.objects)
-        bo.layers.push_back({o.name, {o.name}, "-"});
-    DistanceProbeAsset analysis;
-    if (!markup.objects.empty()) analysis = bakeDistanceProbe(registry, markup, bo);
+    // Visibility from the probe centre, each object on its own, at low resolution.
+    const CubeTexels cube(t.analysisFaceRes);
+    const std::vector<ObjectView> views = viewObjectsFromCentre(registry, markup, centre, cube);
 
     const float tolRad = t.maxErrorDeg * kPi / 180.f;
     const float texelAngle = 0.5f * kPi / float(t.analysisFaceRes);
+    // Near objects overlap where their grown coverage shares a texel. Per texel, the nearest
+    // near object given the average distance and the farthest near object are all the
+    // occlusion test needs: O(objects x texels), where comparing every pair was quadratic.
+    struct TexelDepths {
+        int objects = 0;
+        float nearestAvgdist = std::numeric_limits<float>::infinity();
+        float farthest = -std::numeric_limits<float>::infinity();
+    };
+    std::vector<TexelDepths> texels(cube.size());
     struct Near {
         std::size_t object;
-        std::vector<char> mask;
     };
     std::vector<Near> nears;
     std::vector<std::string> distant;
-    for (std::size_t i = 1; i < analysis.layers.size(); ++i) {
-        const DistanceProbeLayer& L = analysis.layers[i];
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        const ObjectView& L = views[i];
+        const EnvironmentObject& o = markup.objects[i];
         PlannedObject po;
-        po.name = L.name;
-        po.nearest = L.minDistance;
-        po.average = L.avgDistance;
+        po.name = o.name;
+        po.nearest = L.nearest;
+        po.average = L.average;
         po.solidAngle = L.solidAngle;
-        std::vector<char> cone;
+        std::vector<std::uint32_t> cone;
         if (L.solidAngle <= 0.f) {
             // Smaller than the analysis texels (or hidden from the centre): judge it by its
             // bounding sphere instead, which errs on the side of correcting it.
-            const EnvironmentObject& o =
-                *std::find_if(markup.objects.begin(), markup.objects.end(),
-                              [&](const EnvironmentObject& e) { return e.name == L.name; });
             const glm::vec3 mid = 0.5f * (o.boundsMin + o.boundsMax) - centre;
             const float radius = 0.5f * glm::length(o.boundsMax - o.boundsMin);
             const float dist = glm::length(mid);
@@ -143,7 +109,7 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
             po.nearest = dist - radius;
             po.average = dist;
             po.solidAngle = 2.f * kPi * (1.f - std::cos(halfAngle));
-            cone = coneCoverage(glm::normalize(mid), halfAngle, t.analysisFaceRes);
+            cone = texelsInCone(cube, glm::normalize(mid), halfAngle);
         }
         // From a reflector point up to `reach` off the centre, the direction to the object's
         // nearest point turns by at most asin(reach / nearest): the direction-only error.
@@ -153,7 +119,7 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
             po.decision = "distant";
             po.reason = "direction-only error <= " + fmt(po.parallaxDeg) + " deg < " +
                         fmt(t.maxErrorDeg) + " deg at " + fmt(po.nearest) + " m";
-            distant.push_back(L.name);
+            distant.push_back(o.name);
         } else {
             po.decision = po.solidAngle >= t.rectifySolidAngle ? "rectify" : "avgdist";
             po.reason = "parallax up to " + fmt(po.parallaxDeg, 1) + " deg; covers " +
@@ -161,10 +127,18 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
                         fmt(t.rectifySolidAngle, 3) + " sr -> " +
                         (po.decision == "rectify" ? "per-pixel rectification" : "average distance");
             const int grow = int(std::ceil(parallax / texelAngle));
-            std::vector<char> mask = coverage(L, analysis.dInf, grow);
-            for (std::size_t k = 0; k < cone.size(); ++k)
-                mask[k] |= cone[k];
-            nears.push_back({plan.objects.size(), std::move(mask)});
+            std::vector<char> mask = grownMask(L.texels, t.analysisFaceRes, grow);
+            for (std::uint32_t k : cone)
+                mask[k] = 1;
+            for (std::size_t k = 0; k < mask.size(); ++k) {
+                if (!mask[k]) continue;
+                TexelDepths& d = texels[k];
+                ++d.objects;
+                d.farthest = std::max(d.farthest, po.nearest);
+                if (po.decision == "avgdist")
+                    d.nearestAvgdist = std::min(d.nearestAvgdist, po.nearest);
+            }
+            nears.push_back({plan.objects.size()});
         }
         plan.objects.push_back(po);
     }
@@ -173,25 +147,22 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     // can show in the reflection, so each keeps a layer of its own: with tight per-layer
     // bounds a ray that misses an object skips its layer without a fetch, which is cheaper
     // than merging objects into wide layers every ray must search.
-    std::sort(nears.begin(), nears.end(), [&](const Near& a, const Near& b) {
+    std::stable_sort(nears.begin(), nears.end(), [&](const Near& a, const Near& b) {
         return plan.objects[a.object].nearest < plan.objects[b.object].nearest;
     });
     bool anyOverlap = false;
     float occluderParallax = 0.f; // widest band a small occluder can uncover, degrees
-    for (std::size_t i = 0; i < nears.size(); ++i)
-        for (std::size_t j = 0; j < i; ++j)
-            if (overlaps(nears[i].mask, nears[j].mask)) {
-                anyOverlap = true;
-                // What a small occluder uncovers as the reflector moves by `reach`: its
-                // parallax relative to what lies behind it, reach (1/d_front - 1/d_back).
-                const PlannedObject& front = plan.objects[nears[j].object];
-                const PlannedObject& back = plan.objects[nears[i].object];
-                if (front.decision == "avgdist" && back.nearest > front.nearest) {
-                    const float uncovered =
-                        reach * (1.f / front.nearest - 1.f / back.nearest) * 180.f / kPi;
-                    occluderParallax = std::max(occluderParallax, uncovered);
-                }
-            }
+    for (const TexelDepths& d : texels) {
+        if (d.objects < 2) continue;
+        anyOverlap = true;
+        // What a small occluder uncovers as the reflector moves by `reach`: its parallax
+        // relative to what lies behind it, reach (1/d_front - 1/d_back); widest for the
+        // nearest small occluder in front of the farthest object sharing the texel.
+        if (d.farthest > d.nearestAvgdist)
+            occluderParallax =
+                std::max(occluderParallax,
+                         reach * (1.f / d.nearestAvgdist - 1.f / d.farthest) * 180.f / kPi);
+    }
     for (const Near& n : nears) {
         const PlannedObject& po = plan.objects[n.object];
         const bool rectify = po.decision == "rectify";

@@ -1,5 +1,6 @@
 #include "lightfield_bake.h"
 
+#include "assetcooker/lib/probe_sanity.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 #include "engine/image/image_io.h"
@@ -84,9 +85,13 @@ LightFieldAsset bakeLightFieldProbe(ecs::Registry& registry, const SceneMarkup& 
         throw Error("", "depthPercentile", "expected [0, 0.5]");
     const auto start = std::chrono::steady_clock::now();
 
+    // The same placement check as the distance bake, so both flavours refuse and accept the
+    // same scenes: sky without geometry is legal (every slab holds the sky).
+    const std::vector<std::string> warnings =
+        checkProbePlacement(registry, markup, opt.cellCentre, opt.sky && !opt.sky->empty());
+    if (opt.warnings) opt.warnings->insert(opt.warnings->end(), warnings.begin(), warnings.end());
     const auto& mirrors = markup.mirrorEntities;
     const EmbreeScene environment(registry, [&](ecs::Entity e) { return !mirrors.count(e); });
-    if (environment.empty()) throw Error("", "scene", "has no environment geometry to bake");
 
     LightFieldAsset asset;
     asset.cellCentre = opt.cellCentre;

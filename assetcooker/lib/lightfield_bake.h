@@ -33,6 +33,8 @@ struct LightFieldBakeOptions {
     const Image* sky = nullptr;           // equirectangular; black when null
     std::function<void(double)> progress; // fraction done, from the baking threads
     std::function<bool()> cancelled;      // polled per camera; true aborts with Error
+    // Where the cell centre's placement warnings go (checkProbePlacement); null: dropped.
+    std::vector<std::string>* warnings = nullptr;
 };
 
 LightFieldAsset bakeLightFieldProbe(ecs::Registry& registry, const SceneMarkup& markup,

@@ -1,17 +1,19 @@
 #include "distance_probe_asset.h"
 
+#include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/probe_folder.h"
 
 #include "engine/core/error.h"
+#include "engine/core/regular_file.h"
 #include "engine/image/image_io.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -19,21 +21,56 @@ using nlohmann::json;
 
 namespace specula {
 
-std::string fileChecksum(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path, "", "cannot open file for its checksum");
+namespace {
+
+// FNV-1a 64-bit, fed in pieces.
+struct Fnv1a64 {
     std::uint64_t h = 0xcbf29ce484222325ull;
-    char buf[1 << 16];
-    while (in) {
-        in.read(buf, sizeof buf);
-        for (std::streamsize i = 0; i < in.gcount(); ++i) {
-            h ^= static_cast<unsigned char>(buf[i]);
+    void add(const unsigned char* p, std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i) {
+            h ^= p[i];
             h *= 0x100000001b3ull;
         }
     }
-    char hex[32];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-    return std::string("fnv1a64:") + hex;
+    std::string text() const {
+        char hex[32];
+        std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+        return std::string("fnv1a64:") + hex;
+    }
+};
+
+// Largest file a probe layer of face resolution n can be: an N x 6N float RGBA EXR is 96 N^2
+// bytes of pixels; the rest (header, offset tables, chunk headers) is far below the margin.
+std::uint64_t maxLayerFileBytes(int n) {
+    return 100ull * std::uint64_t(n) * std::uint64_t(n) + (1ull << 20);
+}
+constexpr std::uint64_t kMaxSkyFileBytes = 4ull << 30;
+
+} // namespace
+
+std::string fileChecksum(const std::string& path, std::uint64_t maxBytes) {
+    RegularFile file(path, maxBytes);
+    Fnv1a64 h;
+    std::vector<unsigned char> buf(1 << 16);
+    while (const std::size_t got = file.read(buf.data(), buf.size()))
+        h.add(buf.data(), got);
+    return h.text();
+}
+
+std::string bytesChecksum(const void* data, std::size_t size) {
+    Fnv1a64 h;
+    h.add(static_cast<const unsigned char*>(data), size);
+    return h.text();
+}
+
+double cubeTexelSolidAngle(int x, int y, int n) {
+    // The integral of dA cos / r^2 over the texel: signed sum of the corner function
+    // atan(st / sqrt(s^2 + t^2 + 1)) at the texel's four corners (s, t in [-1, 1]).
+    auto corner = [n](int i, int j) {
+        const double s = 2.0 * i / n - 1.0, t = 2.0 * j / n - 1.0;
+        return std::atan2(s * t, std::sqrt(s * s + t * t + 1.0));
+    };
+    return corner(x + 1, y + 1) - corner(x, y + 1) - corner(x + 1, y) + corner(x, y);
 }
 
 namespace {
@@ -70,71 +107,194 @@ std::array<Image, 6> splitFaces(const Image& stacked) {
     return faces;
 }
 
-// Typed field access that names the file and the JSON path on every failure.
-struct Reader {
-    const std::string& file;
+// --- content checks: what the images hold, against the manifest -----------------------------
 
-    const json& member(const json& obj, const std::string& key, const std::string& path) const {
-        if (!obj.is_object() || !obj.contains(key))
-            throw Error(file, path + key, "missing (expected a value here)");
-        return obj.at(key);
+std::string texelName(int face, int x, int y) {
+    static const char* names[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+    return std::string("face ") + names[face] + " texel (" + std::to_string(x) + ", " +
+           std::to_string(y) + ")";
+}
+
+std::string shortNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+bool radianceOk(const float* rgb) {
+    return rgb[0] >= 0.f && rgb[0] <= kMaxRadiance && rgb[1] >= 0.f && rgb[1] <= kMaxRadiance &&
+           rgb[2] >= 0.f && rgb[2] <= kMaxRadiance; // false for NaN too
+}
+
+// Throws for the first RGB channel that is not finite in [0, kMaxRadiance].
+void refuseRadiance(const float* p, const std::string& file, const std::string& where) {
+    for (int c = 0; c < 3; ++c)
+        if (!(p[c] >= 0.f && p[c] <= kMaxRadiance))
+            throw Error(file, "radiance",
+                        where + " channel " + "RGB"[c] + " holds " + shortNumber(p[c]) +
+                            "; expected a finite radiance in [0, " + shortNumber(kMaxRadiance) +
+                            "]");
+}
+
+// Solid angle of every texel of an N x N face, row-major (the same for all six faces):
+// computed once per probe, so measuring a layer is one pass over its texels.
+std::vector<float> faceSolidAngles(int n) {
+    std::vector<float> out(std::size_t(n) * std::size_t(n));
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            out[std::size_t(y) * std::size_t(n) + std::size_t(x)] =
+                float(cubeTexelSolidAngle(x, y, n));
+    return out;
+}
+
+DistanceLayerContent scanLayer(const std::array<Image, 6>& faces, float dInf,
+                               const std::vector<float>& solidAngles, const std::string& file) {
+    const int n = faces[0].width;
+    DistanceLayerContent c;
+    float lo = FLT_MAX, hi = 0.f;
+    for (int f = 0; f < 6; ++f) {
+        const Image& img = faces[std::size_t(f)];
+        if (img.width != n || img.height != n || img.channels != 4 ||
+            img.pixels.size() != std::size_t(n) * std::size_t(n) * 4)
+            throw Error(file, "size",
+                        "face " + std::to_string(f) + " is not " + std::to_string(n) + " x " +
+                            std::to_string(n) + " RGBA");
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const float* p = img.at(x, y);
+                if (!radianceOk(p)) refuseRadiance(p, file, texelName(f, x, y));
+                const float d = p[3];
+                if (!(d > 0.f && d <= dInf))
+                    throw Error(file, "distance",
+                                texelName(f, x, y) + " holds " + shortNumber(d) +
+                                    "; expected a distance in (0, d_inf = " + shortNumber(dInf) +
+                                    "]");
+                if (d == dInf) continue; // sees nothing
+                lo = std::min(lo, d);
+                hi = std::max(hi, d);
+                c.solidAngle += solidAngles[std::size_t(y) * std::size_t(n) + std::size_t(x)];
+            }
     }
-    float number(const json& obj, const std::string& key, const std::string& path, float lo,
-                 float hi) const {
-        const json& v = member(obj, key, path);
-        if (!v.is_number()) throw Error(file, path + key, "expected a number");
-        const double d = v.get<double>();
-        if (!std::isfinite(d) || d < lo || d > hi)
-            throw Error(file, path + key,
-                        "expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                            "], got " + v.dump());
-        return float(d);
+    c.minDistance = c.solidAngle > 0.0 ? lo : 0.f;
+    c.maxDistance = hi;
+    return c;
+}
+
+// The manifest's figures for a layer against what its image holds. A layer file swapped with
+// another (checksums and all) or edited (checksum updated) fails here.
+void checkFigures(const DistanceProbeLayer& L, const DistanceLayerContent& c,
+                  const std::string& manifest, const std::string& path, const std::string& image) {
+    // Distances pass float -> JSON -> float exactly; the margin only absorbs a writer that
+    // rounds. Solid angles are sums over texels: 1e-3 sr absorbs a writer's own rounding
+    // (and the 12.566 some tools write for 4 pi) while a swapped layer differs by whole texels.
+    auto mismatch = [&](const char* key, double stored, double measured, const char* what) {
+        throw Error(manifest, path + key,
+                    "says " + shortNumber(stored) + " but " + image + " holds " +
+                        shortNumber(measured) + " (" + what +
+                        "); the layer file was swapped or edited");
+    };
+    const double tol = 1e-5 * std::max(1.0, double(c.maxDistance));
+    if (std::fabs(double(L.minDistance) - c.minDistance) > tol)
+        mismatch("min_distance", L.minDistance, c.minDistance, "its nearest hit");
+    if (std::fabs(double(L.maxDistance) - c.maxDistance) > tol)
+        mismatch("max_distance", L.maxDistance, c.maxDistance, "its farthest hit");
+    if (std::fabs(double(L.solidAngle) - c.solidAngle) > 1e-3 + 1e-4 * c.solidAngle)
+        mismatch("solid_angle_sr", L.solidAngle, c.solidAngle, "steradians it hits");
+    if (c.solidAngle > 0.0 &&
+        !(L.avgDistance >= c.minDistance - tol && L.avgDistance <= c.maxDistance + tol))
+        throw Error(manifest, path + "avg_distance",
+                    "says " + shortNumber(L.avgDistance) + ", outside the layer's own range [" +
+                        shortNumber(c.minDistance) + ", " + shortNumber(c.maxDistance) + "]");
+}
+
+// Layer 0, the composite of the whole environment, is per texel the nearest of the object
+// layers (each object layer sees a subset of the same geometry, so never nearer). A layer
+// swapped with the composite fails here even when its manifest entry moved with it.
+void checkCompositeNearest(const DistanceProbeAsset& a, const std::string& manifest,
+                           const std::vector<std::string>& files) {
+    const int n = a.faceRes;
+    for (std::size_t k = 1; k < a.layers.size(); ++k)
+        for (int f = 0; f < 6; ++f)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    const float d0 = a.layers[0].faces[std::size_t(f)].at(x, y)[3];
+                    const float dk = a.layers[k].faces[std::size_t(f)].at(x, y)[3];
+                    // 1e-5: the same hit traced through two acceleration structures.
+                    if (d0 <= dk * (1.f + 1e-5f)) continue;
+                    throw Error(manifest, "layers[0]",
+                                "the composite (" + files[0] + ") is farther than layers[" +
+                                    std::to_string(k) + "] (" + files[k] + ") at " +
+                                    texelName(f, x, y) + ": " + shortNumber(d0) + " vs " +
+                                    shortNumber(dk) +
+                                    "; layer 0 must be the nearest of the object layers "
+                                    "(layers swapped?)");
+                }
+}
+
+// Everything the reader checks of the images' content; the writer runs it too, so a bake
+// never writes a probe its own reader would refuse. `files[i]` names layer i's image.
+void checkContent(const DistanceProbeAsset& a, const std::string& manifest,
+                  const std::vector<std::string>& files, const std::string& skyFile) {
+    if (a.layers.empty()) throw Error(manifest, "layers", "expected at least the composite");
+    const std::vector<float> solidAngles = faceSolidAngles(a.faceRes);
+    for (std::size_t i = 0; i < a.layers.size(); ++i) {
+        const DistanceProbeLayer& L = a.layers[i];
+        if (L.faces[0].width != a.faceRes)
+            throw Error(files[i], "size",
+                        "expected faces of " + std::to_string(a.faceRes) + " texels, got " +
+                            std::to_string(L.faces[0].width));
+        const DistanceLayerContent c = scanLayer(L.faces, a.dInf, solidAngles, files[i]);
+        checkFigures(L, c, manifest, "layers[" + std::to_string(i) + "].", files[i]);
     }
-    std::string string(const json& obj, const std::string& key, const std::string& path) const {
-        const json& v = member(obj, key, path);
-        if (!v.is_string()) throw Error(file, path + key, "expected a string");
-        return v.get<std::string>();
-    }
-    glm::vec3 vec3(const json& obj, const std::string& key, const std::string& path) const {
-        const json& v = member(obj, key, path);
-        if (!v.is_array() || v.size() != 3)
-            throw Error(file, path + key, "expected an array of 3 numbers");
-        glm::vec3 out;
-        for (int i = 0; i < 3; ++i) {
-            if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-                throw Error(file, path + key, "expected an array of 3 finite numbers");
-            out[i] = v[i].get<float>();
+    checkCompositeNearest(a, manifest, files);
+    if (a.sky.empty()) return;
+    const int channels = std::min(a.sky.channels, 3);
+    for (int y = 0; y < a.sky.height; ++y)
+        for (int x = 0; x < a.sky.width; ++x) {
+            const float* p = a.sky.at(x, y);
+            const float rgb[3] = {p[0], channels > 1 ? p[1] : p[0], channels > 2 ? p[2] : p[0]};
+            if (!radianceOk(rgb))
+                refuseRadiance(rgb, skyFile,
+                               "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")");
         }
-        return out;
-    }
-    // A file named in the manifest: relative, inside the probe folder, checksum matching.
-    std::string checkedFile(const json& obj, const std::string& path, const fs::path& dir,
-                            std::string& checksumOut) const {
-        const std::string name = string(obj, "file", path);
-        if (name.empty() || fs::path(name).is_absolute() || name.find("..") != std::string::npos)
-            throw Error(file, path + "file", "expected a plain file name inside the probe folder");
-        const std::string full = (dir / name).string();
-        if (!fs::exists(full)) throw Error(file, path + "file", "names missing file " + full);
-        checksumOut = string(obj, "checksum", path);
-        const std::string actual = fileChecksum(full);
-        if (actual != checksumOut)
-            throw Error(file, path + "checksum",
-                        "mismatch for " + name + ": manifest says " + checksumOut + ", file has " +
-                            actual);
-        return full;
-    }
-};
+}
 
+} // namespace
+
+DistanceLayerContent measureDistanceLayer(const std::array<Image, 6>& faces, float dInf,
+                                          const std::string& file) {
+    return scanLayer(faces, dInf, faceSolidAngles(faces[0].width), file);
+}
+
+namespace {
+std::string layerFileName(std::size_t i) {
+    char name[64];
+    std::snprintf(name, sizeof name, "layer_%02zu.exr", i);
+    return name;
+}
 } // namespace
 
 void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
                         const std::string& sourceScene) {
-    writeProbeFolder(dir, [&](const fs::path& tmp) {
+    // The reader's checks, before anything is written: a probe its reader would refuse is
+    // never written (errors name the files as they would be).
+    for (int i = 0; i < 3; ++i)
+        if (!(std::fabs(asset.centre[i]) <= kMaxCoordinate))
+            throw Error(dir, "centre",
+                        "coordinate " + shortNumber(asset.centre[i]) + " is beyond " +
+                            shortNumber(kMaxCoordinate) + " m (float precision)");
+    std::vector<std::string> files;
+    for (std::size_t i = 0; i < asset.layers.size(); ++i)
+        files.push_back((fs::path(dir) / layerFileName(i)).string());
+    checkContent(asset, (fs::path(dir) / "manifest.json").string(), files,
+                 (fs::path(dir) / "sky.exr").string());
+
+    writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
         json layers = json::array();
         for (std::size_t i = 0; i < asset.layers.size(); ++i) {
+            throwIfCancelled(dir); // a signal between files wins; nothing is committed
             const DistanceProbeLayer& L = asset.layers[i];
-            char name[64];
-            std::snprintf(name, sizeof name, "layer_%02zu.exr", i);
+            const std::string name = layerFileName(i);
             const std::string path = (tmp / name).string();
             writeImage(path, stackFaces(L.faces));
             layers.push_back({{"name", L.name},
@@ -174,27 +334,17 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
 }
 
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {
-    std::ifstream in(manifestPath, std::ios::binary);
-    if (!in) throw Error(manifestPath, "", "cannot open manifest");
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw Error(manifestPath, "", "read failed");
-    return parseDistanceProbe(text, manifestPath);
+    return parseDistanceProbe(readManifestText(manifestPath), manifestPath);
 }
 
 DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
                                       const std::string& manifestPath) {
-    json m;
-    try {
-        m = json::parse(manifestText);
-    } catch (const json::exception& e) {
-        throw Error(manifestPath, "", std::string("not valid JSON: ") + e.what());
-    }
-    const Reader r{manifestPath};
+    const json m = parseManifestJson(manifestText, manifestPath);
+    const ManifestFields r{manifestPath};
     const fs::path dir = fs::path(manifestPath).parent_path();
     if (r.string(m, "format", "") != "specula-probe")
         throw Error(manifestPath, "format", "expected \"specula-probe\"");
-    const float version = r.number(m, "version", "", 0.f, 1e6f);
-    if (version != float(kProbeFormatVersion))
+    if (r.integer(m, "version", "", 0, 1000000) != kProbeFormatVersion)
         throw Error(manifestPath, "version",
                     "unknown format version " + m["version"].dump() + " (this build reads " +
                         std::to_string(kProbeFormatVersion) + ")");
@@ -202,34 +352,43 @@ DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
         throw Error(manifestPath, "flavour", "expected \"distance\"");
 
     DistanceProbeAsset a;
-    a.centre = r.vec3(m, "centre", "");
-    a.range = r.number(m, "range_D", "", 1e-6f, 1e7f);
-    a.dInf = r.number(m, "d_inf", "", 1e-6f, 1e9f);
-    a.faceRes = int(r.number(m, "face_res", "", 1.f, 8192.f));
+    a.centre = r.vec3(m, "centre", "", kMaxCoordinate);
+    a.range = float(r.number(m, "range_D", "", 1e-6, 1e7));
+    a.dInf = float(r.number(m, "d_inf", "", 1e-6, 1e9));
+    a.faceRes = r.integer(m, "face_res", "", 1, 8192);
+    // Probe-local bounds: any float (a probe of an empty environment stores an empty box).
     const json& box = r.member(m, "box", "");
-    a.boxMin = r.vec3(box, "min", "box.");
-    a.boxMax = r.vec3(box, "max", "box.");
+    a.boxMin = r.vec3(box, "min", "box.", FLT_MAX);
+    a.boxMax = r.vec3(box, "max", "box.", FLT_MAX);
     const json& layers = r.member(m, "layers", "");
     if (!layers.is_array() || layers.empty() || layers.size() > 256)
         throw Error(manifestPath, "layers", "expected an array of 1 to 256 layers");
+    std::vector<std::string> files;
     for (std::size_t i = 0; i < layers.size(); ++i) {
         const std::string path = "layers[" + std::to_string(i) + "].";
+        const json& j = layers[i];
         DistanceProbeLayer L;
-        L.name = r.string(layers[i], "name", path);
-        L.avgDistance = r.number(layers[i], "avg_distance", path, 0.f, 1e9f);
-        L.minDistance = r.number(layers[i], "min_distance", path, 0.f, 1e9f);
-        L.maxDistance = r.number(layers[i], "max_distance", path, 0.f, 1e9f);
-        L.solidAngle = r.number(layers[i], "solid_angle_sr", path, 0.f, 13.f);
-        L.method = r.string(layers[i], "method", path);
-        L.boxMin = r.vec3(layers[i], "box_min", path);
-        L.boxMax = r.vec3(layers[i], "box_max", path);
-        if (const json& objs = r.member(layers[i], "objects", path); objs.is_array()) {
-            for (const json& o : objs)
-                if (o.is_string()) L.objects.push_back(o.get<std::string>());
+        L.name = r.string(j, "name", path);
+        L.avgDistance = float(r.number(j, "avg_distance", path, 0.0, 1e9));
+        L.minDistance = float(r.number(j, "min_distance", path, 0.0, 1e9));
+        L.maxDistance = float(r.number(j, "max_distance", path, 0.0, 1e9));
+        L.solidAngle = float(r.number(j, "solid_angle_sr", path, 0.0, 13.0));
+        L.method = r.string(j, "method", path);
+        L.boxMin = r.vec3(j, "box_min", path, FLT_MAX);
+        L.boxMax = r.vec3(j, "box_max", path, FLT_MAX);
+        const json& objects = r.member(j, "objects", path);
+        if (!objects.is_array()) throw Error(manifestPath, path + "objects", "expected an array");
+        for (const json& o : objects) {
+            if (!o.is_string())
+                throw Error(manifestPath, path + "objects", "expected an array of node names");
+            L.objects.push_back(o.get<std::string>());
         }
-        const std::string file = r.checkedFile(layers[i], path, dir, L.checksum);
-        L.file = r.string(layers[i], "file", path);
-        const Image stacked = readImage(file, false);
+        const std::string file = r.fileInFolder(j, path, dir);
+        L.file = r.string(j, "file", path);
+        L.checksum = r.checksum(j, path, r.namedFile(path, [&] {
+            return fileChecksum(file, maxLayerFileBytes(a.faceRes));
+        }));
+        const Image stacked = readFloatExr(file);
         if (stacked.width != a.faceRes || stacked.height != 6 * a.faceRes || stacked.channels < 4)
             throw Error(file, "size",
                         "expected " + std::to_string(a.faceRes) + " x " +
@@ -238,17 +397,23 @@ DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
                             " with " + std::to_string(stacked.channels) + " channels");
         L.faces = splitFaces(stacked);
         a.layers.push_back(std::move(L));
+        files.push_back(file);
     }
     if (m.contains("effect_plan")) {
         if (!m["effect_plan"].is_object())
             throw Error(manifestPath, "effect_plan", "expected an object");
         a.effectPlan = m["effect_plan"].dump();
     }
+    std::string skyFile;
     if (m.contains("sky")) {
-        const std::string file = r.checkedFile(m["sky"], "sky.", dir, a.skyChecksum);
+        skyFile = r.fileInFolder(m["sky"], "sky.", dir);
         a.skyFile = r.string(m["sky"], "file", "sky.");
-        a.sky = readImage(file, false);
+        a.skyChecksum = r.checksum(m["sky"], "sky.", r.namedFile("sky.", [&] {
+            return fileChecksum(skyFile, kMaxSkyFileBytes);
+        }));
+        a.sky = readFloatExr(skyFile);
     }
+    checkContent(a, manifestPath, files, skyFile);
     return a;
 }
 

@@ -6,6 +6,8 @@
 #include "engine/image/image.h"
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,13 @@
 namespace specula {
 
 inline constexpr int kProbeFormatVersion = 1;
+
+// Largest radiance a cooked probe may hold (layers and sky). 65504 is the largest half
+// float: HDR panoramas are commonly stored as half EXR, so no real sky is brighter, and
+// anything brighter (1e38 in a tampered file) is garbage rather than light -- it would
+// overflow every squared-error metric downstream (PSNR -760 dB). Also keeps any float sum
+// of squared errors over a frame finite.
+inline constexpr float kMaxRadiance = 65504.f;
 
 struct DistanceProbeLayer {
     std::string name;
@@ -43,8 +52,25 @@ struct DistanceProbeAsset {
     int objectLayerCount() const { return int(layers.size()) - 1; }
 };
 
-// FNV-1a 64-bit of a file's bytes as "fnv1a64:<16 hex digits>". Throws Error naming the file.
-std::string fileChecksum(const std::string& path);
+// FNV-1a 64-bit of a file's bytes as "fnv1a64:<16 hex digits>". Only a regular file of at
+// most maxBytes is read (never a FIFO, device or directory). Throws Error naming the file.
+std::string fileChecksum(const std::string& path, std::uint64_t maxBytes = 16ull << 30);
+// The same checksum of bytes in memory.
+std::string bytesChecksum(const void* data, std::size_t size);
+
+// Solid angle (steradians) of texel (x, y) of an n x n cube face.
+double cubeTexelSolidAngle(int x, int y, int n);
+
+// What a layer's faces hold, over the texels that hit something (distance < d_inf): the
+// figures the manifest states for the layer, which the reader checks against its image.
+struct DistanceLayerContent {
+    float minDistance = 0.f, maxDistance = 0.f; // 0, 0 when nothing is hit
+    double solidAngle = 0.0;                    // steradians
+};
+// Measures a layer and checks every texel: RGB finite in [0, kMaxRadiance], distance finite
+// in (0, dInf]. Throws Error(file, "radiance" or "distance", ...) naming the face and texel.
+DistanceLayerContent measureDistanceLayer(const std::array<Image, 6>& faces, float dInf,
+                                          const std::string& file);
 
 // Writes DIR/manifest.json and the layer EXRs. Everything goes to a sibling temporary folder
 // first and replaces DIR by rename, so an interrupted or failed write leaves DIR as it was.
@@ -52,7 +78,12 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
                         const std::string& sourceScene);
 
 // Reads and validates a manifest and its images: format version, every field's type and
-// range, file checksums. Errors name the file and the field.
+// range (centres within kMaxCoordinate, face_res an integer), file checksums, and the
+// images' content: float OpenEXR, every texel valid (measureDistanceLayer), each layer's
+// min/max distance and solid angle as the manifest states them, and layer 0 per texel the
+// nearest of the object layers. Files are read only when regular (no FIFO, device or
+// directory). Errors name the file and the field.
+// writeDistanceProbe runs the same content checks before writing.
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath);
 
 // readDistanceProbe on manifest text already in memory (the fuzzer's entry point):

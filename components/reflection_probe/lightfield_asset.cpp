@@ -2,8 +2,10 @@
 
 #include "components/reflection_probe/probe_folder.h"
 
-#include "components/reflection_probe/distance_probe_asset.h" // fileChecksum, kProbeFormatVersion
+#include "components/reflection_probe/distance_probe_asset.h" // checksums, kProbeFormatVersion
+#include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
+#include "engine/core/regular_file.h"
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -71,52 +73,6 @@ json vec3Json(glm::vec3 v) {
 json depthJson(float d) {
     return std::isinf(d) ? json(nullptr) : json(d);
 }
-
-// Typed manifest access naming the file and the JSON path on every failure.
-struct Fields {
-    const std::string& file;
-
-    const json& member(const json& obj, const std::string& key, const std::string& path) const {
-        if (!obj.is_object() || !obj.contains(key))
-            throw Error(file, path + key, "missing (expected a value here)");
-        return obj.at(key);
-    }
-    double number(const json& obj, const std::string& key, const std::string& path, double lo,
-                  double hi, bool nullIsInf = false) const {
-        const json& v = member(obj, key, path);
-        if (nullIsInf && v.is_null()) return std::numeric_limits<double>::infinity();
-        if (!v.is_number()) throw Error(file, path + key, "expected a number");
-        const double d = v.get<double>();
-        if (!std::isfinite(d) || d < lo || d > hi)
-            throw Error(file, path + key,
-                        "expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                            "], got " + v.dump());
-        return d;
-    }
-    int integer(const json& obj, const std::string& key, const std::string& path, int lo,
-                int hi) const {
-        const double d = number(obj, key, path, lo, hi);
-        if (d != std::floor(d)) throw Error(file, path + key, "expected an integer");
-        return int(d);
-    }
-    std::string string(const json& obj, const std::string& key, const std::string& path) const {
-        const json& v = member(obj, key, path);
-        if (!v.is_string()) throw Error(file, path + key, "expected a string");
-        return v.get<std::string>();
-    }
-    glm::vec3 vec3(const json& obj, const std::string& key, const std::string& path) const {
-        const json& v = member(obj, key, path);
-        if (!v.is_array() || v.size() != 3)
-            throw Error(file, path + key, "expected an array of 3 numbers");
-        glm::vec3 out;
-        for (int i = 0; i < 3; ++i) {
-            if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-                throw Error(file, path + key, "expected an array of 3 finite numbers");
-            out[i] = v[i].get<float>();
-        }
-        return out;
-    }
-};
 
 void writeBytes(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
     std::ofstream out(path, std::ios::binary);
@@ -244,12 +200,71 @@ std::vector<std::uint8_t> decodeBC1(const std::uint8_t* blocks, int width, int h
     return out;
 }
 
+namespace {
+
+// A BC1 block the GPU cannot decode to a colour: with c0 <= c1 a block is in BC1's
+// three-colour mode, where index 3 means transparent black. The baker never writes it (its
+// blocks have c0 > c1, or c0 == c1 with every index 0); random or damaged bytes hit it in
+// about half their blocks. Returns the index of the first such block, or -1.
+long firstUndecodableBC1Block(const std::vector<std::uint8_t>& data) {
+    for (std::size_t b = 0; b + 8 <= data.size(); b += 8) {
+        const std::uint8_t* p = &data[b];
+        const unsigned c0 = unsigned(p[0] | (p[1] << 8)), c1 = unsigned(p[2] | (p[3] << 8));
+        if (c0 > c1) continue;
+        for (int i = 0; i < 16; ++i)
+            if (((p[4 + i / 4] >> (2 * (i % 4))) & 3) == 3) return long(b / 8);
+    }
+    return -1;
+}
+
+// The figures of one slab against each other: what the bake derives from its depth
+// histogram (near <= focal <= far, disparity from the focal depth, disjoint fractions).
+void checkSlabFigures(const LightFieldAsset& a, const LightFieldSlab& s,
+                      const std::string& manifest, const std::string& path) {
+    const auto fail = [&](const char* key, const std::string& why) {
+        throw Error(manifest, path + key, why);
+    };
+    if (!(s.nearDepth <= s.farDepth))
+        fail("depth_near", "exceeds depth_far (" + std::to_string(s.farDepth) + ")");
+    if (!(s.minDepth <= s.maxDepth))
+        fail("depth_min", "exceeds depth_max (" + std::to_string(s.maxDepth) + ")");
+    const float slack = std::isfinite(s.focalDepth) ? 1e-5f * s.focalDepth : 0.f;
+    if (!(s.focalDepth >= s.nearDepth - slack && s.focalDepth <= s.farDepth + slack))
+        fail("focal_depth", "is not between depth_near and depth_far (it is their harmonic mean)");
+    if (!(double(s.skyFraction) + double(s.intrudingFraction) <= 1.0 + 1e-6))
+        fail("sky_fraction", "plus intruding_fraction exceeds 1");
+    const float expected = disparityForDepth(a, s.focalDepth);
+    if (!(std::fabs(s.disparity - expected) <= 1e-4f * expected + 1e-6f))
+        fail("disparity_px", "is " + std::to_string(s.disparity) + ", the focal depth gives " +
+                                 std::to_string(expected) +
+                                 " (camera_spacing / focal_depth * RES / 2)");
+}
+
+} // namespace
+
 void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
                           const std::string& sourceScene) {
     validateLightFieldSize(a.cameras, a.res, a.cellSize, a.compression, "");
-    writeProbeFolder(dir, [&](const fs::path& tmp) {
+    // The reader's checks, before anything is written: a probe its reader would refuse is
+    // never written.
+    const std::string manifest = (fs::path(dir) / "manifest.json").string();
+    for (int i = 0; i < 3; ++i)
+        if (!(std::fabs(a.cellCentre[i]) <= kMaxCoordinate))
+            throw Error(manifest, "cell.centre",
+                        "coordinate " + std::to_string(a.cellCentre[i]) + " is beyond " +
+                            std::to_string(kMaxCoordinate) + " m (float precision)");
+    for (int k = 0; k < 6; ++k) {
+        const LightFieldSlab& s = a.slabs[std::size_t(k)];
+        checkSlabFigures(a, s, manifest, "slabs[" + std::to_string(k) + "].");
+        if (a.compression == LightFieldCompression::BC1)
+            if (const long b = firstUndecodableBC1Block(s.data); b >= 0)
+                throw Error(manifest, "slabs[" + std::to_string(k) + "]",
+                            "BC1 block " + std::to_string(b) + " is not decodable");
+    }
+    writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
         json slabs = json::array();
         for (int k = 0; k < 6; ++k) {
+            throwIfCancelled(dir); // a signal between files wins; nothing is committed
             const LightFieldSlab& s = a.slabs[std::size_t(k)];
             if (s.data.size() != a.layerBytes())
                 throw Error(dir, std::string("slab ") + slabName(k),
@@ -310,26 +325,19 @@ void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
     });
 }
 
-namespace {
-json parseManifest(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path, "", "cannot open manifest");
-    try {
-        return json::parse(in);
-    } catch (const json::parse_error& e) {
-        throw Error(path, "", std::string("not valid JSON: ") + e.what());
-    }
-}
-} // namespace
-
 std::string probeManifestFlavour(const std::string& manifestPath) {
-    const json m = parseManifest(manifestPath);
-    return Fields{manifestPath}.string(m, "flavour", "");
+    const json m = parseManifestJson(readManifestText(manifestPath), manifestPath);
+    return ManifestFields{manifestPath}.string(m, "flavour", "");
 }
 
 LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
-    const json m = parseManifest(manifestPath);
-    const Fields r{manifestPath};
+    return parseLightFieldProbe(readManifestText(manifestPath), manifestPath);
+}
+
+LightFieldAsset parseLightFieldProbe(const std::string& manifestText,
+                                     const std::string& manifestPath) {
+    const json m = parseManifestJson(manifestText, manifestPath);
+    const ManifestFields r{manifestPath};
     const fs::path dir = fs::path(manifestPath).parent_path();
     if (r.string(m, "format", "") != "specula-probe")
         throw Error(manifestPath, "format", "expected \"specula-probe\"");
@@ -342,7 +350,7 @@ LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
 
     LightFieldAsset a;
     const json& cell = r.member(m, "cell", "");
-    a.cellCentre = r.vec3(cell, "centre", "cell.");
+    a.cellCentre = r.vec3(cell, "centre", "cell.", kMaxCoordinate);
     a.cellSize = float(r.number(cell, "size", "cell.", 1e-4, 1e5));
     a.cameras = r.integer(m, "cameras", "", 2, 256);
     a.res = r.integer(m, "image_res", "", 4, 4096);
@@ -355,14 +363,34 @@ LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
         throw Error(manifestPath, "compression",
                     "expected \"none\" or \"bc1\", got \"" + comp + "\"");
     validateLightFieldSize(a.cameras, a.res, a.cellSize, a.compression, manifestPath);
+    if (r.integer(m, "fov_deg", "", 1, 179) != 90)
+        throw Error(manifestPath, "fov_deg", "expected 90 (the slab cameras' field of view)");
+    const double spacing = r.number(m, "camera_spacing", "", 0.0, 1e6);
+    if (std::fabs(spacing - a.cameraSpacing()) > 1e-5 * a.cameraSpacing())
+        throw Error(manifestPath, "camera_spacing",
+                    "expected 3 cell.size / (cameras - 1) = " + std::to_string(a.cameraSpacing()));
+    const json& atlas = r.member(m, "atlas", "");
+    const int n = a.atlasSize();
+    if (r.integer(atlas, "width", "atlas.", 0, 16384) != n ||
+        r.integer(atlas, "height", "atlas.", 0, 16384) != n)
+        throw Error(manifestPath, "atlas",
+                    "expected a " + std::to_string(n) + " x " + std::to_string(n) +
+                        " atlas (cameras x image_res)");
+    if (r.integer(atlas, "layers", "atlas.", 0, 256) != 6)
+        throw Error(manifestPath, "atlas.layers", "expected 6 (one per slab)");
     a.depthPercentile = float(r.number(m, "depth_percentile", "", 0.0, 0.5));
-    if (m.contains("bake") && m["bake"].contains("seconds") && m["bake"]["seconds"].is_number())
-        a.bakeSeconds = m["bake"]["seconds"].get<double>();
-    if (m.contains("intrusions") && m["intrusions"].is_array())
-        for (const json& i : m["intrusions"])
-            if (i.is_object() && i.contains("object") && i["object"].is_string())
-                a.intrusions.push_back({i["object"].get<std::string>(),
-                                        i.value("region", std::string()), i.value("depth_m", 0.f)});
+    if (m.contains("bake"))
+        a.bakeSeconds = r.number(r.member(m, "bake", ""), "seconds", "bake.", 0.0, 1e9);
+    if (m.contains("intrusions")) {
+        const json& list = m["intrusions"];
+        if (!list.is_array()) throw Error(manifestPath, "intrusions", "expected an array");
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            const std::string path = "intrusions[" + std::to_string(i) + "].";
+            a.intrusions.push_back({r.string(list[i], "object", path),
+                                    r.string(list[i], "region", path),
+                                    float(r.number(list[i], "depth_m", path, -1e9, 1e9))});
+        }
+    }
 
     const json& slabs = r.member(m, "slabs", "");
     if (!slabs.is_array() || slabs.size() != 6)
@@ -374,6 +402,8 @@ LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
         if (r.string(j, "slab", path) != slabName(k))
             throw Error(manifestPath, path + "slab",
                         std::string("expected \"") + slabName(k) + "\"");
+        if (r.integer(j, "layer", path, 0, 5) != k)
+            throw Error(manifestPath, path + "layer", "expected " + std::to_string(k));
         s.nearDepth = float(r.number(j, "depth_near", path, 0.0, 1e9, true));
         s.farDepth = float(r.number(j, "depth_far", path, 0.0, 1e9, true));
         s.minDepth = float(r.number(j, "depth_min", path, 0.0, 1e9));
@@ -382,29 +412,28 @@ LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
         s.intrudingFraction = float(r.number(j, "intruding_fraction", path, 0.0, 1.0));
         s.focalDepth = float(r.number(j, "focal_depth", path, 0.0, 1e9, true));
         s.disparity = float(r.number(j, "disparity_px", path, 0.0, 1e6));
+        checkSlabFigures(a, s, manifestPath, path);
+        if (std::uint64_t(r.number(j, "bytes", path, 0.0, 1e12)) != a.layerBytes())
+            throw Error(manifestPath, path + "bytes",
+                        "expected " + std::to_string(a.layerBytes()) + " (" + std::to_string(n) +
+                            "^2 " + toString(a.compression) + ")");
+        const std::string full = r.fileInFolder(j, path, dir);
         s.file = r.string(j, "file", path);
-        if (s.file.empty() || fs::path(s.file).is_absolute() ||
-            s.file.find("..") != std::string::npos || s.file.find('/') != std::string::npos)
-            throw Error(manifestPath, path + "file",
-                        "expected a plain file name inside the probe folder");
-        const std::string full = (dir / s.file).string();
-        if (!fs::exists(full))
-            throw Error(manifestPath, path + "file", "names missing file " + full);
-        s.checksum = r.string(j, "checksum", path);
-        if (const std::string actual = fileChecksum(full); actual != s.checksum)
-            throw Error(manifestPath, path + "checksum",
-                        "mismatch for " + s.file + ": manifest says " + s.checksum + ", file has " +
-                            actual);
-        const std::size_t size = std::size_t(fs::file_size(full));
-        if (size != a.layerBytes())
+        // One read: the bytes are checksummed, size-checked and kept.
+        s.data = r.namedFile(
+            path, [&] { return readRegularFile<std::vector<std::uint8_t>>(full, a.layerBytes()); });
+        s.checksum = r.checksum(j, path, bytesChecksum(s.data.data(), s.data.size()));
+        if (s.data.size() != a.layerBytes())
             throw Error(full, "size",
                         "expected " + std::to_string(a.layerBytes()) + " bytes (" +
-                            std::to_string(a.atlasSize()) + "^2 " + toString(a.compression) +
-                            "), got " + std::to_string(size));
-        s.data.resize(size);
-        std::ifstream in(full, std::ios::binary);
-        in.read(reinterpret_cast<char*>(s.data.data()), std::streamsize(size));
-        if (!in) throw Error(full, "", "read failed");
+                            std::to_string(n) + "^2 " + toString(a.compression) + "), got " +
+                            std::to_string(s.data.size()));
+        if (a.compression == LightFieldCompression::BC1)
+            if (const long b = firstUndecodableBC1Block(s.data); b >= 0)
+                throw Error(full, "texels",
+                            "BC1 block " + std::to_string(b) +
+                                " is in the three-colour mode the baker never writes (its "
+                                "index 3 decodes to transparent black)");
     }
     return a;
 }

@@ -92,9 +92,18 @@ void validateLightFieldSize(int cameras, int res, float cellSize, LightFieldComp
 void writeLightFieldProbe(const LightFieldAsset& asset, const std::string& dir,
                           const std::string& sourceScene);
 
-// Reads and validates a light-field manifest and its slab files (version, every field,
-// sizes, checksums). Errors name the file and the field.
+// Reads and validates a light-field manifest and its slab files: version, every field's type
+// and range (cell centre within kMaxCoordinate, integers integral), the atlas and file sizes
+// exact for NUM, RES and the compression, each slab's depths consistent (near <= focal <=
+// far, disparity from the focal depth), checksums, BC1 blocks decodable. Slab files are read
+// once and only when regular files (no FIFO, device or directory). Errors name the file
+// and the field.
 LightFieldAsset readLightFieldProbe(const std::string& manifestPath);
+
+// readLightFieldProbe on manifest text already in memory (the fuzzer's entry point):
+// `manifestPath` names the manifest in errors and locates the slab files beside it.
+LightFieldAsset parseLightFieldProbe(const std::string& manifestText,
+                                     const std::string& manifestPath);
 
 // The manifest's "flavour" member ("distance", "lightfield"), so a loader can dispatch.
 // Throws Error naming the file when it cannot be read.

@@ -1,48 +1,256 @@
 #include "probe_folder.h"
 
 #include "engine/core/error.h"
+#include "engine/core/file_write.h"
 
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <set>
+#include <signal.h>
+#include <thread>
 #include <unistd.h>
+#include <vector>
 
 namespace fs = std::filesystem;
+using nlohmann::json;
 
 namespace specula {
 
-void writeProbeFolder(const std::string& dir,
-                      const std::function<nlohmann::json(const fs::path& tmp)>& fill) {
-    const fs::path target = fs::absolute(dir);
-    const fs::path tmp = target.string() + ".tmp-" + std::to_string(::getpid());
+namespace {
+
+// Set from a signal handler: must be a lock-free atomic, constant-initialised.
+std::atomic<bool> gCancel{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+// DIR as an absolute path without a trailing separator: "p/" must give p.tmp-PID beside p,
+// not p/.tmp-PID inside it.
+fs::path folderPath(const std::string& dir) {
+    fs::path p = fs::absolute(dir).lexically_normal();
+    if (!p.has_filename() && p.has_parent_path() && p != p.root_path()) p = p.parent_path();
+    return p;
+}
+
+fs::path siblingName(const fs::path& target, const char* kind, long long pid) {
+    return target.string() + kind + std::to_string(pid);
+}
+
+bool isInside(const fs::path& folder, const fs::path& file) {
+    const auto [f, x] = std::mismatch(folder.begin(), folder.end(), file.begin(), file.end());
+    return f == folder.end();
+}
+
+bool holdsScene(const fs::path& target, const std::string& sourceScene) {
     std::error_code ec;
-    if (fs::exists(target, ec) && !fs::is_directory(target, ec))
-        throw Error(dir, "", "exists and is not a folder; refusing to replace it");
-    if (fs::is_directory(target, ec) && !fs::exists(target / "manifest.json", ec) &&
-        !fs::is_empty(target, ec))
+    if (sourceScene.empty() || !fs::exists(sourceScene, ec)) return false;
+    const fs::path scene = fs::weakly_canonical(fs::absolute(sourceScene), ec);
+    const fs::path folder = fs::weakly_canonical(target, ec);
+    return !ec && isInside(folder, scene);
+}
+
+// Every string under a "file" key, at any depth (layers, sky, slabs): what Specula wrote.
+// Depth-bounded so that a hostile manifest cannot exhaust the stack; anything deeper simply
+// lists nothing, which only makes more files foreign.
+void collectListedFiles(const json& j, std::set<std::string>& files, int depth = 0) {
+    if (depth > 16) return;
+    if (j.is_object()) {
+        for (const auto& [key, value] : j.items()) {
+            if (key == "file" && value.is_string())
+                files.insert(value.get<std::string>());
+            else
+                collectListedFiles(value, files, depth + 1);
+        }
+    } else if (j.is_array()) {
+        for (const json& v : j)
+            collectListedFiles(v, files, depth + 1);
+    }
+}
+
+// The files a Specula manifest lists; throws when manifest.json is not one.
+std::set<std::string> probeFolderFiles(const fs::path& manifest, const std::string& dir) {
+    std::error_code ec;
+    const auto st = fs::symlink_status(manifest, ec);
+    if (!fs::exists(st))
         throw Error(dir, "",
-                    "is a folder without manifest.json (not a cooked probe); refusing "
-                    "to replace it");
+                    "is a folder without manifest.json (not a cooked probe); refusing to "
+                    "replace it");
+    constexpr std::uintmax_t kMaxManifestBytes = 64u << 20;
+    json j;
+    if (fs::is_regular_file(st) && fs::file_size(manifest, ec) <= kMaxManifestBytes && !ec) {
+        std::ifstream in(manifest, std::ios::binary);
+        const std::string text((std::istreambuf_iterator<char>(in)),
+                               std::istreambuf_iterator<char>());
+        j = json::parse(text, nullptr, false);
+    }
+    const auto format = j.is_object() ? j.find("format") : j.end();
+    if (!j.is_object() || format == j.end() || *format != "specula-probe")
+        throw Error(dir, "manifest.json",
+                    "is not a Specula probe manifest (no \"format\": \"specula-probe\"); "
+                    "refusing to replace a folder Specula did not write");
+    std::set<std::string> files;
+    collectListedFiles(j, files);
+    return files;
+}
+
+// Test hook, documented in tests/tools/output_safety_test.cpp: with
+// SPECULA_TEST_PAUSE_BEFORE_COMMIT=S the finished temporary folder (manifest included) waits
+// up to S seconds before the commit check, so a test can signal at a moment that is surely
+// before the rename. A cancel request ends the wait at once. Unset: no cost, no effect.
+void pauseBeforeCommitForTests() {
+    const char* s = std::getenv("SPECULA_TEST_PAUSE_BEFORE_COMMIT");
+    if (!s) return;
+    const double seconds = std::clamp(std::atof(s), 0.0, 60.0);
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (!cancelRequested() && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
+[[noreturn]] void throwMoveFailed(const std::string& dir, int error) {
+    throw Error(dir, "",
+                std::string("cannot move the finished probe into place: ") + std::strerror(error));
+}
+
+// The commit point: the finished folder takes DIR's place in a single rename. Where DIR
+// exists the two are exchanged atomically (renameat2), so DIR never goes missing; the
+// previous probe then sits at the temporary name and is removed with it.
+void commit(const fs::path& tmp, const fs::path& target, const std::string& dir,
+            const std::string& sourceScene) {
+    checkProbeFolderReplaceable(dir, sourceScene); // files a user added during the bake
+    throwIfCancelled(dir);
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(target, ec))) {
+        if (std::rename(tmp.c_str(), target.c_str()) != 0) throwMoveFailed(dir, errno);
+        return;
+    }
+    if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) {
+        fs::remove_all(tmp, ec);
+        return;
+    }
+    if (errno != EINVAL && errno != ENOSYS) throwMoveFailed(dir, errno);
+    // A filesystem without exchange: two renames, the previous probe at DIR.old-PID between
+    // them (a crash there is repaired by removeStaleProbeTemporaries).
+    const fs::path old = siblingName(target, ".old-", ::getpid());
+    if (std::rename(target.c_str(), old.c_str()) != 0) throwMoveFailed(dir, errno);
+    if (std::rename(tmp.c_str(), target.c_str()) != 0) {
+        const int error = errno;
+        std::rename(old.c_str(), target.c_str());
+        throwMoveFailed(dir, error);
+    }
+    fs::remove_all(old, ec);
+}
+
+} // namespace
+
+void requestCancel() noexcept {
+    gCancel.store(true, std::memory_order_relaxed);
+}
+
+void clearCancelRequest() noexcept {
+    gCancel.store(false, std::memory_order_relaxed);
+}
+
+bool cancelRequested() noexcept {
+    return gCancel.load(std::memory_order_relaxed);
+}
+
+void throwIfCancelled(const std::string& dir) {
+    if (cancelRequested())
+        throw Cancelled(dir, "", "interrupted by a signal; the folder was left as it was");
+}
+
+void checkProbeFolderReplaceable(const std::string& dir, const std::string& sourceScene) {
+    const fs::path target = folderPath(dir);
+    std::error_code ec;
+    const auto st = fs::status(target, ec);
+    if (!fs::exists(st)) return;
+    if (!fs::is_directory(st))
+        throw Error(dir, "", "exists and is not a folder; refusing to replace it");
+    if (holdsScene(target, sourceScene))
+        throw Error(dir, "",
+                    "holds the input scene " + sourceScene +
+                        "; refusing to replace it (choose another --out)");
+    if (fs::is_empty(target, ec) && !ec) return;
+    const std::set<std::string> listed = probeFolderFiles(target / "manifest.json", dir);
+    std::vector<fs::directory_entry> entries(fs::directory_iterator(target),
+                                             fs::directory_iterator{});
+    std::sort(entries.begin(), entries.end());
+    for (const fs::directory_entry& e : entries) {
+        const std::string name = e.path().filename().string();
+        if (name == "manifest.json") continue;
+        if (!listed.count(name) || !e.is_regular_file() || e.is_symlink())
+            throw Error(dir, name,
+                        "is not one of the files its manifest.json lists (Specula did not "
+                        "write it); refusing to replace the folder");
+    }
+}
+
+void removeStaleProbeTemporaries(const std::string& dir, std::ostream& log) {
+    const fs::path target = folderPath(dir);
+    const std::string base = target.filename().string();
+    std::error_code ec;
+    if (base.empty() || !fs::is_directory(target.parent_path(), ec)) return;
+    struct Stale {
+        fs::path path;
+        long long pid;
+        bool old;
+    };
+    std::vector<Stale> stale;
+    for (const auto& e : fs::directory_iterator(target.parent_path(), ec)) {
+        const std::string name = e.path().filename().string();
+        for (const char* kind : {".tmp-", ".old-"}) {
+            const std::string prefix = base + kind;
+            if (!name.starts_with(prefix) || name.size() - prefix.size() > 9) continue;
+            long long pid = 0;
+            const char* first = name.data() + prefix.size();
+            const char* last = name.data() + name.size();
+            const auto [end, err] = std::from_chars(first, last, pid);
+            if (err != std::errc() || end != last || first == last || pid <= 0) continue;
+            if (!e.is_directory(ec) || e.is_symlink(ec)) continue; // only what a bake makes
+            // ESRCH: no such process. EPERM means it runs under another user: leave it.
+            if (pid == ::getpid() || ::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
+            stale.push_back({e.path(), pid, kind[1] == 'o'});
+        }
+    }
+    for (const Stale& s : stale) {
+        const std::string why =
+            " (left by process " + std::to_string(s.pid) + ", which no longer runs)";
+        if (s.old && !fs::exists(fs::symlink_status(target, ec))) {
+            fs::rename(s.path, target, ec);
+            if (ec) throw Error(s.path.string(), "", "cannot restore it: " + ec.message());
+            log << "restored " << target.string() << " from " << s.path.string() << why << "\n";
+        } else {
+            fs::remove_all(s.path, ec);
+            if (ec) throw Error(s.path.string(), "", "cannot remove it: " + ec.message());
+            log << "removed stale " << s.path.string() << why << "\n";
+        }
+    }
+}
+
+void writeProbeFolder(const std::string& dir, const std::string& sourceScene,
+                      const std::function<json(const fs::path& tmp)>& fill) {
+    checkProbeFolderReplaceable(dir, sourceScene);
+    throwIfCancelled(dir);
+    const fs::path target = folderPath(dir);
+    const fs::path tmp = siblingName(target, ".tmp-", ::getpid());
+    const fs::path createdParent = outermostMissingFolder(target.parent_path());
+    std::error_code ec;
     fs::remove_all(tmp, ec);
     fs::create_directories(tmp);
     try {
-        const nlohmann::json manifest = fill(tmp);
-        std::ofstream out(tmp / "manifest.json");
-        out << manifest.dump(2) << "\n";
-        out.close();
-        if (!out) throw Error((tmp / "manifest.json").string(), "", "write failed");
-
-        // Swap the finished folder in; the old one is removed only after the rename worked.
-        const fs::path old = target.string() + ".old-" + std::to_string(::getpid());
-        const bool hadOld = fs::exists(target);
-        if (hadOld) fs::rename(target, old);
-        try {
-            fs::rename(tmp, target);
-        } catch (...) {
-            if (hadOld) fs::rename(old, target);
-            throw;
-        }
-        if (hadOld) fs::remove_all(old, ec);
+        const json manifest = fill(tmp);
+        throwIfCancelled(dir);
+        writeFileAtomically((tmp / "manifest.json").string(), manifest.dump(2) + "\n");
+        pauseBeforeCommitForTests();
+        commit(tmp, target, dir, sourceScene);
     } catch (...) {
         fs::remove_all(tmp, ec);
+        removeEmptyFoldersUpTo(target.parent_path(), createdParent);
         throw;
     }
 }

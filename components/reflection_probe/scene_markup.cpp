@@ -76,6 +76,15 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const 
             probe.node = nameOf(reg, e);
             probe.position = glm::vec3(reg.get<Transform>(e).world[3]);
             probe.options = p.is_object() ? p : json::object();
+            // The cell reflectors move in: a side of zero, a negative or a non-number one
+            // would size everything after it (reach, light-field slabs) from nonsense.
+            if (probe.options.contains("cell_size")) {
+                const json& c = probe.options["cell_size"];
+                if (!c.is_number() || !std::isfinite(c.get<double>()) || c.get<double>() <= 0.0 ||
+                    c.get<double>() > 1e4)
+                    throw Error(file, where + "specula_probe.cell_size",
+                                "expected a side in metres in (0, 10000], got " + c.dump());
+            }
             m.probes.push_back(std::move(probe));
             claimed.insert(e);
         }

@@ -26,4 +26,11 @@ private:
     std::string file_, field_;
 };
 
+// A run stopped on request (SIGINT/SIGTERM) before its commit point: nothing was replaced.
+// Tools report it apart from bad input, with exit status 130 (128 + SIGINT).
+class Cancelled : public Error {
+public:
+    using Error::Error;
+};
+
 } // namespace specula

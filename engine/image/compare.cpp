@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -35,6 +36,20 @@ void checkMask(const Image& a, const Image* mask) {
         throw Error("", "mask", "mask size differs from the compared images");
 }
 
+// Non-finite values make every statistic meaningless (OIIO would fold a NaN into the sums),
+// so they are refused wherever they sit, naming the first one.
+void checkFinite(const Image& img, int channels, const char* which) {
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            for (int c = 0; c < channels; ++c)
+                if (!std::isfinite(img.at(x, y)[c]))
+                    throw Error("", std::string(which) + " image",
+                                "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                    ") channel " + std::to_string(c) + " is " +
+                                    (std::isnan(img.at(x, y)[c]) ? "NaN" : "infinite") +
+                                    ": a measured image must hold finite values");
+}
+
 bool selected(const Image* mask, int x, int y) {
     return !mask || mask->at(x, y)[0] > 0.5f;
 }
@@ -55,11 +70,24 @@ OIIO::ImageBuf toBuf(const Image& img, int channels, const Image* mask) {
     return buf;
 }
 
+// Whether any compared value of the selected pixels is non-zero (the images are equal here,
+// so one image answers for both).
+bool anySignal(const Image& img, int channels, const Image* mask) {
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            if (selected(mask, x, y))
+                for (int c = 0; c < channels; ++c)
+                    if (img.at(x, y)[c] != 0.f) return true;
+    return false;
+}
+
 } // namespace
 
 ImageStats compareImages(const Image& a, const Image& b, const Image* mask, float threshold) {
     const int channels = comparedChannels(a, b);
     checkMask(a, mask);
+    checkFinite(a, channels, "first");
+    checkFinite(b, channels, "second");
     const std::size_t total = std::size_t(a.width) * a.height;
     std::size_t count = total;
     if (mask) {
@@ -70,10 +98,8 @@ ImageStats compareImages(const Image& a, const Image& b, const Image* mask, floa
     }
     ImageStats s;
     s.pixels = count;
-    if (count == 0) {
-        s.psnr = std::numeric_limits<double>::infinity();
-        return s;
-    }
+    s.psnr = std::numeric_limits<double>::quiet_NaN();
+    if (count == 0) return s;
     const OIIO::ImageBuf ba = toBuf(a, channels, mask);
     const OIIO::ImageBuf bb = toBuf(b, channels, mask);
     const OIIO::ImageBufAlgo::CompareResults r =
@@ -89,9 +115,22 @@ ImageStats compareImages(const Image& a, const Image& b, const Image* mask, floa
     s.meanError = r.meanerror * scale;
     s.maxError = r.maxerror;
     s.fractionOver = double(r.nfail) / double(count);
-    s.psnr =
-        s.rmse > 0.0 ? 20.0 * std::log10(1.0 / s.rmse) : std::numeric_limits<double>::infinity();
+    if (s.rmse > 0.0) {
+        s.hasPsnr = true;
+        s.psnr = 20.0 * std::log10(1.0 / s.rmse);
+    } else if (anySignal(a, channels, mask)) {
+        s.hasPsnr = true;
+        s.psnr = std::numeric_limits<double>::infinity();
+    }
     return s;
+}
+
+std::string formatPsnr(double psnr, int decimals) {
+    if (std::isnan(psnr)) return "none";
+    if (std::isinf(psnr)) return psnr > 0 ? "inf" : "-inf";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, psnr);
+    return buf;
 }
 
 Image errorHeatmap(const Image& a, const Image& b, const Image* mask, float maxError) {

@@ -4,12 +4,24 @@
 #include "engine/image/image.h"
 
 #include <cstddef>
+#include <string>
 
 namespace specula {
 
 struct ImageStats {
-    double rmse = 0.0;         // over RGB values of the compared pixels
-    double psnr = 0.0;         // peak 1.0; +inf when identical (callers cap for display)
+    double rmse = 0.0; // over RGB values of the compared pixels
+    // PSNR in dB, peak 1.0, only where something was measured (hasPsnr):
+    //  - no pixel compared (an empty mask: the camera sees no reflector) -> no PSNR;
+    //  - every compared value zero in both images (two black frames: a scene with nothing to
+    //    reflect agrees with any black render) -> no PSNR, since calling that perfect would
+    //    score a broken setup as flawless;
+    //  - +inf only when there is signal and every compared value matches exactly (the truth
+    //    compared with itself), which is honest: the error is zero.
+    // Without a PSNR, psnr is NaN so no caller can mistake it for a score; print it with
+    // formatPsnr. A black frame against a truth that is not black scores low like any other
+    // error (its RMSE is the truth's own RMS).
+    bool hasPsnr = false;
+    double psnr = 0.0;
     double maxError = 0.0;     // largest absolute channel difference
     double meanError = 0.0;    // mean absolute channel difference
     std::size_t pixels = 0;    // pixels compared (mask pixels, or all)
@@ -18,10 +30,15 @@ struct ImageStats {
 
 // Compares the RGB channels of a and b (same size, at least 3 channels, or the same channel
 // count when fewer). mask: only pixels whose channel 0 is > 0.5 count; when it selects no
-// pixel, the result has pixels = 0, all errors 0 and psnr +inf. Throws Error on size or
-// channel mismatch.
+// pixel, the result has pixels = 0, all errors 0 and no PSNR. Throws Error on size or
+// channel mismatch, and when a compared channel of either image is NaN or infinite anywhere
+// (masked out or not): a measured image holding a non-number is broken, not scoreable.
 ImageStats compareImages(const Image& a, const Image& b, const Image* mask = nullptr,
                          float threshold = 0.05f);
+
+// A PSNR as the reports print it: "none" when there is none (NaN), "inf" for an exact match,
+// else fixed-point with `decimals` digits.
+std::string formatPsnr(double psnr, int decimals = 2);
 
 // Per-pixel error (largest absolute RGB difference) mapped to a colour ramp from dark blue
 // (0) through green and yellow to red (>= maxError); masked-out pixels are grey. Returns

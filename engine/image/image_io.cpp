@@ -1,12 +1,15 @@
 #include "engine/image/image_io.h"
 
 #include "engine/core/error.h"
+#include "engine/core/file_write.h"
+#include "engine/core/regular_file.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <system_error>
 
 #include <OpenImageIO/filesystem.h>
@@ -48,6 +51,16 @@ Image readOpened(OIIO::ImageInput& in, std::optional<bool> srgbToLinear, std::st
         return {};
     }
     const int channels = std::min(spec.nchannels, 4);
+    // A header can declare any size (a constant EXR of 10^5 x 10^5 compresses to bytes); the
+    // largest image the project reads is a face-res 8192 probe layer, 1.6e9 values.
+    constexpr std::uint64_t kMaxValues = 1ull << 31;
+    if (std::uint64_t(spec.width) * std::uint64_t(spec.height) * std::uint64_t(channels) >
+        kMaxValues) {
+        error = "image too large: " + std::to_string(spec.width) + " x " +
+                std::to_string(spec.height) + " x " + std::to_string(channels) +
+                " values, more than the " + std::to_string(kMaxValues) + " this reader holds";
+        return {};
+    }
     Image img(spec.width, spec.height, channels);
     if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img.pixels.data())) {
         error = in.geterror();
@@ -109,19 +122,52 @@ float linearToSrgbValue(float l) {
     return l <= 0.0031308f ? l * 12.92f : 1.055f * std::pow(l, 1.f / 2.4f) - 0.055f;
 }
 
-Image readImage(const std::string& path, std::optional<bool> srgbToLinear) {
+namespace {
+
+// Image files are bounded only so that a size is never absurd: a face-res 8192 probe layer
+// (N x 6N float RGBA) is 6.4 GB.
+constexpr std::uint64_t kMaxImageFileBytes = 16ull << 30;
+
+// Opens an image file for reading; a path that is not a regular file is refused first (OIIO
+// would block on a FIFO and read a device forever).
+std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
+    (void)regularFileSize(path, kMaxImageFileBytes);
     const OIIO::ImageSpec config = readConfig();
     auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) {
-        std::string why = OIIO::geterror();
-        if (!std::filesystem::exists(path)) why = "file does not exist";
-        throw Error(path, "", "cannot read image: " + why);
-    }
+    if (!in) throw Error(path, "", "cannot read image: " + OIIO::geterror());
+    return in;
+}
+
+Image readAndClose(OIIO::ImageInput& in, const std::string& path,
+                   std::optional<bool> srgbToLinear) {
     std::string error;
-    Image img = readOpened(*in, srgbToLinear, error);
-    in->close();
+    Image img = readOpened(in, srgbToLinear, error);
+    in.close();
     if (img.empty()) throw Error(path, "", "cannot read image: " + error);
     return img;
+}
+
+} // namespace
+
+Image readImage(const std::string& path, std::optional<bool> srgbToLinear) {
+    auto in = openImage(path);
+    return readAndClose(*in, path, srgbToLinear);
+}
+
+Image readFloatExr(const std::string& path) {
+    auto in = openImage(path);
+    const std::string format = in->format_name();
+    if (format != "openexr")
+        throw Error(path, "format", "expected an OpenEXR file, found " + format + " data");
+    const OIIO::ImageSpec& spec = in->spec();
+    for (int c = 0; c < spec.nchannels; ++c) {
+        const OIIO::TypeDesc t = spec.channelformat(c);
+        if (t != OIIO::TypeDesc::FLOAT && t != OIIO::TypeDesc::HALF)
+            throw Error(path, "channels",
+                        "expected float or half channels, channel " + std::to_string(c) + " is " +
+                            t.c_str());
+    }
+    return readAndClose(*in, path, false);
 }
 
 void writeImage(const std::string& path, const Image& image, const ImageWriteOptions& options) {
@@ -130,9 +176,14 @@ void writeImage(const std::string& path, const Image& image, const ImageWriteOpt
         throw Error(path, "", "cannot write an empty or inconsistent image");
 
     const std::string ext = lowerExtension(path);
-    // The format comes from the final name; the temporary name's extension means nothing.
-    auto out = OIIO::ImageOutput::create(path);
+    // Encoded in memory, then written by writeFileAtomically: OIIO's writers (PNG at least)
+    // do not report a short write, and a full disk must never pass as a finished image.
+    std::vector<unsigned char> encoded;
+    OIIO::Filesystem::IOVecOutput memory(encoded);
+    auto out = OIIO::ImageOutput::create(path, &memory);
     if (!out) throw Error(path, "", "no image writer for this extension: " + OIIO::geterror());
+    if (!out->supports("ioproxy"))
+        throw Error(path, "", "the " + ext + " writer cannot encode to memory (checked writes)");
 
     const int channels = storedChannels(ext, image.channels);
     std::vector<float> data = repack(image, channels);
@@ -165,22 +216,18 @@ void writeImage(const std::string& path, const Image& image, const ImageWriteOpt
         memType = OIIO::TypeDesc::UINT8;
     }
 
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
     auto fail = [&](const std::string& why) {
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
-        throw Error(path, "", "cannot write image: " + why);
+        throw Error(path, "", "cannot encode image: " + why);
     };
-    if (!out->open(tmp, spec)) fail(out->geterror());
+    if (!out->open(path, spec)) fail(out->geterror());
     if (!out->write_image(memType, pixels)) {
         const std::string why = out->geterror();
         out->close();
         fail(why);
     }
     if (!out->close()) fail(out->geterror());
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) fail(ec.message());
+    writeFileAtomically(
+        path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
 std::optional<Image> decodeImageFromMemory(const void* data, std::size_t size,

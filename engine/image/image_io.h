@@ -12,7 +12,13 @@ namespace specula {
 // Reads any format OIIO knows. srgbToLinear: decode the colour channels (never alpha) from
 // sRGB; when not given, true for integer pixel formats (PNG, JPG, ...) and false for float
 // ones (EXR, HDR). Throws Error naming the file when it cannot be read.
+// Only a regular file is opened: a FIFO, device or directory is refused before OIIO sees it.
 Image readImage(const std::string& path, std::optional<bool> srgbToLinear = std::nullopt);
+
+// readImage for the files a cooked probe stores: the file must really be OpenEXR (a PNG
+// renamed .exr is refused, field "format") with float or half channels (field "channels");
+// the pixels are read as they are, linear.
+Image readFloatExr(const std::string& path);
 
 struct ImageWriteOptions {
     bool halfFloat = false; // EXR only: store half instead of float
@@ -21,7 +27,8 @@ struct ImageWriteOptions {
 
 // Writes by extension: .exr (float or half), .hdr (RGB), .png (8-bit, alpha kept), .jpg
 // (8-bit RGB). 8-bit formats get the colour channels clamped and sRGB-encoded. The file
-// appears atomically: written next to the target under a temporary name, then renamed.
+// appears atomically: encoded in memory, written next to the target under a temporary name
+// with every write checked (a full disk is an error, never a truncated image), then renamed.
 // Throws Error naming the file on failure.
 void writeImage(const std::string& path, const Image& image, const ImageWriteOptions& options = {});
 

@@ -41,6 +41,7 @@ struct MaterialData {
     glm::vec4 baseColorFactor{1.f};
     std::shared_ptr<const Image> baseColorTexture; // linear RGBA float, may be null
     std::string name;
+    bool doubleSided = false; // glTF: its back faces are surface too, not the inside of a solid
 };
 
 // One glTF primitive = one drawable: geometry plus its material.

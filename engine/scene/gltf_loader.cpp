@@ -1,6 +1,7 @@
 #include "gltf_loader.h"
 
 #include "engine/core/error.h"
+#include "engine/core/regular_file.h"
 #include "engine/scene/components.h"
 #include "engine/scene/texture_decode.h"
 #include "engine/scene/tinygltf_config.h"
@@ -19,7 +20,6 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -82,22 +82,41 @@ std::uint32_t readLE32(const unsigned char* p) {
            (std::uint32_t(p[3]) << 24);
 }
 
+// tinygltf addresses every file with 32-bit sizes, so no glTF, buffer or image file can be
+// larger.
+constexpr std::uint64_t kMaxGltfFileBytes = UINT_MAX;
+
 std::vector<unsigned char> readWholeFile(const std::string& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw Error(path, "", "cannot read file: no such file");
-    if (!fs::is_regular_file(path, ec))
-        throw Error(path, "", "cannot read file: not a regular file");
-    const auto size = fs::file_size(path, ec);
-    if (ec) throw Error(path, "", "cannot read file: " + ec.message());
-    if (size > std::uintmax_t(UINT_MAX))
-        throw Error(path, "", "file too large: glTF files must be smaller than 4 GiB");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path, "", "cannot read file: open failed");
-    std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
-    if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size)))
-        throw Error(path, "", "cannot read file: read failed");
+    auto bytes = readRegularFile<std::vector<unsigned char>>(path, kMaxGltfFileBytes);
     if (bytes.empty()) throw Error(path, "", "empty file");
     return bytes;
+}
+
+// tinygltf's own file callbacks open whatever a URI names: a directory (URI ".") reads as
+// SIZE_MAX bytes (std::bad_alloc), a FIFO blocks and /dev/zero never ends. These accept
+// regular files only, bounded; a refusal reaches the loader as tinygltf's error or warning,
+// with the reason.
+bool gltfFileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return fs::symlink_status(path, ec).type() != fs::file_type::not_found && !ec;
+}
+std::string gltfExpandFilePath(const std::string& path, void*) {
+    return path; // no ~ or $VAR expansion: a URI is a path relative to the glTF
+}
+bool gltfReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                       void*) {
+    try {
+        *out = readRegularFile<std::vector<unsigned char>>(path, kMaxGltfFileBytes);
+        return true;
+    } catch (const Error& e) {
+        if (err) *err += e.what();
+        return false;
+    }
+}
+bool gltfRefuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                     void*) {
+    if (err) *err += "the loader never writes files";
+    return false;
 }
 
 struct GlbLayout {
@@ -263,13 +282,18 @@ void checkBuffers(const std::string& file, const nlohmann::json& doc, const GlbL
         if (u.rfind("data:", 0) == 0) continue; // decoded and size-checked by tinygltf
         const fs::path p = dir / decodePercent(u);
         std::error_code ec;
-        if (!fs::is_regular_file(p, ec))
+        if (fs::symlink_status(p, ec).type() == fs::file_type::not_found)
             throw Error(file, field + ".uri",
                         "missing buffer: '" + u + "' not found (looked for " + p.string() + ")");
-        const auto size = fs::file_size(p, ec);
-        if (ec || size < byteLength)
+        std::uint64_t size = 0;
+        try {
+            size = regularFileSize(p.string(), kMaxGltfFileBytes);
+        } catch (const Error& e) {
+            throw Error(file, field + ".uri", "buffer '" + u + "': " + e.what());
+        }
+        if (size < byteLength)
             throw Error(file, field + ".uri",
-                        "buffer '" + u + "' has " + std::to_string(ec ? 0 : size) +
+                        "buffer '" + u + "' has " + std::to_string(size) +
                             " bytes, byteLength says " + std::to_string(byteLength));
     }
 }
@@ -736,6 +760,7 @@ public:
             const auto& mat = at(m_.materials, index, "materials", from);
             const std::string mf = idx("materials", std::size_t(index));
             md->name = mat.name;
+            md->doubleSided = mat.doubleSided;
             const auto& f = mat.pbrMetallicRoughness.baseColorFactor;
             if (f.size() != 4)
                 fail(mf + ".pbrMetallicRoughness.baseColorFactor", "expected 4 numbers");
@@ -1023,6 +1048,8 @@ LoadedScene loadGltf(const std::string& path, ecs::Registry& registry) {
     }
 
     tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{&gltfFileExists, &gltfExpandFilePath,
+                                                &gltfReadWholeFile, &gltfRefuseWrite, nullptr});
     loader.SetImageLoader(&keepImageEncoded, nullptr);
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
     tinygltf::Model model;

@@ -15,7 +15,7 @@ struct PlotPoint {
     std::string method; // one line per method, in order of appearance
     std::string label;  // e.g. "d_e=0.01"
     double ratio = 1.0; // time / envmap time
-    double psnr = 0.0;  // dB; non-finite points are left out
+    double psnr = 0.0;  // dB; NaN (nothing measured) and inf are left out, never drawn
 };
 
 struct PlotPanel {

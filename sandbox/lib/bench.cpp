@@ -2,6 +2,7 @@
 
 #include "components/reflection_probe/distance_probe_cpu.h"
 #include "engine/core/error.h"
+#include "engine/core/file_write.h"
 #include "engine/gpu/context.h"
 #include "engine/gpu/timer.h"
 #include "engine/image/compare.h"
@@ -129,17 +130,15 @@ void writeCsv(const BenchReport& r, const std::string& path) {
          "fetches_per_pixel,gpu_bytes,bake_s,frames,width,height,timer\n";
     for (const BenchRow& b : r.rows)
         s << b.scene << ',' << b.method << ',' << b.params << ',' << num(b.msMedian) << ','
-          << num(b.ratioToEnvmap) << ',' << num(b.psnr) << ',' << num(b.rmse) << ','
-          << num(b.psnrFull) << ',' << num(b.rmseFull) << ',' << num(b.fetchesPerPixel) << ','
-          << b.gpuBytes << ',' << num(b.bakeSeconds) << ',' << b.frames << ',' << r.width << ','
-          << r.height << ','
+          << num(b.ratioToEnvmap) << ',' << formatPsnr(b.psnr, 4) << ',' << num(b.rmse) << ','
+          << formatPsnr(b.psnrFull, 4) << ',' << num(b.rmseFull) << ',' << num(b.fetchesPerPixel)
+          << ',' << b.gpuBytes << ',' << num(b.bakeSeconds) << ',' << b.frames << ',' << r.width
+          << ',' << r.height << ','
           << (b.method == "groundtruth"     ? "cpu-wall"
               : r.timer == "GL timer query" ? "gl"
                                             : "wall")
           << '\n';
-    const std::string tmp = path + ".tmp";
-    std::ofstream(tmp) << s.str();
-    fs::rename(tmp, path);
+    writeFileAtomically(path, s.str());
 }
 
 void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePaths,
@@ -161,7 +160,9 @@ void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePa
       << "- error: RGB over the reflector pixels (the ground truth's mirror mask, eroded by one "
          "pixel); `env` against reflections of the environment only (what a probe can hold), "
          "`full` against the multi-bounce ground truth. The ground truth's own `env` PSNR is "
-         "inf (identical); its `full` PSNR is the floor any single-bounce probe shares.\n"
+         "inf (identical); its `full` PSNR is the floor any single-bounce probe shares. `none`: "
+         "nothing was measured (no reflector pixel, or truth and render both black), never a "
+         "perfect score.\n"
       << "- fetches/px: texture fetches per reflector pixel counted by the CPU twin "
          "(CpuDistanceProbe) on the shader's own inputs; the light field's is its fixed 4 "
          "bilinear fetches per ray.\n\n";
@@ -174,8 +175,8 @@ void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePa
         for (const BenchRow& b : r.rows) {
             if (b.scene != name) continue;
             s << "| " << b.method << " | " << b.params << " | " << num(b.msMedian, "%.3f") << " | "
-              << num(b.ratioToEnvmap, "%.2f") << " | " << num(b.psnr, "%.2f") << " | "
-              << num(b.rmse, "%.4f") << " | " << num(b.psnrFull, "%.2f") << " | "
+              << num(b.ratioToEnvmap, "%.2f") << " | " << formatPsnr(b.psnr) << " | "
+              << num(b.rmse, "%.4f") << " | " << formatPsnr(b.psnrFull) << " | "
               << num(b.rmseFull, "%.4f") << " | " << num(b.fetchesPerPixel, "%.2f") << " | "
               << num(double(b.gpuBytes) / (1024.0 * 1024.0), "%.1f") << " | "
               << num(b.bakeSeconds, "%.2f") << " | " << b.frames << " |\n";
@@ -183,9 +184,7 @@ void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePa
         s << "\n![strip](strip_" << name << ".png)\n\n";
     }
     s << "![accuracy against time](accuracy_vs_time.png)\n";
-    const std::string tmp = path + ".tmp";
-    std::ofstream(tmp) << s.str();
-    fs::rename(tmp, path);
+    writeFileAtomically(path, s.str());
 }
 
 } // namespace
@@ -310,8 +309,8 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
             row.ratioToEnvmap = row.msMedian / envmapMs;
             log << "  " << name << " " << row.method << " " << row.params << ": "
                 << num(row.msMedian, "%.3f") << " ms (x" << num(row.ratioToEnvmap, "%.2f")
-                << "), PSNR " << num(row.psnr, "%.2f") << " dB, "
-                << num(row.fetchesPerPixel, "%.2f") << " fetches/px\n"
+                << "), PSNR " << formatPsnr(row.psnr) << " dB, " << num(row.fetchesPerPixel, "%.2f")
+                << " fetches/px\n"
                 << std::flush;
             if (v.kind != VariantKind::GroundTruth)
                 panel.points.push_back({row.method, row.params, row.ratioToEnvmap, row.psnr});
@@ -341,7 +340,7 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
             const ImageStats st = compareImages(img, envTruth.color, &mask);
             tiles.push_back(img);
             labels.push_back(label +
-                             (std::isfinite(st.psnr) ? " " + num(st.psnr, "%.1f") + " dB" : ""));
+                             (st.hasPsnr ? " " + formatPsnr(st.psnr, 1) + " dB" : " (no PSNR)"));
             heat.push_back(errorHeatmap(img, envTruth.color, &mask, 0.25f));
             heatLabels.push_back("error (red >= 0.25)");
         }

@@ -57,7 +57,9 @@ ProbeSource resolveProbeSource(const std::string& input,
                                const std::optional<std::string>& skyOverride,
                                const std::string& bakeDir, int faceRes, bool showProgress,
                                bool lightField) {
-    if (!fs::exists(input)) throw Error(input, "", "no such file");
+    std::error_code ec; // a symlink loop or unreadable parent is an error naming the input
+    if (!fs::exists(input, ec))
+        throw Error(input, "", ec ? "cannot open: " + ec.message() : "no such file");
     ProbeSource src;
     const std::string ext = fs::path(input).extension().string();
     if (ext == ".json") {

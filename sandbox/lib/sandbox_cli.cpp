@@ -1,13 +1,16 @@
 #include "sandbox_cli.h"
 
 #include "engine/core/error.h"
+#include "engine/core/file_write.h"
 #include "engine/core/flags.h"
 #include "sandbox/lib/bench.h"
 #include "sandbox/lib/bench_methods.h"
 #include "sandbox/lib/walk.h"
 
 #include <exception>
+#include <filesystem>
 #include <functional>
+#include <regex>
 #include <string_view>
 #include <vector>
 
@@ -19,6 +22,14 @@ constexpr int kExitOk = 0, kExitFailure = 1, kExitUsage = 2;
 
 constexpr std::string_view kToolUsage = "usage: specula-sandbox <subcommand> [options] [args]\n"
                                         "       specula-sandbox <subcommand> --help\n";
+
+// The end of every subcommand's --help.
+constexpr std::string_view kOutputAndExitNote =
+    "\n"
+    "Every write is checked: a full disk or a short write fails the run (exit 1), and a\n"
+    "failed run removes the --out folder again if it created it.\n"
+    "\n"
+    "exit status: 0 ok, 1 the input could not be processed, 2 bad command line\n";
 
 constexpr std::string_view kWalkUsage =
     "usage: specula-sandbox walk MANIFEST_OR_SCENE [options]\n"
@@ -50,9 +61,7 @@ constexpr std::string_view kWalkUsage =
     "  --scene FILE    the scene of a manifest (overrides its \"source\")\n"
     "  --sky FILE      equirectangular panorama (default: the bundled field.jpg)\n"
     "  --face-res N    cube face resolution when baking a scene, 8..2048 (default 128)\n"
-    "  -h, --help      show this help\n"
-    "\n"
-    "exit status: 0 ok, 1 the input could not be processed, 2 bad command line\n";
+    "  -h, --help      show this help\n";
 
 constexpr std::string_view kBenchUsage =
     "usage: specula-sandbox bench [--scene S ...] [--quick] [--out DIR] [options]\n"
@@ -78,9 +87,46 @@ constexpr std::string_view kBenchUsage =
     "  --face-res N    cube face resolution of the baked probes, 8..2048 (default 256, quick 64)\n"
     "  --max-frames N  timed frames per row at most, 4..1000 (default 64, quick 12)\n"
     "  --sky FILE      equirectangular panorama (default: the bundled field.jpg)\n"
-    "  -h, --help      show this help\n"
-    "\n"
-    "exit status: 0 ok, 1 the input could not be processed, 2 bad command line\n";
+    "  -h, --help      show this help\n";
+
+// What walk and bench write into --out, partial outputs and temporaries included.
+bool isOwnOutput(const std::string& name) {
+    static const std::regex own(R"(((frame_\d+|contact_sheet|accuracy_vs_time|strip_.+)\.png)"
+                                R"(|frames\.csv|bench\.(csv|md))(\.tmp-\d+)?)"
+                                R"(|probes?(\.(tmp|old)-\d+)?)");
+    return std::regex_match(name, own);
+}
+
+// A walk or bench that fails leaves no output folder it created: unless kept, the guard
+// removes the folders --out made (create_directories may make several) on the way out,
+// provided they hold nothing but this tool's own partial outputs.
+class CreatedOutputFolder {
+public:
+    explicit CreatedOutputFolder(std::string dir)
+        : dir_(std::move(dir)), created_(outermostMissingFolder(dir_)) {}
+    CreatedOutputFolder(const CreatedOutputFolder&) = delete;
+    CreatedOutputFolder& operator=(const CreatedOutputFolder&) = delete;
+    void keep() { created_.clear(); }
+    ~CreatedOutputFolder() {
+        namespace fs = std::filesystem;
+        if (created_.empty()) return;
+        try {
+            const std::vector<fs::directory_entry> entries(fs::directory_iterator(dir_),
+                                                           fs::directory_iterator{});
+            for (const fs::directory_entry& e : entries)
+                if (!isOwnOutput(e.path().filename().string())) return;
+            for (const fs::directory_entry& e : entries)
+                fs::remove_all(e.path());
+            removeEmptyFoldersUpTo(dir_, created_);
+        } catch (const std::exception&) {
+            // Leaving a folder behind is the lesser harm; the run's own error is reported.
+        }
+    }
+
+private:
+    std::string dir_;
+    std::filesystem::path created_;
+};
 
 int runWalk(std::span<const std::string> args, std::ostream& out) {
     Flags flags(args);
@@ -106,7 +152,10 @@ int runWalk(std::span<const std::string> args, std::ostream& out) {
     if (o.outDir.empty()) throw UsageError{"--out: expected a folder"};
     if (o.compare && !o.headless) throw UsageError{"--compare needs --headless"};
     o.input = pos[0];
-    return o.headless ? runWalkHeadless(o, out) : runWalkWindow(o, out);
+    CreatedOutputFolder created(o.outDir);
+    const int status = o.headless ? runWalkHeadless(o, out) : runWalkWindow(o, out);
+    if (status == kExitOk) created.keep();
+    return status;
 }
 
 int runBenchCommand(std::span<const std::string> args, std::ostream& out) {
@@ -123,7 +172,9 @@ int runBenchCommand(std::span<const std::string> args, std::ostream& out) {
     if (!pos.empty())
         throw UsageError{"bench takes no positional argument (use --scene), got '" + pos[0] + "'"};
     if (o.outDir.empty()) throw UsageError{"--out: expected a folder"};
+    CreatedOutputFolder created(o.outDir);
     const BenchReport r = runBench(o, out);
+    created.keep();
     out << "wrote " << r.rows.size() << " rows to " << o.outDir << "/bench.csv, bench.md, "
         << "accuracy_vs_time.png and the strips\n";
     return kExitOk;
@@ -182,7 +233,7 @@ int runCli(std::span<const std::string> args, std::ostream& out, std::ostream& e
     for (const std::string& a : rest) {
         if (a == "--") break;
         if (isHelp(a)) {
-            out << sub->usage;
+            out << sub->usage << kOutputAndExitNote;
             return kExitOk;
         }
     }

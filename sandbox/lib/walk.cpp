@@ -1,6 +1,7 @@
 #include "walk.h"
 
 #include "engine/core/error.h"
+#include "engine/core/file_write.h"
 #include "engine/core/progress.h"
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"
@@ -87,8 +88,10 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
             if (o.compare) {
                 const GroundTruthImage gt = scene.groundTruth(cam, true);
                 const Image mask = erodedMask(gt.mirrorMask);
-                const double psnr = compareImages(img, gt.color, &mask).psnr;
-                csv << ',' << (std::isinf(psnr) ? std::string("inf") : std::to_string(psnr));
+                // "none" when the frame has no reflector pixel or both are black (see
+                // ImageStats::hasPsnr): such a frame measures nothing and must not read as
+                // a perfect score.
+                csv << ',' << formatPsnr(compareImages(img, gt.color, &mask).psnr, 6);
             }
             csv << '\n';
             if (i % sheetEvery == 0) {
@@ -98,11 +101,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
             if (bar) bar->update(double(i + 1) / o.frames);
         }
     }
-    {
-        const std::string path = (fs::path(o.outDir) / "frames.csv").string();
-        std::ofstream(path + ".tmp") << csv.str();
-        fs::rename(path + ".tmp", path);
-    }
+    writeFileAtomically((fs::path(o.outDir) / "frames.csv").string(), csv.str());
     writeImage(
         (fs::path(o.outDir) / "contact_sheet.png").string(),
         contactSheet(sheet, labels, std::min<int>(6, int(sheet.size())), std::min(o.width, 256)));

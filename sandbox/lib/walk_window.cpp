@@ -119,7 +119,7 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
         bool playing = o.frames > 0, showError = true;
         float t = 0.f;
         std::deque<double> passMs;
-        double psnr = std::numeric_limits<double>::quiet_NaN();
+        std::string psnrText; // "none" when the view shows no reflector pixel
         std::uint64_t stateKey = 0, errorKey = ~0ull;
         auto lastChange = std::chrono::steady_clock::now();
         const float half = 0.5f * scene.cellSize();
@@ -200,11 +200,11 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
                 gpu::medianMs(std::vector<double>(passMs.begin(), passMs.end()));
             ImGui::Text("reflector pass %.3f ms (median of %zu)", medianPass, passMs.size());
             if (showError) {
-                if (std::isfinite(psnr) || std::isinf(psnr))
-                    ImGui::Text("PSNR vs ground truth %.2f dB%s", psnr,
-                                errorKey == stateKey ? "" : " (stale)");
-                else
+                if (errorKey == ~0ull)
                     ImGui::TextDisabled("PSNR: waiting for the view to rest");
+                else
+                    ImGui::Text("PSNR vs ground truth %s%s", psnrText.c_str(),
+                                errorKey == stateKey ? "" : " (stale)");
             }
             ImGui::Text("reflector offset %.2f %.2f %.2f", offset.x, offset.y, offset.z);
             ImGui::End();
@@ -230,7 +230,9 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
                 std::chrono::steady_clock::now() - lastChange > std::chrono::milliseconds(300)) {
                 const GroundTruthImage gt = scene.groundTruth(cam, true);
                 const Image mask = erodedMask(gt.mirrorMask);
-                psnr = compareImages(img, gt.color, &mask).psnr;
+                const ImageStats stats = compareImages(img, gt.color, &mask);
+                psnrText = stats.hasPsnr ? formatPsnr(stats.psnr) + " dB"
+                                         : "none (no reflector pixel in view)";
                 errorKey = stateKey;
             }
             uploadFrame(img, display, bytes);

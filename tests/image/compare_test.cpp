@@ -56,7 +56,9 @@ TEST(CompareImages, IdenticalImagesGiveInfinitePsnr) {
     EXPECT_EQ(s.maxError, 0.0);
     EXPECT_EQ(s.fractionOver, 0.0);
     EXPECT_EQ(s.pixels, 16u * 9u);
+    EXPECT_TRUE(s.hasPsnr);
     EXPECT_TRUE(std::isinf(s.psnr) && s.psnr > 0);
+    EXPECT_EQ(formatPsnr(s.psnr), "inf");
 }
 
 TEST(CompareImages, UnmaskedMatchesHandComputation) {
@@ -76,15 +78,10 @@ TEST(CompareImages, MaskedMatchesHandComputation) {
     const Image a = randomImage(23, 13, 4, 4);
     Image b = randomImage(23, 13, 4, 5);
     Image mask = randomImage(23, 13, 1, 6); // about half the pixels over 0.5
-    // Huge differences and a NaN outside the mask must not leak in.
+    // Huge differences outside the mask must not leak in.
     for (int y = 0; y < 13; ++y)
         for (int x = 0; x < 23; ++x)
             if (!(mask.at(x, y)[0] > 0.5f)) b.at(x, y)[0] = 100.f;
-    for (int x = 0; x < 23; ++x)
-        if (!(mask.at(x, 0)[0] > 0.5f)) {
-            b.at(x, 0)[1] = std::numeric_limits<float>::quiet_NaN();
-            break;
-        }
     // Alpha differences are ignored.
     b.at(0, 0)[3] = 50.f;
     const ImageStats s = compareImages(a, b, &mask, 0.4f);
@@ -106,6 +103,70 @@ TEST(CompareImages, EmptyMaskComparesNothing) {
     const ImageStats s = compareImages(a, b, &mask);
     EXPECT_EQ(s.pixels, 0u);
     EXPECT_EQ(s.rmse, 0.0);
+    // No reflector pixel: no PSNR at all, not +inf (which read as a perfect frame).
+    EXPECT_FALSE(s.hasPsnr);
+    EXPECT_TRUE(std::isnan(s.psnr));
+    EXPECT_EQ(formatPsnr(s.psnr), "none");
+}
+
+TEST(CompareImages, TwoBlackFramesHaveNoPsnr) {
+    // A scene with nothing to reflect: truth and render both black on the reflector. Equal,
+    // but nothing was measured; +inf here scored broken scenes as perfect.
+    const Image a(6, 4, 3), b(6, 4, 3);
+    Image mask(6, 4, 1);
+    mask.at(2, 1)[0] = mask.at(3, 2)[0] = 1.f;
+    const ImageStats s = compareImages(a, b, &mask);
+    EXPECT_EQ(s.pixels, 2u);
+    EXPECT_FALSE(s.hasPsnr);
+    EXPECT_TRUE(std::isnan(s.psnr));
+    // Signal outside the mask does not count as measured.
+    Image lit = a;
+    lit.at(0, 0)[0] = 1.f;
+    EXPECT_FALSE(compareImages(lit, lit, &mask).hasPsnr);
+}
+
+TEST(CompareImages, BlackFrameAgainstLitTruthScoresLow) {
+    // Reflector pixels all black where the truth shows the room: a low score, its RMSE the
+    // truth's own RMS.
+    Image truth = randomImage(12, 8, 3, 9);
+    for (float& v : truth.pixels)
+        v = 0.2f + 0.6f * v;
+    const Image black(12, 8, 3);
+    const ImageStats s = compareImages(black, truth);
+    ASSERT_TRUE(s.hasPsnr);
+    EXPECT_LT(s.psnr, 12.0);
+    double sq = 0;
+    for (float v : truth.pixels)
+        sq += double(v) * v;
+    EXPECT_NEAR(s.rmse, std::sqrt(sq / double(truth.pixels.size())), 1e-6);
+    // And the other way round: a black truth and a lit render is a real error too.
+    EXPECT_LT(compareImages(truth, black).psnr, 12.0);
+}
+
+TEST(CompareImages, NonFiniteValueAnywhereIsAnError) {
+    const Image a = randomImage(7, 5, 4, 10);
+    Image mask(7, 5, 1);
+    mask.at(1, 1)[0] = 1.f;
+    for (float bad :
+         {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+        for (bool inMask : {true, false}) {
+            Image b = a;
+            b.at(inMask ? 1 : 5, inMask ? 1 : 3)[1] = bad;
+            EXPECT_THROW(compareImages(a, b, &mask), Error) << bad << " " << inMask;
+            EXPECT_THROW(compareImages(b, a, &mask), Error) << bad << " " << inMask;
+        }
+    }
+    // Alpha is not measured: a NaN there is not an error.
+    Image b = a;
+    b.at(3, 3)[3] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_NO_THROW(compareImages(a, b, &mask));
+}
+
+TEST(FormatPsnr, NoneInfAndDigits) {
+    EXPECT_EQ(formatPsnr(std::numeric_limits<double>::quiet_NaN()), "none");
+    EXPECT_EQ(formatPsnr(std::numeric_limits<double>::infinity()), "inf");
+    EXPECT_EQ(formatPsnr(31.4159, 2), "31.42");
+    EXPECT_EQ(formatPsnr(-3.5, 1), "-3.5");
 }
 
 TEST(CompareImages, SizeMismatchThrows) {

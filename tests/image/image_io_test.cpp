@@ -1,13 +1,17 @@
 #include "engine/core/error.h"
 #include "engine/image/image_io.h"
+#include "numerics/bad_input_support.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace specula {
@@ -112,6 +116,59 @@ TEST_F(ImageIoTest, ReadingAMissingFileNamesIt) {
         EXPECT_EQ(e.file(), missing);
         EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
     }
+}
+
+// Only regular files are opened: OIIO would block on a FIFO until a writer came and read a
+// device without end.
+TEST_F(ImageIoTest, ReadingAFifoIsRefusedWithoutBlocking) {
+    const std::string fifo = path("pipe.exr");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    test::expectNames(test::errorOfInChild([&] { (void)readImage(fifo); }), {fifo, "FIFO"});
+}
+
+TEST_F(ImageIoTest, ReadingADirectoryDeviceOrSymlinkLoopIsRefused) {
+    std::filesystem::create_directory(path("dir.png"));
+    test::expectNames(test::errorOf([&] { (void)readImage(path("dir.png")); }),
+                      {path("dir.png"), "a directory"});
+    std::filesystem::create_symlink("/dev/zero", path("zero.exr"));
+    test::expectNames(test::errorOfInChild([&] { (void)readImage(path("zero.exr")); }),
+                      {path("zero.exr"), "character device"});
+    std::filesystem::create_symlink("loop.exr", path("loop.exr"));
+    test::expectNames(test::errorOf([&] { (void)readImage(path("loop.exr")); }),
+                      {path("loop.exr"), "symlink loop"});
+}
+
+TEST_F(ImageIoTest, ReadFloatExrReadsFloatAndHalf) {
+    const Image img = gradient(5, 3, 4);
+    writeImage(path("f.exr"), img);
+    EXPECT_EQ(readFloatExr(path("f.exr")).pixels, img.pixels);
+    writeImage(path("h.exr"), img, ImageWriteOptions{.halfFloat = true});
+    EXPECT_NEAR(readFloatExr(path("h.exr")).at(4, 2)[3], img.at(4, 2)[3], 1e-3f);
+}
+
+TEST_F(ImageIoTest, ReadFloatExrRefusesAPngRenamedExr) {
+    writeImage(path("p.png"), gradient(5, 3, 4));
+    std::filesystem::rename(path("p.png"), path("p.exr"));
+    EXPECT_EQ(readImage(path("p.exr")).width, 5); // readImage takes any format OIIO knows
+    test::expectNames(test::errorOf([&] { (void)readFloatExr(path("p.exr")); }),
+                      {path("p.exr"), "format", "OpenEXR", "png"});
+}
+
+// A header may declare any size; reading it must not try to allocate 160 GB.
+TEST_F(ImageIoTest, HugeDeclaredSizeIsRefusedBeforeAllocating) {
+    writeImage(path("small.exr"), gradient(4, 4, 4));
+    std::string bytes = test::slurp(path("small.exr"));
+    const std::string attr = std::string("dataWindow\0box2i\0", 17);
+    const std::size_t at = bytes.find(attr);
+    ASSERT_NE(at, std::string::npos);
+    const std::int32_t window[4] = {0, 0, 99999, 99999}; // after the 4-byte attribute size
+    std::memcpy(&bytes[at + attr.size() + 4], window, sizeof window);
+    // Room for the chunk-offset table the header implies (8 bytes a chunk, at most one chunk
+    // a scanline), whatever compression the writer chose.
+    bytes.append(8 * 100000 + 4096, '\0');
+    test::spit(path("huge.exr"), bytes);
+    test::expectNames(test::errorOf([&] { (void)readImage(path("huge.exr")); }),
+                      {path("huge.exr"), "too large", "100000 x 100000"});
 }
 
 TEST_F(ImageIoTest, WriteIsAtomicAndLeavesNoTemporary) {

@@ -3,6 +3,7 @@
 #include "engine/scene/components.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/transform_system.h"
+#include "numerics/bad_input_support.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -15,6 +16,8 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sys/stat.h>
+#include <tuple>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -426,6 +429,52 @@ TEST(GltfLoaderErrors, IndexOutOfRange) {
     writeBytes(dir.path() / "Box0.bin", bin);
     std::ofstream(dir.path() / "index.gltf") << j.dump();
     expectLoadError(dir.path() / "index.gltf", "index out of range");
+}
+
+// The room copied into `dir` with images[0] (a texture the floor uses) or buffers[0] (as
+// `field` says) pointing at `uri`.
+fs::path roomPointingAt(const TempDir& dir, const std::string& field, const std::string& uri) {
+    auto j = gltfJson(kRoom);
+    for (const char* f : {"room.bin", "floor_tiles.png", "panel_stripes.png", "panel_grid.png"})
+        fs::copy_file(kRoom.parent_path() / f, dir.path() / f, fs::copy_options::skip_existing);
+    j[field][0]["uri"] = uri;
+    const fs::path out = dir.path() / ("room_" + field + ".gltf");
+    std::ofstream(out) << j.dump();
+    return out;
+}
+
+// tinygltf's default reader took URI "." (a directory) as SIZE_MAX bytes: std::bad_alloc.
+TEST(GltfLoaderErrors, ImageUriThatIsADirectoryIsNamed) {
+    TempDir dir;
+    const fs::path gltf = roomPointingAt(dir, "images", ".");
+    expectLoadError(gltf, "images[0].uri");
+    expectLoadError(gltf, "cannot read image '.'");
+}
+
+TEST(GltfLoaderErrors, ImageOrBufferThatIsAFifoOrDeviceIsRefusedWithoutBlocking) {
+    TempDir dir;
+    ASSERT_EQ(::mkfifo((dir.path() / "pipe").c_str(), 0600), 0);
+    fs::create_symlink("/dev/zero", dir.path() / "zero");
+    for (const auto& [field, uri, part] :
+         {std::tuple<std::string, std::string, std::string>{"images", "pipe", "images[0].uri"},
+          {"buffers", "pipe", "FIFO"},
+          {"images", "zero", "images[0].uri"},
+          {"buffers", "zero", "character device"}}) {
+        const fs::path gltf = roomPointingAt(dir, field, uri);
+        test::expectNames(test::errorOfInChild([&] {
+                              ecs::Registry reg;
+                              loadGltf(gltf.string(), reg);
+                          }),
+                          {gltf.filename().string(), part});
+    }
+}
+
+TEST(GltfLoaderErrors, SceneThatIsADirectoryOrSymlinkLoopIsNamed) {
+    TempDir dir;
+    fs::create_directory(dir.path() / "scene.gltf");
+    expectLoadError(dir.path() / "scene.gltf", "a directory");
+    fs::create_symlink("loop.glb", dir.path() / "loop.glb");
+    expectLoadError(dir.path() / "loop.glb", "symlink loop");
 }
 
 TEST(GltfLoaderErrors, UnreadableFile) {

@@ -1,0 +1,119 @@
+#include "components/reflection_probe/manifest_fields.h"
+
+#include "engine/core/error.h"
+#include "engine/core/regular_file.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace specula {
+
+namespace {
+std::string shortNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+} // namespace
+
+std::string readManifestText(const std::string& path) {
+    return readRegularFile(path, kMaxManifestBytes);
+}
+
+json parseManifestJson(const std::string& text, const std::string& file) {
+    // nlohmann's own messages ("[json.exception.out_of_range.406] number overflow ...") name
+    // neither the file nor the field; the parser callback remembers the last key it saw.
+    std::string lastKey;
+    const json::parser_callback_t remember = [&](int, json::parse_event_t event, json& parsed) {
+        if (event == json::parse_event_t::key) lastKey = parsed.get<std::string>();
+        return true;
+    };
+    try {
+        return json::parse(text, remember);
+    } catch (const json::out_of_range&) {
+        throw Error(file, lastKey, "number out of range (beyond what a double can hold)");
+    } catch (const json::exception& e) {
+        const std::string where = lastKey.empty() ? "" : " (after key \"" + lastKey + "\")";
+        throw Error(file, "", std::string("not valid JSON") + where + ": " + e.what());
+    }
+}
+
+const json& ManifestFields::member(const json& obj, const std::string& key,
+                                   const std::string& path) const {
+    if (!obj.is_object() || !obj.contains(key))
+        throw Error(file, path + key, "missing (expected a value here)");
+    return obj.at(key);
+}
+
+double ManifestFields::number(const json& obj, const std::string& key, const std::string& path,
+                              double lo, double hi, bool nullIsInf) const {
+    const json& v = member(obj, key, path);
+    if (nullIsInf && v.is_null()) return HUGE_VAL;
+    if (!v.is_number()) throw Error(file, path + key, "expected a number");
+    const double d = v.get<double>();
+    if (!std::isfinite(d) || d < lo || d > hi)
+        throw Error(file, path + key,
+                    "expected a number in [" + shortNumber(lo) + ", " + shortNumber(hi) +
+                        "], got " + v.dump());
+    return d;
+}
+
+int ManifestFields::integer(const json& obj, const std::string& key, const std::string& path,
+                            int lo, int hi) const {
+    const double d = number(obj, key, path, lo, hi);
+    if (d != std::floor(d))
+        throw Error(file, path + key, "expected an integer, got " + obj.at(key).dump());
+    return int(d);
+}
+
+std::string ManifestFields::string(const json& obj, const std::string& key,
+                                   const std::string& path) const {
+    const json& v = member(obj, key, path);
+    if (!v.is_string()) throw Error(file, path + key, "expected a string");
+    return v.get<std::string>();
+}
+
+glm::vec3 ManifestFields::vec3(const json& obj, const std::string& key, const std::string& path,
+                               float bound) const {
+    const json& v = member(obj, key, path);
+    if (!v.is_array() || v.size() != 3)
+        throw Error(file, path + key, "expected an array of 3 numbers");
+    glm::vec3 out;
+    for (int i = 0; i < 3; ++i) {
+        const double d = v[std::size_t(i)].is_number() ? v[std::size_t(i)].get<double>() : NAN;
+        if (!(std::fabs(d) <= double(bound)))
+            throw Error(file, path + key,
+                        "expected 3 numbers in [-" + shortNumber(bound) + ", " +
+                            shortNumber(bound) + "], got " + v.dump());
+        out[i] = float(d);
+    }
+    return out;
+}
+
+std::string ManifestFields::fileInFolder(const json& obj, const std::string& path,
+                                         const fs::path& dir) const {
+    const std::string name = string(obj, "file", path);
+    if (name.empty() || fs::path(name).is_absolute() || name.find("..") != std::string::npos ||
+        name.find('/') != std::string::npos)
+        throw Error(file, path + "file", "expected a plain file name inside the probe folder");
+    return (dir / name).string();
+}
+
+std::string ManifestFields::checksum(const json& obj, const std::string& path,
+                                     const std::string& actual) const {
+    const std::string stored = string(obj, "checksum", path);
+    if (stored != actual)
+        throw Error(file, path + "checksum",
+                    "mismatch for " + string(obj, "file", path) + ": manifest says " + stored +
+                        ", file has " + actual);
+    return stored;
+}
+
+void ManifestFields::rethrowNamed(const std::string& field, const std::exception& e) const {
+    throw Error(file, field, e.what());
+}
+
+} // namespace specula

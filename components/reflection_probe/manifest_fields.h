@@ -1,0 +1,71 @@
+#pragma once
+// What every cooked-probe manifest reader shares (distance and light field): reading the
+// manifest as a bounded regular file, parsing it so that even a number JSON cannot hold
+// names its field, and typed, range-checked field access that names the file and the JSON
+// path on every failure.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+namespace specula {
+
+// A manifest is a few kB; an effect plan for a level of tens of thousands of nodes a few
+// MB. Anything larger is not a manifest.
+inline constexpr std::uint64_t kMaxManifestBytes = 64ull << 20;
+
+// Bound on every world-space coordinate a manifest holds (probe centres, light-field cells).
+// A float has a 24-bit mantissa: at 1e7 m neighbouring floats are 1 m apart, so a centre
+// beyond that cannot place a probe to the metre, and a centre such as 1e308 is not a
+// float at all. No real level is 10,000 km across.
+inline constexpr float kMaxCoordinate = 1e7f;
+
+// The manifest text at `path`, read as a regular file of at most kMaxManifestBytes.
+std::string readManifestText(const std::string& path);
+
+// Parses manifest text. A syntax error or a number beyond double range ("d_inf": 1e999)
+// throws Error naming `file` and the last key read before the failure.
+nlohmann::json parseManifestJson(const std::string& text, const std::string& file);
+
+// Typed access to a manifest's JSON; every failure throws Error(file, path + key, ...).
+struct ManifestFields {
+    const std::string& file;
+
+    const nlohmann::json& member(const nlohmann::json& obj, const std::string& key,
+                                 const std::string& path) const;
+    // A finite number in [lo, hi]; with nullIsInf, JSON null reads as +infinity (JSON has no
+    // infinity, so writers store an infinite depth as null).
+    double number(const nlohmann::json& obj, const std::string& key, const std::string& path,
+                  double lo, double hi, bool nullIsInf = false) const;
+    // A number in [lo, hi] with no fractional part (32.5 is refused, not truncated).
+    int integer(const nlohmann::json& obj, const std::string& key, const std::string& path, int lo,
+                int hi) const;
+    std::string string(const nlohmann::json& obj, const std::string& key,
+                       const std::string& path) const;
+    // Three numbers, each within [-bound, bound] (and so a float).
+    glm::vec3 vec3(const nlohmann::json& obj, const std::string& key, const std::string& path,
+                   float bound) const;
+    // The file named at path + "file": a plain name inside `dir`. Returns dir / name.
+    std::string fileInFolder(const nlohmann::json& obj, const std::string& path,
+                             const std::filesystem::path& dir) const;
+    // Compares the checksum stored at path + "checksum" with `actual`; returns the stored one.
+    std::string checksum(const nlohmann::json& obj, const std::string& path,
+                         const std::string& actual) const;
+    // Runs `read` on a file the manifest names; an Error it throws (the file is missing, a
+    // FIFO, a directory, a symlink loop...) is re-thrown naming the manifest and the field
+    // as well.
+    template <typename Read> auto namedFile(const std::string& path, Read read) const {
+        try {
+            return read();
+        } catch (const std::exception& e) {
+            rethrowNamed(path + "file", e);
+        }
+    }
+
+private:
+    [[noreturn]] void rethrowNamed(const std::string& field, const std::exception& e) const;
+};
+
+} // namespace specula

@@ -1,0 +1,86 @@
+#pragma once
+// Writing a file so that nobody ever reads a partial one: the bytes go to PATH.tmp-PID
+// beside it, every write() and the close() are checked (a full disk or a file-size limit
+// shows up there, not later as a truncated file), and only a complete file is renamed over
+// PATH. On failure the temporary file is removed and PATH is left as it was. Header-only so
+// that every engine library can use it without linking specula_core.
+#include "engine/core/error.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace specula {
+
+// The temporary name beside `path` that this process writes before the rename.
+inline std::string temporaryNameFor(const std::string& path) {
+    return path + ".tmp-" + std::to_string(::getpid());
+}
+
+inline void writeFileAtomically(const std::string& path, std::string_view bytes) {
+    const std::string tmp = temporaryNameFor(path);
+    auto fail = [&](int error, const std::string& context) {
+        ::unlink(tmp.c_str());
+        throw Error(path, "", std::string("cannot write: ") + std::strerror(error) + context);
+    };
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        const int error = errno;
+        fail(error, "");
+    }
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int error = n < 0 ? errno : EIO;
+            ::close(fd);
+            fail(error, " (" + std::to_string(done) + " of " + std::to_string(bytes.size()) +
+                            " bytes written)");
+        }
+        done += std::size_t(n);
+    }
+    if (::close(fd) != 0) {
+        const int error = errno;
+        fail(error, " (on close)");
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        const int error = errno;
+        fail(error, " (renaming the finished file)");
+    }
+}
+
+// The outermost folder that std::filesystem::create_directories(folder) would create (empty
+// when `folder` exists): what a failed run must remove again, and nothing above it.
+inline std::filesystem::path outermostMissingFolder(const std::filesystem::path& folder) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::path p = fs::absolute(folder).lexically_normal(), missing;
+    if (!p.has_filename()) p = p.parent_path();
+    while (!p.empty() && !fs::exists(fs::symlink_status(p, ec))) {
+        missing = p;
+        if (p == p.parent_path()) break;
+        p = p.parent_path();
+    }
+    return missing;
+}
+
+// Removes `folder` and then its parents up to `outermost` (inclusive) while they are empty.
+inline void removeEmptyFoldersUpTo(const std::filesystem::path& folder,
+                                   const std::filesystem::path& outermost) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (outermost.empty()) return;
+    fs::path p = fs::absolute(folder).lexically_normal();
+    if (!p.has_filename()) p = p.parent_path();
+    for (; p.string().size() >= outermost.string().size(); p = p.parent_path())
+        if (!fs::remove(p, ec) || p == outermost) break; // fs::remove only takes empty folders
+}
+
+} // namespace specula

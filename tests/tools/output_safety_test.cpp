@@ -1,0 +1,249 @@
+// What `specula-cook bake --out DIR` may replace, and how it stops (issue 10, items 1-3):
+// a folder that is not a Specula probe, a probe folder holding a file Specula did not write,
+// and a folder holding the input scene are refused and left byte for byte; SIGINT/SIGTERM
+// before the final rename leave the previous probe, exit 130 and no temporary folder; what a
+// killed bake left beside DIR is cleaned by the next bake with a line; a write past a
+// file-size limit (a full disk) fails the bake and leaves DIR as it was.
+#include "tests/support/child_process.h"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using specula::test::Child;
+using specula::test::ChildOptions;
+using specula::test::ChildResult;
+using specula::test::slurpFile;
+
+namespace {
+
+const fs::path kCook = fs::path(SPECULA_BIN_DIR) / "specula-cook";
+const fs::path kRoomDir = fs::path(SPECULA_SOURCE_DIR) / "assets" / "room";
+const fs::path kRoom = kRoomDir / "room.gltf";
+
+// Every file below `dir`, relative path -> bytes ("<dir>" for folders).
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+    std::map<std::string, std::string> s;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        s[fs::relative(e.path(), dir).string()] =
+            e.is_regular_file() ? slurpFile(e.path()) : "<dir>";
+    return s;
+}
+
+// Names beside `dir` that a bake leaves only while it runs.
+std::vector<std::string> temporariesBeside(const fs::path& dir) {
+    std::vector<std::string> found;
+    for (const auto& e : fs::directory_iterator(dir.parent_path())) {
+        const std::string name = e.path().filename().string();
+        if (name.find(".tmp-") != std::string::npos || name.find(".old-") != std::string::npos)
+            found.push_back(name);
+    }
+    return found;
+}
+
+class OutputSafety : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        root_ = fs::temp_directory_path() / ("specula-output-safety-" + std::string(info->name()) +
+                                             "-" + std::to_string(::getpid()));
+        fs::remove_all(root_);
+        fs::create_directories(root_ / "scratch");
+    }
+    void TearDown() override { fs::remove_all(root_); }
+
+    ChildResult bake(const fs::path& scene, const fs::path& out, const std::string& faceRes = "4",
+                     const ChildOptions& o = {}) {
+        const ChildResult r = specula::test::runChild(
+            kCook, {"bake", scene.string(), "--out", out.string(), "--face-res", faceRes},
+            root_ / "scratch", o);
+        std::printf("[output-safety] bake --out %s: exit %d, stdout: %s\n  stderr: %s",
+                    out.filename().c_str(), r.status, r.out.substr(0, r.out.find('\n')).c_str(),
+                    r.err.empty() ? "(empty)\n" : r.err.c_str());
+        return r;
+    }
+    // A cooked probe at root/name, baked now.
+    fs::path bakedProbe(const std::string& name) {
+        const fs::path p = root_ / name;
+        EXPECT_EQ(bake(kRoom, p).status, 0);
+        EXPECT_TRUE(fs::exists(p / "manifest.json"));
+        return p;
+    }
+    // A bake into `dir` must be refused with exit 1 and one error line naming `mustName`,
+    // leaving `dir` exactly as it was.
+    void expectRefused(const fs::path& scene, const fs::path& dir, const std::string& mustName) {
+        const auto before = snapshot(dir);
+        const ChildResult r = bake(scene, dir);
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_NE(r.err.find(mustName), std::string::npos) << "must name " << mustName;
+        EXPECT_TRUE(snapshot(dir) == before) << "the refused folder changed";
+        EXPECT_TRUE(temporariesBeside(dir).empty());
+    }
+
+    fs::path root_;
+};
+
+} // namespace
+
+TEST_F(OutputSafety, FolderWhoseManifestIsNotASpeculaProbeIsRefused) {
+    // The web folder from the issue: it has a manifest.json, but not ours.
+    const fs::path web = root_ / "web";
+    fs::create_directories(web);
+    std::ofstream(web / "manifest.json") << R"({"name": "web"})";
+    std::ofstream(web / "index.html") << "<html>keep me</html>";
+    expectRefused(kRoom, web, "manifest.json");
+    // Not JSON at all, and a manifest.json that is a folder: not probes either.
+    std::ofstream(web / "manifest.json") << "<<not json>>";
+    expectRefused(kRoom, web, "manifest.json");
+    fs::remove(web / "manifest.json");
+    fs::create_directories(web / "manifest.json");
+    expectRefused(kRoom, web, "manifest.json");
+}
+
+TEST_F(OutputSafety, FolderHoldingTheInputSceneIsNeverReplaced) {
+    // The scene's folder with a real probe manifest copied into it (issue 10, item 1).
+    const fs::path probe = bakedProbe("probe");
+    const fs::path scene = root_ / "scene";
+    fs::copy(kRoomDir, scene);
+    fs::copy_file(probe / "manifest.json", scene / "manifest.json");
+    expectRefused(scene / "room.gltf", scene, "input scene");
+    // A folder above the scene's (scratch files live elsewhere), and the scene's folder
+    // named with a trailing separator.
+    const fs::path above = root_ / "above";
+    fs::create_directories(above);
+    fs::rename(scene, above / "scene");
+    expectRefused(above / "scene" / "room.gltf", above, "input scene");
+    fs::rename(above / "scene", scene);
+    expectRefused(scene / "room.gltf", fs::path(scene.string() + "/"), "input scene");
+    EXPECT_TRUE(fs::exists(scene / "room.bin"));
+}
+
+TEST_F(OutputSafety, ProbeFolderWithAForeignFileIsRefusedNamingIt) {
+    const fs::path probe = bakedProbe("probe");
+    std::ofstream(probe / "notes.txt") << "a user's notes";
+    expectRefused(kRoom, probe, "notes.txt");
+    fs::remove(probe / "notes.txt");
+    fs::create_directories(probe / "extra");
+    expectRefused(kRoom, probe, "extra");
+    fs::remove(probe / "extra");
+    // Without the foreign entries the same folder is replaced as before.
+    EXPECT_EQ(bake(kRoom, probe).status, 0);
+    EXPECT_TRUE(temporariesBeside(probe).empty());
+}
+
+TEST_F(OutputSafety, EmptyFolderAndMissingFolderAreFilled) {
+    const fs::path empty = root_ / "empty";
+    fs::create_directories(empty);
+    EXPECT_EQ(bake(kRoom, empty).status, 0);
+    EXPECT_TRUE(fs::exists(empty / "manifest.json"));
+    EXPECT_EQ(bake(kRoom, root_ / "new" / "nested").status, 0);
+    EXPECT_TRUE(fs::exists(root_ / "new" / "nested" / "manifest.json"));
+}
+
+TEST_F(OutputSafety, SignalBeforeTheFinalRenameLeavesThePreviousProbe) {
+    const fs::path probe = bakedProbe("probe");
+    const auto before = snapshot(probe);
+    for (int sig : {SIGINT, SIGTERM}) {
+        // The test hook holds the finished temporary folder before the commit check, so the
+        // signal lands in the write phase, after every file is written and before the rename.
+        Child c(kCook, {"bake", kRoom.string(), "--out", probe.string(), "--face-res", "16"},
+                root_ / "scratch", {{"SPECULA_TEST_PAUSE_BEFORE_COMMIT=60"}});
+        const fs::path staged =
+            fs::path(probe.string() + ".tmp-" + std::to_string(c.pid())) / "manifest.json";
+        ASSERT_TRUE(c.waitFor([&] { return fs::exists(staged); }, 120))
+            << "the bake never staged its manifest";
+        const auto t0 = std::chrono::steady_clock::now();
+        c.signal(sig);
+        const ChildResult r = c.wait();
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::printf("[output-safety] %s in the write phase: exit %d %.3f s after the signal, "
+                    "stderr: %s",
+                    sig == SIGINT ? "SIGINT" : "SIGTERM", r.status, s, r.err.c_str());
+        EXPECT_EQ(r.status, 130) << r.err;
+        EXPECT_NE(r.err.find("cancelled"), std::string::npos) << r.err;
+        EXPECT_LT(s, 5.0) << "the pause must end at the signal";
+        EXPECT_TRUE(snapshot(probe) == before) << "the previous probe must stay";
+        EXPECT_TRUE(temporariesBeside(probe).empty());
+    }
+    // The hook alone (no signal) changes nothing: the bake commits after the pause.
+    const ChildResult r = bake(kRoom, probe, "16", {{"SPECULA_TEST_PAUSE_BEFORE_COMMIT=0.1"}});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_FALSE(snapshot(probe) == before);
+}
+
+TEST_F(OutputSafety, SignalWhileLayersAreWrittenLeavesThePreviousProbe) {
+    // No hook: the signal goes as soon as the first layer file of a large bake is staged;
+    // the remaining layers take far longer to encode than the signal takes to arrive.
+    const fs::path probe = bakedProbe("probe");
+    const auto before = snapshot(probe);
+    Child c(kCook, {"bake", kRoom.string(), "--out", probe.string(), "--face-res", "512"},
+            root_ / "scratch");
+    const fs::path staged = fs::path(probe.string() + ".tmp-" + std::to_string(c.pid()));
+    ASSERT_TRUE(c.waitFor([&] { return fs::exists(staged / "layer_00.exr"); }, 300));
+    c.signal(SIGTERM);
+    const ChildResult r = c.wait();
+    EXPECT_EQ(r.status, 130) << r.err;
+    EXPECT_TRUE(snapshot(probe) == before);
+    EXPECT_TRUE(temporariesBeside(probe).empty());
+}
+
+TEST_F(OutputSafety, TemporariesOfDeadProcessesAreCleanedWithALine) {
+    const fs::path probe = bakedProbe("probe");
+    const pid_t dead = specula::test::deadPid();
+    const fs::path staleTmp = probe.string() + ".tmp-" + std::to_string(dead);
+    const fs::path staleOld = probe.string() + ".old-" + std::to_string(dead);
+    const fs::path live = probe.string() + ".tmp-" + std::to_string(::getpid());
+    for (const fs::path& p : {staleTmp, staleOld, live}) {
+        fs::create_directories(p);
+        std::ofstream(p / "layer_00.exr") << std::string(4096, 'x');
+    }
+    std::ofstream(probe.string() + ".tmp-" + std::to_string(dead) + "x") << "not ours";
+    const ChildResult r = bake(kRoom, probe);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_FALSE(fs::exists(staleTmp));
+    EXPECT_FALSE(fs::exists(staleOld));
+    EXPECT_NE(r.out.find("removed stale " + staleTmp.string()), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("removed stale " + staleOld.string()), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(live / "layer_00.exr")) << "a live process's folder is never touched";
+    EXPECT_TRUE(fs::exists(probe.string() + ".tmp-" + std::to_string(dead) + "x"));
+    fs::remove_all(live);
+
+    // Killed between the two renames of the fallback swap: DIR is missing and DIR.old-PID
+    // holds the previous probe; the next bake puts it back before it starts.
+    fs::rename(probe, staleOld);
+    const ChildResult again = bake(kRoom, probe);
+    EXPECT_EQ(again.status, 0) << again.err;
+    EXPECT_NE(again.out.find("restored " + probe.string()), std::string::npos) << again.out;
+    EXPECT_FALSE(fs::exists(staleOld));
+}
+
+TEST_F(OutputSafety, ShortWriteFailsTheBakeAndLeavesThePreviousProbe) {
+    const fs::path probe = bakedProbe("probe");
+    const auto before = snapshot(probe);
+    // 4 KiB per file: the first 64^2 layer cannot be written (EFBIG, as on a full disk).
+    ChildOptions limited;
+    limited.fileSizeLimit = 4096;
+    const ChildResult r = bake(kRoom, probe, "64", limited);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+    EXPECT_TRUE(snapshot(probe) == before);
+    EXPECT_TRUE(temporariesBeside(probe).empty());
+    // A failed bake removes the folders it created for --out.
+    const ChildResult nested = bake(kRoom, root_ / "made" / "by" / "bake", "64", limited);
+    EXPECT_EQ(nested.status, 1);
+    EXPECT_FALSE(fs::exists(root_ / "made"));
+}
+
+TEST_F(OutputSafety, HelpStatesTheCancelledExitStatus) {
+    const ChildResult r = specula::test::runChild(kCook, {"bake", "--help"}, root_ / "scratch");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_NE(r.out.find("130 cancelled"), std::string::npos) << r.out;
+}
