@@ -1,13 +1,11 @@
 #include "bake_command.h"
 
-#include "assetcooker/lib/cli.h"
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/effect_plan.h"
 #include "assetcooker/lib/lightfield_bake.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "components/reflection_probe/scene_markup.h"
 #include "engine/core/error.h"
-#include "engine/core/flags.h"
 #include "engine/core/progress.h"
 #include "engine/image/image_io.h"
 #include "engine/scene/gltf_loader.h"
@@ -15,12 +13,14 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <memory>
+#include <optional>
 
 namespace specula::cook {
 
-const std::string_view kBakeUsage =
-    "usage: specula-cook bake SCENE --out DIR [--flavour distance|lightfield] [options]\n"
-    "\n"
+namespace {
+
+constexpr const char* kBakeDescription =
     "Bakes the reflection probe of SCENE (.gltf/.glb) into DIR: manifest.json plus one float\n"
     "EXR cube map per layer (N x 6N, faces +X -X +Y -Y +Z -Z top to bottom; RGB radiance, A\n"
     "distance from the probe centre). Rays are traced with Embree on all cores.\n"
@@ -30,25 +30,15 @@ const std::string_view kBakeUsage =
     "\"specula_reflector\": true or {\"f0\": F}; every other mesh is environment, one layer\n"
     "per root node unless grouped with \"specula_layer\": \"name\".\n"
     "\n"
-    "options:\n"
-    "  --out DIR          output folder (replaced atomically; never left half-written)\n"
-    "  --flavour F        distance (default) or lightfield\n"
-    "  --face-res N       cube face resolution, 1..4096 (default 256)\n"
-    "  --probe x,y,z      probe centre in world space (overrides the markup)\n"
-    "  --sky FILE         equirectangular panorama for the distant environment (default: black)\n"
-    "  --layers L         plan (default): the layers and methods of the effect plan\n"
-    "                     (specula-cook plan); objects: one layer per object\n"
-    "  -h, --help         show this help\n"
-    "\n"
     "lightfield (Yu et al. 2005): six slabs around a cubic cell of side L, camera planes on the\n"
     "cell faces extended to 3L, NUM x NUM cameras of RES x RES pixels (90 degree field of view)\n"
-    "each; raw atlases (see lightfield_asset.h) and the focal-plane disparity per slab.\n"
-    "  --cell-size L      cell side in metres (default: the probe's cell_size, else 1.5)\n"
-    "  --cell-center x,y,z  cell centre in world space (default: the probe position)\n"
-    "  --cameras NUM      cameras per side of a slab, 2..256 (default 8)\n"
-    "  --image-res RES    pixels per side of a camera image, a multiple of 4 (default 64)\n"
-    "  --compress C       none (sRGB RGB8, default) or bc1 (DXT1); bc7 is not supported\n"
+    "each; raw atlases (see lightfield_asset.h) and the focal-plane disparity per slab. The\n"
+    "options of one flavour are refused with the other.\n"
     "\n"
+    "A level's bake options can live in a file beside the scene: --config FILE (TOML or INI)\n"
+    "with a [bake] section, e.g. face-res = 128; flags on the command line win.\n";
+
+constexpr const char* kBakeFooter =
     "Signals: SIGINT/SIGTERM at any moment before the final rename leave DIR as it was and\n"
     "no temporary folder behind. DIR is replaced only if it is empty or a cooked probe that\n"
     "holds nothing but the files its manifest lists, and never if it holds SCENE. Temporary\n"
@@ -57,7 +47,22 @@ const std::string_view kBakeUsage =
     "exit status: 0 ok, 1 the scene could not be baked, 2 bad command line, 130 cancelled\n"
     "by SIGINT/SIGTERM (DIR left as it was)\n";
 
-namespace {
+// What the bake's flags set; defaults are the help's.
+struct BakeArgs {
+    std::string scene, out, flavour = "distance";
+    std::optional<std::string> probe, sky;
+    // distance
+    int faceRes = 256;
+    std::string layers = "plan";
+    // lightfield
+    std::optional<float> cellSize;
+    std::optional<std::string> cellCentre;
+    int cameras = 8, imageRes = 64;
+    std::string compress = "none";
+    // The options that belong to one flavour, with its name.
+    std::vector<std::pair<const CLI::Option*, std::string>> flavourOnly;
+};
+
 extern "C" void onSignal(int) {
     requestCancel();
 }
@@ -108,64 +113,49 @@ struct BakeInput {
           sky(skyPath ? readImage(*skyPath) : Image()) {}
 };
 
-// `bake --flavour lightfield`: the remaining flags, the bake on all cores with a progress
-// bar, the same cancel checks and atomic write as the distance flavour.
-int runLightFieldBake(Flags& flags, const std::optional<std::string>& outDir,
-                      const std::optional<glm::vec3>& probeAt,
-                      const std::optional<std::string>& skyPath, std::ostream& out) {
-    const auto cellSize = flags.value("--cell-size");
-    const auto cellCentre = flags.vec3Value("--cell-center");
-    const int cameras = flags.intValue("--cameras", 8, 2, 256);
-    const int res = flags.intValue("--image-res", 64, 4, 4096);
-    const std::string compress = flags.value("--compress").value_or("none");
-    const auto pos = flags.positionals();
-    if (pos.size() != 1) throw UsageError{"bake needs exactly one SCENE"};
-    if (!outDir || outDir->empty()) throw UsageError{"bake needs --out DIR"};
-    if (compress == "bc7")
-        throw UsageError{"--compress: bc7 is not supported by this cooker (no BC7 encoder); "
-                         "use bc1 or none"};
-    if (compress != "none" && compress != "bc1")
-        throw UsageError{"--compress: expected none or bc1, got '" + compress + "'"};
-    if (res % 4 != 0) throw UsageError{"--image-res: expected a multiple of 4 (BC1 blocks)"};
-    if (cameras * res > 16384)
-        throw UsageError{"--cameras x --image-res must be at most 16384 (the 2D texture side)"};
-
-    prepareOutput(*outDir, pos[0], out);
+// `bake --flavour lightfield`: the bake on all cores with a progress bar, the same cancel
+// checks and atomic write as the distance flavour.
+int runLightFieldBake(const BakeArgs& a, std::ostream& out) {
+    if (a.cameras * a.imageRes > 16384)
+        throw UsageError("--cameras",
+                         "NUM x --image-res RES = " + std::to_string(a.cameras * a.imageRes) +
+                             " exceeds 16384 (the 2D texture side)");
+    const std::string& outDir = a.out;
+    prepareOutput(outDir, a.scene, out);
     const auto start = std::chrono::steady_clock::now();
-    BakeInput in(pos[0], skyPath);
-    throwIfCancelled(*outDir);
+    BakeInput in(a.scene, a.sky);
+    throwIfCancelled(outDir);
 
     LightFieldBakeOptions o;
-    o.cellCentre = cellCentre ? *cellCentre
-                   : probeAt  ? *probeAt
-                              : markupProbeCentre(in.registry, in.markup, in.scene);
-    o.cellSize =
-        cellSize ? parseFloat("--cell-size", *cellSize, 1e-3f, 1e4f) : markupCellSize(in.markup);
-    o.cameras = cameras;
-    o.res = res;
-    o.compression = compress == "bc1" ? LightFieldCompression::BC1 : LightFieldCompression::None;
+    o.cellCentre = a.cellCentre ? cli::parseVec3(*a.cellCentre)
+                   : a.probe    ? cli::parseVec3(*a.probe)
+                                : markupProbeCentre(in.registry, in.markup, in.scene);
+    o.cellSize = a.cellSize ? *a.cellSize : markupCellSize(in.markup);
+    o.cameras = a.cameras;
+    o.res = a.imageRes;
+    o.compression = a.compress == "bc1" ? LightFieldCompression::BC1 : LightFieldCompression::None;
     o.sky = in.sky.empty() ? nullptr : &in.sky;
     o.cancelled = [] { return cancelRequested(); };
     std::vector<std::string> warnings; // the probe placement's (checkProbePlacement)
     o.warnings = &warnings;
     LightFieldAsset asset;
     {
-        ProgressBar bar("baking light field " + std::filesystem::path(pos[0]).filename().string());
+        ProgressBar bar("baking light field " + std::filesystem::path(a.scene).filename().string());
         o.progress = [&](double f) { bar.update(f); };
-        asset = bakeUnlessCancelled(*outDir,
+        asset = bakeUnlessCancelled(outDir,
                                     [&] { return bakeLightFieldProbe(in.registry, in.markup, o); });
     }
     for (const std::string& w : warnings)
         out << "  warning: " << w << '\n';
-    throwIfCancelled(*outDir);
-    writeLightFieldProbe(asset, *outDir, pos[0]);
+    throwIfCancelled(outDir);
+    writeLightFieldProbe(asset, outDir, a.scene);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    out << "baked light field: 6 slabs x " << cameras << "^2 cameras x " << res << "^2 px, cell "
-        << o.cellSize << " m, " << toString(o.compression) << ", " << asset.diskBytes()
-        << " bytes on disk, " << asset.gpuBytes() << " bytes of GPU memory, bake "
-        << asset.bakeSeconds << " s, total " << seconds << " s -> " << *outDir
-        << "/manifest.json\n";
+    out << "baked light field: 6 slabs x " << a.cameras << "^2 cameras x " << a.imageRes
+        << "^2 px, cell " << o.cellSize << " m, " << toString(o.compression) << ", "
+        << asset.diskBytes() << " bytes on disk, " << asset.gpuBytes()
+        << " bytes of GPU memory, bake " << asset.bakeSeconds << " s, total " << seconds << " s -> "
+        << outDir << "/manifest.json\n";
     for (int k = 0; k < 6; ++k) {
         const LightFieldSlab& s = asset.slabs[std::size_t(k)];
         out << "  slab " << slabName(k) << ": depth " << s.nearDepth << " .. " << s.farDepth
@@ -184,69 +174,137 @@ int runLightFieldBake(Flags& flags, const std::optional<std::string>& outDir,
         out << "  warning: reflector " << r.node << " reaches " << r.metres
             << " m outside the cell (--cell-size " << o.cellSize + 2.f * r.metres
             << " would hold it)\n";
-    return kExitOk;
+    return cli::kExitOk;
 }
-} // namespace
 
-int runBake(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
-    const SignalGuard guard; // first: a signal during the load and the plan is honoured too
-    Flags flags(args);
-    const auto outDir = flags.value("--out");
-    const std::string flavour = flags.value("--flavour").value_or("distance");
-    const int faceRes = flags.intValue("--face-res", 256, 1, 4096);
-    const auto probeAt = flags.vec3Value("--probe");
-    const auto skyPath = flags.value("--sky");
-    const std::string layers = flags.value("--layers").value_or("plan");
-    if (flavour == "lightfield") return runLightFieldBake(flags, outDir, probeAt, skyPath, out);
-    const auto pos = flags.positionals();
-    if (pos.size() != 1) throw UsageError{"bake needs exactly one SCENE"};
-    if (!outDir || outDir->empty()) throw UsageError{"bake needs --out DIR"};
-    if (layers != "plan" && layers != "objects")
-        throw UsageError{"--layers: expected 'plan' or 'objects', got '" + layers + "'"};
-    if (flavour != "distance")
-        throw UsageError{"--flavour: expected 'distance' or 'lightfield', got '" + flavour + "'"};
-
-    prepareOutput(*outDir, pos[0], out);
+// `bake --flavour distance`: the effect plan's layers (or one per object), traced on all cores.
+int runDistanceBake(const BakeArgs& a, std::ostream& out) {
+    const std::string& outDir = a.out;
+    prepareOutput(outDir, a.scene, out);
     const auto start = std::chrono::steady_clock::now();
-    BakeInput in(pos[0], skyPath);
-    throwIfCancelled(*outDir);
+    BakeInput in(a.scene, a.sky);
+    throwIfCancelled(outDir);
 
     DistanceBakeOptions o;
-    o.centre = probeAt ? *probeAt : markupProbeCentre(in.registry, in.markup, in.scene);
-    o.faceRes = faceRes;
+    o.centre =
+        a.probe ? cli::parseVec3(*a.probe) : markupProbeCentre(in.registry, in.markup, in.scene);
+    o.faceRes = a.faceRes;
     o.sky = in.sky.empty() ? nullptr : &in.sky;
     o.reflectorReach =
         markupReflectorReach(in.registry, in.markup, o.centre, markupCellSize(in.markup));
     const EffectPlan plan = planEffects(in.registry, in.markup, o.centre, o.reflectorReach);
-    if (layers == "plan") applyPlan(plan, o);
-    throwIfCancelled(*outDir);
+    if (a.layers == "plan") applyPlan(plan, o);
+    throwIfCancelled(outDir);
     o.cancelled = [] { return cancelRequested(); };
     std::vector<std::string> warnings; // the probe placement's (checkProbePlacement)
     o.warnings = &warnings;
     DistanceProbeAsset asset;
     {
-        ProgressBar bar("baking " + std::filesystem::path(pos[0]).filename().string());
+        ProgressBar bar("baking " + std::filesystem::path(a.scene).filename().string());
         o.progress = [&](double f) { bar.update(f); };
-        asset = bakeUnlessCancelled(*outDir,
+        asset = bakeUnlessCancelled(outDir,
                                     [&] { return bakeDistanceProbe(in.registry, in.markup, o); });
     }
     for (const std::string& w : warnings)
         out << "  warning: " << w << '\n';
-    throwIfCancelled(*outDir);
+    throwIfCancelled(outDir);
     asset.effectPlan = plan.toJson().dump();
-    writeDistanceProbe(asset, *outDir, pos[0]);
+    writeDistanceProbe(asset, outDir, a.scene);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out << "baked " << asset.layers.size() << " layers (" << asset.objectLayerCount()
-        << " objects + composite) at " << faceRes << "^2 x 6 in " << seconds << " s -> " << *outDir
+        << " objects + composite) at " << a.faceRes << "^2 x 6 in " << seconds << " s -> " << outDir
         << "/manifest.json\n";
     for (std::size_t i = 0; i < asset.layers.size(); ++i) {
         const DistanceProbeLayer& L = asset.layers[i];
         out << "  layer " << i << " " << L.name << ": d-bar " << L.avgDistance << " m, "
             << L.solidAngle << " sr, " << L.method << "\n";
     }
-    (void)err;
-    return kExitOk;
+    return cli::kExitOk;
+}
+
+// A flag of one flavour given with the other is refused, not ignored.
+void refuseOtherFlavoursOptions(const BakeArgs& a) {
+    for (const auto& [option, flavour] : a.flavourOnly)
+        if (option->count() > 0 && flavour != a.flavour)
+            throw UsageError(option->get_name(), "applies to --flavour " + flavour +
+                                                     " only, not to --flavour " + a.flavour);
+}
+
+int runBake(const BakeArgs& a, std::ostream& out) {
+    refuseOtherFlavoursOptions(a);
+    const SignalGuard guard; // first: a signal during the load and the plan is honoured too
+    return a.flavour == "lightfield" ? runLightFieldBake(a, out) : runDistanceBake(a, out);
+}
+
+// BC1 blocks (4x4 texels) must not straddle two cameras of an atlas.
+CLI::Validator multipleOfFour() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            int v = 0;
+            return CLI::detail::lexical_cast(text, v) && v % 4 == 0
+                       ? std::string()
+                       : "expected a multiple of 4 (BC1 blocks), got '" + text + "'";
+        },
+        "");
+}
+
+} // namespace
+
+void addBakeCommand(cli::ToolCli& tool) {
+    auto a = std::make_shared<BakeArgs>();
+    CLI::App* sub = tool.addSubcommand(
+        "bake", "bake a scene's reflection probe into a cooked folder", kBakeDescription,
+        kBakeFooter, [a](std::ostream& out) { return runBake(*a, out); });
+    sub->add_option("SCENE", a->scene, "the glTF/GLB scene")->required();
+    sub->add_option("--out", a->out, "output folder (replaced atomically; never half-written)")
+        ->required()
+        ->check(cli::nonEmpty("a folder"));
+    sub->add_option("--flavour", a->flavour, "probe flavour")
+        ->check(CLI::IsMember({"distance", "lightfield"}));
+    sub->add_option("--probe", a->probe, "probe centre in world space (overrides the markup)")
+        ->check(cli::vec3Text());
+    sub->add_option("--sky", a->sky,
+                    "equirectangular panorama for the distant environment (default: black)");
+
+    auto only = [&](CLI::Option* o, const char* flavour) {
+        o->group(std::string(flavour) + " options");
+        a->flavourOnly.emplace_back(o, flavour);
+        return o;
+    };
+    only(sub->add_option("--face-res", a->faceRes, "cube face resolution"), "distance")
+        ->check(CLI::Range(1, 4096));
+    only(sub->add_option("--layers", a->layers,
+                         "plan: the layers and methods of the effect plan (specula-cook plan); "
+                         "objects: one layer per object"),
+         "distance")
+        ->check(CLI::IsMember({"plan", "objects"}));
+    only(sub->add_option("--cell-size", a->cellSize,
+                         "cell side in metres (default: the probe's cell_size, else 1.5)"),
+         "lightfield")
+        ->check(cli::finiteRange(1e-3, 1e4));
+    only(sub->add_option("--cell-center", a->cellCentre,
+                         "cell centre in world space (default: the probe position)"),
+         "lightfield")
+        ->check(cli::vec3Text());
+    only(sub->add_option("--cameras", a->cameras, "cameras per side of a slab"), "lightfield")
+        ->check(CLI::Range(2, 256));
+    only(sub->add_option("--image-res", a->imageRes, "pixels per side of a camera image"),
+         "lightfield")
+        ->check(CLI::Range(4, 4096))
+        ->check(multipleOfFour());
+    only(sub->add_option("--compress", a->compress,
+                         "none: sRGB RGB8; bc1: DXT1 (bc7 is not supported: no BC7 encoder)"),
+         "lightfield")
+        ->check(CLI::IsMember({"none", "bc1"}));
+
+    // Library code names the fields it read; these are the flags that set them.
+    tool.mapField("face_res", "--face-res");
+    tool.mapField("centre", "--probe");
+    tool.mapField("cell_centre", "--cell-center");
+    tool.mapField("cell.size", "--cell-size");
+    tool.mapField("cameras", "--cameras");
+    tool.mapField("image_res", "--image-res");
 }
 
 } // namespace specula::cook

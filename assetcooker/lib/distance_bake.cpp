@@ -90,9 +90,9 @@ void setInfinity(std::array<Image, 6>& faces, float dInf) {
 DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup& markup,
                                      const DistanceBakeOptions& opt) {
     if (opt.faceRes < 1 || opt.faceRes > 4096)
-        throw Error("", "--face-res", "expected 1 to 4096, got " + std::to_string(opt.faceRes));
+        throw Error("", "face_res", "expected 1 to 4096, got " + std::to_string(opt.faceRes));
     for (int i = 0; i < 3; ++i)
-        if (!std::isfinite(opt.centre[i])) throw Error("", "--probe", "expected finite numbers");
+        if (!std::isfinite(opt.centre[i])) throw Error("", "centre", "expected finite numbers");
 
     // Refuses nothing to reflect (no geometry met, no sky) and probes inside solids or on
     // surfaces; an environment of sky alone is legal (every texel misses).
@@ -133,15 +133,14 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
         byName.emplace(o.name, &o);
     for (const DistanceBakeOptions::LayerSpec& spec : specs) {
         std::unordered_set<ecs::Entity> members;
-        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        Aabb bounds;
         for (const std::string& name : spec.objects) {
             const auto found = byName.find(name);
             if (found == byName.end())
                 throw Error("", "layer '" + spec.name + "'", "names unknown object '" + name + "'");
             const EnvironmentObject& o = *found->second;
             members.insert(o.meshes.begin(), o.meshes.end());
-            lo = glm::min(lo, o.boundsMin);
-            hi = glm::max(hi, o.boundsMax);
+            bounds.extend(o.bounds);
         }
         const EmbreeScene scene(registry, [&](ecs::Entity e) { return members.count(e) > 0; });
         DistanceProbeLayer layer;
@@ -149,8 +148,8 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
         layer.objects = spec.objects;
         layer.method = spec.method;
         // Grown a little: a ray grazing the bounds must still try the layer.
-        layer.boxMin = lo - opt.centre - glm::vec3(1e-3f);
-        layer.boxMax = hi - opt.centre + glm::vec3(1e-3f);
+        layer.boxMin = bounds.min - opt.centre - glm::vec3(1e-3f);
+        layer.boxMax = bounds.max - opt.centre + glm::vec3(1e-3f);
         bakeFaces(scene, opt, false, layer.faces, rowsDone, rowsTotal);
         objects.push_back(std::move(layer));
     }
@@ -187,13 +186,11 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
         std::erase_if(objects, [](const DistanceProbeLayer& L) { return L.solidAngle <= 0.f; });
     }
 
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const EnvironmentObject& o : markup.objects) {
-        lo = glm::min(lo, o.boundsMin);
-        hi = glm::max(hi, o.boundsMax);
-    }
-    asset.boxMin = lo - opt.centre;
-    asset.boxMax = hi - opt.centre;
+    Aabb envBounds;
+    for (const EnvironmentObject& o : markup.objects)
+        envBounds.extend(o.bounds);
+    asset.boxMin = envBounds.min - opt.centre;
+    asset.boxMax = envBounds.max - opt.centre;
     composite.boxMin = asset.boxMin;
     composite.boxMax = asset.boxMax;
 

@@ -96,8 +96,8 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
         if (L.solidAngle <= 0.f) {
             // Smaller than the analysis texels (or hidden from the centre): judge it by its
             // bounding sphere instead, which errs on the side of correcting it.
-            const glm::vec3 mid = 0.5f * (o.boundsMin + o.boundsMax) - centre;
-            const float radius = 0.5f * glm::length(o.boundsMax - o.boundsMin);
+            const glm::vec3 mid = o.bounds.centre() - centre;
+            const float radius = o.bounds.boundingRadius();
             const float dist = glm::length(mid);
             if (dist <= radius) {
                 po.decision = "invisible";

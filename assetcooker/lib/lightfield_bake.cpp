@@ -80,7 +80,7 @@ LightFieldAsset bakeLightFieldProbe(ecs::Registry& registry, const SceneMarkup& 
     validateLightFieldSize(opt.cameras, opt.res, opt.cellSize, opt.compression, "");
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(opt.cellCentre[i]))
-            throw Error("", "--cell-center", "expected finite numbers");
+            throw Error("", "cell_centre", "expected finite numbers");
     if (!(opt.depthPercentile >= 0.f && opt.depthPercentile <= 0.5f))
         throw Error("", "depthPercentile", "expected [0, 0.5]");
     const auto start = std::chrono::steady_clock::now();
@@ -215,11 +215,11 @@ std::vector<LightFieldIntrusion> findLightFieldIntrusions(const SceneMarkup& mar
     const float h = 0.5f * cellSize;
     std::vector<LightFieldIntrusion> out;
     for (const EnvironmentObject& o : markup.objects) {
-        const glm::vec3 lo = o.boundsMin - centre, hi = o.boundsMax - centre;
-        if (lo.x > hi.x) continue; // no geometry
+        if (o.bounds.empty()) continue; // no geometry
+        const Aabb box = o.bounds.translated(-centre);
         // The bounds' point nearest the cell centre, and its Chebyshev distance past the
         // cell surface.
-        const glm::vec3 q = glm::clamp(glm::vec3(0.f), lo, hi);
+        const glm::vec3 q = glm::clamp(glm::vec3(0.f), box.min, box.max);
         const float depth = h - std::max(std::abs(q.x), std::max(std::abs(q.y), std::abs(q.z)));
         if (depth > 0.f) {
             out.push_back({o.name, "cell", depth});
@@ -228,12 +228,10 @@ std::vector<LightFieldIntrusion> findLightFieldIntrusions(const SceneMarkup& mar
         // Slab pair a: rays leave the cell through x_a = +-h after crossing the box
         // [-h, h] on a and [-3h, 3h] on the other axes.
         for (int a = 0; a < 3; ++a) {
-            bool overlap = true;
-            for (int k = 0; k < 3; ++k) {
-                const float e = k == a ? h : 3.f * h;
-                overlap = overlap && hi[k] >= -e && lo[k] <= e;
-            }
-            if (overlap) out.push_back({o.name, std::string("slabs +-") + "XYZ"[a], depth});
+            glm::vec3 e(3.f * h);
+            e[a] = h;
+            if (box.overlaps({-e, e}))
+                out.push_back({o.name, std::string("slabs +-") + "XYZ"[a], depth});
         }
     }
     return out;
@@ -245,13 +243,10 @@ std::vector<ReflectorOverhang> findReflectorOverhangs(const ecs::Registry& regis
     const float h = 0.5f * cellSize;
     std::vector<ReflectorOverhang> out;
     for (const ReflectorMarkup& r : markup.reflectors) {
-        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        Aabb bounds;
         for (ecs::Entity e : r.meshes)
-            meshWorldBounds(registry, e, lo, hi);
-        if (lo.x > hi.x) continue;
-        float over = 0.f;
-        for (int k = 0; k < 3; ++k)
-            over = std::max({over, hi[k] - centre[k] - h, -h - (lo[k] - centre[k])});
+            bounds.extend(meshWorldBounds(registry, e));
+        const float over = bounds.overhang(Aabb::cube(centre, h));
         if (over > 0.f) out.push_back({r.node, over});
     }
     return out;

@@ -1,52 +1,62 @@
 #include "plan_command.h"
 
-#include "assetcooker/lib/cli.h"
 #include "assetcooker/lib/effect_plan.h"
-#include "engine/core/flags.h"
 #include "engine/scene/gltf_loader.h"
+
+#include <memory>
+#include <optional>
 
 namespace specula::cook {
 
-const std::string_view kPlanUsage =
-    "usage: specula-cook plan SCENE [options]\n"
-    "\n"
-    "Prints which reflection effects the probe of SCENE needs, with the reason for each\n"
-    "decision, without baking: distant objects -> direction-only lookup; large near objects\n"
-    "-> per-pixel rectification; small near ones -> average distance; layers only where\n"
-    "objects overlap as seen from the reflector cell; Fresnel only where a reflector's F0 < 1.\n"
-    "Needs stated in the probe node's extras (\"specula_probe\": {\"max_error_deg\": 0.5,\n"
-    "\"motion_range\": 1.5, \"flavour\": \"distance\"|\"lightfield\", \"fresnel\": true,\n"
-    "\"background\": true}) are honoured and reported.\n"
-    "\n"
-    "options:\n"
-    "  --probe x,y,z        probe centre (overrides the markup)\n"
-    "  --max-error-deg E    direction-only error allowed, degrees (default 1, or the markup)\n"
-    "  --json               print JSON instead of text\n"
-    "  -h, --help           show this help\n"
-    "\n"
-    "exit status: 0 ok, 1 the scene could not be read, 2 bad command line\n";
+namespace {
 
-int runPlan(std::span<const std::string> args, std::ostream& out, std::ostream&) {
-    Flags flags(args);
-    const auto probeAt = flags.vec3Value("--probe");
-    const auto maxError = flags.value("--max-error-deg");
-    const bool json = flags.flag("--json");
-    const auto pos = flags.positionals();
-    if (pos.size() != 1) throw UsageError{"plan needs exactly one SCENE"};
+struct PlanArgs {
+    std::string scene;
+    std::optional<std::string> probe;
+    std::optional<float> maxErrorDeg;
+    bool json = false;
+};
+
+int runPlan(const PlanArgs& a, std::ostream& out) {
     PlanThresholds t;
-    if (maxError) t.maxErrorDeg = parseFloat("--max-error-deg", *maxError, 1e-3f, 45.f);
-
+    if (a.maxErrorDeg) t.maxErrorDeg = *a.maxErrorDeg;
     ecs::Registry registry;
-    const LoadedScene scene = loadGltf(pos[0], registry);
-    const SceneMarkup markup = readSceneMarkup(registry, scene, pos[0]);
-    const glm::vec3 centre = probeAt ? *probeAt : markupProbeCentre(registry, markup, scene);
+    const LoadedScene scene = loadGltf(a.scene, registry);
+    const SceneMarkup markup = readSceneMarkup(registry, scene, a.scene);
+    const glm::vec3 centre =
+        a.probe ? cli::parseVec3(*a.probe) : markupProbeCentre(registry, markup, scene);
     const float reach = markupReflectorReach(registry, markup, centre, markupCellSize(markup));
     const EffectPlan plan = planEffects(registry, markup, centre, reach, t);
-    if (json)
+    if (a.json)
         out << plan.toJson().dump(2) << "\n";
     else
         out << plan.toText();
-    return kExitOk;
+    return cli::kExitOk;
+}
+
+} // namespace
+
+void addPlanCommand(cli::ToolCli& tool) {
+    auto a = std::make_shared<PlanArgs>();
+    CLI::App* sub = tool.addSubcommand(
+        "plan", "print the effect plan of a scene's probe (what it needs, and why)",
+        "Prints which reflection effects the probe of SCENE needs, with the reason for each\n"
+        "decision, without baking: distant objects -> direction-only lookup; large near objects\n"
+        "-> per-pixel rectification; small near ones -> average distance; layers only where\n"
+        "objects overlap as seen from the reflector cell; Fresnel only where a reflector's F0 < "
+        "1.\n"
+        "Needs stated in the probe node's extras (\"specula_probe\": {\"max_error_deg\": 0.5,\n"
+        "\"motion_range\": 1.5, \"flavour\": \"distance\"|\"lightfield\", \"fresnel\": true,\n"
+        "\"background\": true}) are honoured and reported.\n",
+        "exit status: 0 ok, 1 the scene could not be read, 2 bad command line\n",
+        [a](std::ostream& out) { return runPlan(*a, out); });
+    sub->add_option("SCENE", a->scene, "the glTF/GLB scene")->required();
+    sub->add_option("--probe", a->probe, "probe centre (overrides the markup)")
+        ->check(cli::vec3Text());
+    sub->add_option("--max-error-deg", a->maxErrorDeg,
+                    "direction-only error allowed, degrees (default 1, or the markup)")
+        ->check(cli::finiteRange(1e-3, 45.0));
+    sub->add_flag("--json", a->json, "print JSON instead of text");
 }
 
 } // namespace specula::cook

@@ -22,8 +22,7 @@ struct Sphere {
     float radius;
 };
 Sphere boundingSphere(const EnvironmentObject& o, glm::vec3 centre) {
-    return {0.5f * (o.boundsMin + o.boundsMax) - centre,
-            0.5f * glm::length(o.boundsMax - o.boundsMin)};
+    return {o.bounds.centre() - centre, o.bounds.boundingRadius()};
 }
 
 } // namespace

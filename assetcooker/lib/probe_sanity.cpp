@@ -56,19 +56,18 @@ ProbePlacement measureProbePlacement(ecs::Registry& registry, const SceneMarkup&
     ProbePlacement m;
     m.directions = directions;
     std::unordered_map<std::uint32_t, std::size_t> objectOf; // mesh entity index -> object
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    Aabb bounds;
     for (std::size_t i = 0; i < markup.objects.size(); ++i) {
         for (ecs::Entity e : markup.objects[i].meshes)
             objectOf[e.index] = i;
-        lo = glm::min(lo, markup.objects[i].boundsMin);
-        hi = glm::max(hi, markup.objects[i].boundsMax);
+        bounds.extend(markup.objects[i].bounds);
     }
     const EmbreeScene scene(registry,
                             [&](ecs::Entity e) { return !markup.mirrorEntities.count(e); });
     m.geometry = !scene.empty();
     if (!markup.objects.empty()) {
-        m.sceneSize = glm::length(hi - lo);
-        m.outside = glm::length(glm::max(glm::vec3(0.f), glm::max(lo - centre, centre - hi)));
+        m.sceneSize = glm::length(bounds.extent());
+        m.outside = bounds.distance(centre);
     }
     if (!m.geometry) return m;
 
@@ -103,7 +102,7 @@ ProbePlacement measureProbePlacement(ecs::Registry& registry, const SceneMarkup&
     // "nothing to reflect" means degenerate or absent geometry, not sparse sampling.
     if (m.hits == 0)
         for (const EnvironmentObject& o : markup.objects) {
-            const glm::vec3 to = 0.5f * (o.boundsMin + o.boundsMax) - centre;
+            const glm::vec3 to = o.bounds.centre() - centre;
             if (glm::dot(to, to) > 0.f && scene.intersect(centre, to, 0.f)) ++m.aimedHits;
         }
     const auto most =
@@ -128,7 +127,7 @@ std::vector<std::string> checkProbePlacement(ecs::Registry& registry, const Scen
             throw Error("", field,
                         "nothing to reflect: " +
                             (m.geometry ? none : "the scene has no environment geometry") +
-                            " and there is no sky (--sky)");
+                            " and there is no sky panorama");
         if (m.geometry) warnings.push_back(field + ": " + none + ": the probe holds the sky alone");
         return warnings;
     }

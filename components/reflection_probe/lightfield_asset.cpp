@@ -6,6 +6,7 @@
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
 #include "engine/core/regular_file.h"
+#include "engine/image/bc1.h"
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -15,7 +16,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -44,23 +44,20 @@ float disparityForDepth(const LightFieldAsset& a, float focalDepth) {
 
 void validateLightFieldSize(int cameras, int res, float cellSize, LightFieldCompression c,
                             const std::string& source) {
-    auto field = [&](const char* flag, const char* key) {
-        return source.empty() ? std::string(flag) : std::string(key);
-    };
     if (cameras < 2 || cameras > 256)
-        throw Error(source, field("--cameras", "cameras"),
+        throw Error(source, "cameras",
                     "expected 2 to 256 cameras per side, got " + std::to_string(cameras));
     if (res < 4 || res > 4096 || res % 4 != 0)
-        throw Error(source, field("--image-res", "image_res"),
+        throw Error(source, "image_res",
                     "expected a multiple of 4 in [4, 4096] (BC1 blocks must not straddle two "
                     "cameras), got " +
                         std::to_string(res));
     if (cameras * res > 16384)
-        throw Error(source, field("--cameras", "cameras"),
+        throw Error(source, "cameras",
                     "NUM x RES = " + std::to_string(cameras * res) +
                         " exceeds the 16384 texel side of a 2D texture atlas");
     if (!(cellSize > 0.f) || !std::isfinite(cellSize))
-        throw Error(source, field("--cell-size", "cell.size"), "expected a positive size");
+        throw Error(source, "cell.size", "expected a positive size");
     (void)c;
 }
 
@@ -79,142 +76,6 @@ void writeBytes(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
     out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     out.close();
     if (!out) throw Error(path.string(), "", "write failed");
-}
-
-// --- BC1 -----------------------------------------------------------------------------------
-
-std::uint16_t pack565(glm::vec3 c) {
-    const int r = std::clamp(int(std::lround(c.r * 31.f / 255.f)), 0, 31);
-    const int g = std::clamp(int(std::lround(c.g * 63.f / 255.f)), 0, 63);
-    const int b = std::clamp(int(std::lround(c.b * 31.f / 255.f)), 0, 31);
-    return std::uint16_t((r << 11) | (g << 5) | b);
-}
-
-glm::ivec3 unpack565(std::uint16_t v) {
-    const int r = (v >> 11) & 31, g = (v >> 5) & 63, b = v & 31;
-    return {(r << 3) | (r >> 2), (g << 2) | (g >> 4), (b << 3) | (b >> 2)};
-}
-
-// The four-colour palette of a block with c0 > c1 (the only mode the encoder writes).
-void palette(std::uint16_t c0, std::uint16_t c1, glm::ivec3 out[4]) {
-    out[0] = unpack565(c0);
-    out[1] = unpack565(c1);
-    if (c0 > c1) {
-        out[2] = (2 * out[0] + out[1]) / 3;
-        out[3] = (out[0] + 2 * out[1]) / 3;
-    } else {
-        out[2] = (out[0] + out[1]) / 2;
-        out[3] = glm::ivec3(0);
-    }
-}
-
-// One block: endpoints at the extremes of the colours along their principal axis (a few
-// power iterations on the covariance), then each texel takes the nearest palette entry.
-void encodeBlock(const glm::vec3 px[16], std::uint8_t out[8]) {
-    glm::vec3 mean(0.f);
-    for (int i = 0; i < 16; ++i)
-        mean += px[i];
-    mean /= 16.f;
-    float cov[6] = {};
-    for (int i = 0; i < 16; ++i) {
-        const glm::vec3 d = px[i] - mean;
-        cov[0] += d.r * d.r, cov[1] += d.r * d.g, cov[2] += d.r * d.b;
-        cov[3] += d.g * d.g, cov[4] += d.g * d.b, cov[5] += d.b * d.b;
-    }
-    glm::vec3 axis(0.57735f);
-    for (int it = 0; it < 6; ++it) {
-        const glm::vec3 next(cov[0] * axis.r + cov[1] * axis.g + cov[2] * axis.b,
-                             cov[1] * axis.r + cov[3] * axis.g + cov[4] * axis.b,
-                             cov[2] * axis.r + cov[4] * axis.g + cov[5] * axis.b);
-        const float len = glm::length(next);
-        if (!(len > 1e-12f)) break;
-        axis = next / len;
-    }
-    float lo = std::numeric_limits<float>::max(), hi = -lo;
-    for (int i = 0; i < 16; ++i) {
-        const float t = glm::dot(px[i] - mean, axis);
-        lo = std::min(lo, t);
-        hi = std::max(hi, t);
-    }
-    std::uint16_t c0 = pack565(glm::clamp(mean + hi * axis, 0.f, 255.f));
-    std::uint16_t c1 = pack565(glm::clamp(mean + lo * axis, 0.f, 255.f));
-    if (c0 < c1) std::swap(c0, c1);
-    std::uint32_t indices = 0;
-    if (c0 != c1) {
-        glm::ivec3 pal[4];
-        palette(c0, c1, pal);
-        for (int i = 0; i < 16; ++i) {
-            int best = 0;
-            float bestD = std::numeric_limits<float>::max();
-            for (int k = 0; k < 4; ++k) {
-                const glm::vec3 d = px[i] - glm::vec3(pal[k]);
-                const float dd = glm::dot(d, d);
-                if (dd < bestD) bestD = dd, best = k;
-            }
-            indices |= std::uint32_t(best) << (2 * i);
-        }
-    }
-    // c0 == c1: every index 0 (c0); the block is a single colour.
-    out[0] = std::uint8_t(c0 & 0xff), out[1] = std::uint8_t(c0 >> 8);
-    out[2] = std::uint8_t(c1 & 0xff), out[3] = std::uint8_t(c1 >> 8);
-    for (int k = 0; k < 4; ++k)
-        out[4 + k] = std::uint8_t(indices >> (8 * k));
-}
-
-} // namespace
-
-std::vector<std::uint8_t> encodeBC1(const std::uint8_t* rgb, int width, int height) {
-    const int bw = width / 4, bh = height / 4;
-    std::vector<std::uint8_t> out(std::size_t(bw) * bh * 8);
-    for (int by = 0; by < bh; ++by)
-        for (int bx = 0; bx < bw; ++bx) {
-            glm::vec3 px[16];
-            for (int y = 0; y < 4; ++y)
-                for (int x = 0; x < 4; ++x) {
-                    const std::uint8_t* p =
-                        rgb + (std::size_t(by * 4 + y) * width + std::size_t(bx * 4 + x)) * 3;
-                    px[y * 4 + x] = glm::vec3(p[0], p[1], p[2]);
-                }
-            encodeBlock(px, &out[(std::size_t(by) * bw + bx) * 8]);
-        }
-    return out;
-}
-
-std::vector<std::uint8_t> decodeBC1(const std::uint8_t* blocks, int width, int height) {
-    const int bw = width / 4, bh = height / 4;
-    std::vector<std::uint8_t> out(std::size_t(width) * height * 3);
-    for (int by = 0; by < bh; ++by)
-        for (int bx = 0; bx < bw; ++bx) {
-            const std::uint8_t* b = blocks + (std::size_t(by) * bw + bx) * 8;
-            glm::ivec3 pal[4];
-            palette(std::uint16_t(b[0] | (b[1] << 8)), std::uint16_t(b[2] | (b[3] << 8)), pal);
-            const std::uint32_t idx = std::uint32_t(b[4]) | (std::uint32_t(b[5]) << 8) |
-                                      (std::uint32_t(b[6]) << 16) | (std::uint32_t(b[7]) << 24);
-            for (int i = 0; i < 16; ++i) {
-                const glm::ivec3 c = pal[(idx >> (2 * i)) & 3];
-                std::uint8_t* p =
-                    &out[(std::size_t(by * 4 + i / 4) * width + std::size_t(bx * 4 + i % 4)) * 3];
-                p[0] = std::uint8_t(c.r), p[1] = std::uint8_t(c.g), p[2] = std::uint8_t(c.b);
-            }
-        }
-    return out;
-}
-
-namespace {
-
-// A BC1 block the GPU cannot decode to a colour: with c0 <= c1 a block is in BC1's
-// three-colour mode, where index 3 means transparent black. The baker never writes it (its
-// blocks have c0 > c1, or c0 == c1 with every index 0); random or damaged bytes hit it in
-// about half their blocks. Returns the index of the first such block, or -1.
-long firstUndecodableBC1Block(const std::vector<std::uint8_t>& data) {
-    for (std::size_t b = 0; b + 8 <= data.size(); b += 8) {
-        const std::uint8_t* p = &data[b];
-        const unsigned c0 = unsigned(p[0] | (p[1] << 8)), c1 = unsigned(p[2] | (p[3] << 8));
-        if (c0 > c1) continue;
-        for (int i = 0; i < 16; ++i)
-            if (((p[4 + i / 4] >> (2 * (i % 4))) & 3) == 3) return long(b / 8);
-    }
-    return -1;
 }
 
 // The figures of one slab against each other: what the bake derives from its depth
@@ -257,9 +118,9 @@ void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
         const LightFieldSlab& s = a.slabs[std::size_t(k)];
         checkSlabFigures(a, s, manifest, "slabs[" + std::to_string(k) + "].");
         if (a.compression == LightFieldCompression::BC1)
-            if (const long b = firstUndecodableBC1Block(s.data); b >= 0)
+            if (const auto b = firstUndecodableBC1Block(s.data))
                 throw Error(manifest, "slabs[" + std::to_string(k) + "]",
-                            "BC1 block " + std::to_string(b) + " is not decodable");
+                            "BC1 block " + std::to_string(*b) + " is not decodable");
     }
     writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
         json slabs = json::array();
@@ -429,9 +290,9 @@ LightFieldAsset parseLightFieldProbe(const std::string& manifestText,
                             std::to_string(n) + "^2 " + toString(a.compression) + "), got " +
                             std::to_string(s.data.size()));
         if (a.compression == LightFieldCompression::BC1)
-            if (const long b = firstUndecodableBC1Block(s.data); b >= 0)
+            if (const auto b = firstUndecodableBC1Block(s.data))
                 throw Error(full, "texels",
-                            "BC1 block " + std::to_string(b) +
+                            "BC1 block " + std::to_string(*b) +
                                 " is in the three-colour mode the baker never writes (its "
                                 "index 3 decodes to transparent black)");
     }

@@ -18,6 +18,8 @@
 //   paper's 32 x 128 is a 4096^2 x 6 array: 384 MiB uncompressed, 48 MiB BC1.
 // On disk: manifest.json plus one raw file per slab holding exactly the bytes uploaded
 // (rows top to bottom: RGB8 texels, or BC1 blocks in block-row order), with checksums.
+#include "engine/image/bc1.h" // slab texels may be BC1 blocks: encodeBC1, decodeBC1
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -84,7 +86,8 @@ float disparityForDepth(const LightFieldAsset& a, float focalDepth);
 const char* slabName(int slab);
 
 // Checks NUM, RES, cell size and compression against the storage limits; throws Error
-// naming `source` and the field (`--cameras` style flag names when source is empty).
+// naming `source` and the manifest field (cameras, image_res, cell.size); a tool maps the
+// field to its flag when source is empty.
 void validateLightFieldSize(int cameras, int res, float cellSize, LightFieldCompression c,
                             const std::string& source);
 
@@ -108,11 +111,5 @@ LightFieldAsset parseLightFieldProbe(const std::string& manifestText,
 // The manifest's "flavour" member ("distance", "lightfield"), so a loader can dispatch.
 // Throws Error naming the file when it cannot be read.
 std::string probeManifestFlavour(const std::string& manifestPath);
-
-// BC1 (DXT1) of an RGB8 image (width and height multiples of 4; 3 bytes per texel, rows top
-// to bottom): 8 bytes per 4x4 block, blocks in row order. Always the four-colour mode.
-std::vector<std::uint8_t> encodeBC1(const std::uint8_t* rgb, int width, int height);
-// Decodes BC1 blocks back to RGB8, as the GPU's decoder does (to within rounding).
-std::vector<std::uint8_t> decodeBC1(const std::uint8_t* blocks, int width, int height);
 
 } // namespace specula

@@ -174,7 +174,7 @@ void checkProbeFolderReplaceable(const std::string& dir, const std::string& sour
     if (holdsScene(target, sourceScene))
         throw Error(dir, "",
                     "holds the input scene " + sourceScene +
-                        "; refusing to replace it (choose another --out)");
+                        "; refusing to replace it (choose another folder)");
     if (fs::is_empty(target, ec) && !ec) return;
     const std::set<std::string> listed = probeFolderFiles(target / "manifest.json", dir);
     std::vector<fs::directory_entry> entries(fs::directory_iterator(target),

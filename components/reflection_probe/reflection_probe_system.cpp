@@ -1,17 +1,17 @@
 #include "reflection_probe_system.h"
 
 #include "engine/core/error.h"
+#include "engine/core/log.h"
 #include "engine/gpu/shader.h"
 
 #include "components/reflection_probe/lightfield_probe_cpu.h"
-#include "components/reflection_probe/scene_markup.h"
 #include "engine/scene/components.h"
+#include "engine/scene/mesh_bounds.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 
 namespace specula {
 
@@ -364,23 +364,20 @@ void ReflectionProbeSystem::drawLightFieldBackground(const ProbeGpu& p, const Ca
 
 void ReflectionProbeSystem::checkCell(ecs::Registry& registry, ecs::Entity reflector,
                                       const ProbeGpu& p) {
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    meshWorldBounds(registry, reflector, lo, hi);
-    if (lo.x > hi.x) return;
+    // Per frame, so from the 8 corners of the meshes' local bounds rather than every vertex.
+    // Conservative: a rotated reflector's box is wider than its geometry, so one near a
+    // cell face may be reported a little early, never one outside missed.
     const LightFieldAsset& a = *p.lightField;
-    const float h = a.halfCell();
-    float over = 0.f;
-    for (int k = 0; k < 3; ++k)
-        over = std::max({over, hi[k] - a.cellCentre[k] - h, a.cellCentre[k] - h - lo[k]});
+    const float over = meshWorldBoundsConservative(registry, reflector)
+                           .overhang(Aabb::cube(a.cellCentre, a.halfCell()));
     if (!(over > 0.f)) return;
     ++stats_.reflectorsOutsideCell;
     stats_.reflectorLeftCell = true;
     if (warnedOutside_.insert(reflector).second) {
         const Name* name = registry.find<Name>(reflector);
-        std::fprintf(stderr,
-                     "specula: reflector '%s' reaches %.3f m outside the light-field cell of %s "
-                     "(the light field is exact only inside it)\n",
-                     name ? name->value.c_str() : "?", double(over), p.component.asset.c_str());
+        log().warn("reflector '{}' reaches {:.3f} m outside the light-field cell of {} (the "
+                   "light field is exact only inside it)",
+                   name ? name->value : "?", over, p.component.asset);
     }
 }
 

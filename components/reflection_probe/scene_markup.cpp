@@ -4,7 +4,6 @@
 #include "engine/scene/components.h"
 
 #include <cmath>
-#include <limits>
 #include <map>
 #include <unordered_map>
 
@@ -32,18 +31,6 @@ std::string nameOf(ecs::Registry& reg, ecs::Entity e) {
 }
 
 } // namespace
-
-void meshWorldBounds(const ecs::Registry& reg, ecs::Entity e, glm::vec3& lo, glm::vec3& hi) {
-    const Mesh* mesh = reg.find<Mesh>(e);
-    const Transform* t = reg.find<Transform>(e);
-    if (!mesh || !t) return;
-    for (const Primitive& p : mesh->primitives)
-        for (const glm::vec3& v : p.mesh->positions) {
-            const glm::vec3 w = glm::vec3(t->world * glm::vec4(v, 1.f));
-            lo = glm::min(lo, w);
-            hi = glm::max(hi, w);
-        }
-}
 
 SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const std::string& file) {
     std::unordered_map<std::uint32_t, std::vector<ecs::Entity>> children;
@@ -144,14 +131,12 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const 
         if (fresh) {
             EnvironmentObject o;
             o.name = name;
-            o.boundsMin = glm::vec3(std::numeric_limits<float>::max());
-            o.boundsMax = glm::vec3(-std::numeric_limits<float>::max());
             m.objects.push_back(std::move(o));
         }
         EnvironmentObject& o = m.objects[it->second];
         for (ecs::Entity me : meshes) {
             o.meshes.push_back(me);
-            meshWorldBounds(reg, me, o.boundsMin, o.boundsMax);
+            o.bounds.extend(meshWorldBounds(reg, me));
         }
     }
     return m;
@@ -161,10 +146,10 @@ glm::vec3 markupProbeCentre(const ecs::Registry& reg, const SceneMarkup& m,
                             const LoadedScene& scene) {
     if (!m.probes.empty()) return m.probes.front().position;
     if (!m.mirrorEntities.empty()) {
-        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        Aabb mirrors;
         for (ecs::Entity e : m.mirrorEntities)
-            meshWorldBounds(reg, e, lo, hi);
-        return 0.5f * (lo + hi);
+            mirrors.extend(meshWorldBounds(reg, e));
+        return mirrors.centre();
     }
     return 0.5f * (scene.boundsMin + scene.boundsMax);
 }
@@ -183,13 +168,11 @@ float markupReflectorReach(const ecs::Registry& reg, const SceneMarkup& m, glm::
                            float cellSize) {
     float reach = 0.5f * std::sqrt(3.f) * cellSize;
     for (ecs::Entity e : m.mirrorEntities) {
-        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-        meshWorldBounds(reg, e, lo, hi);
-        for (int i = 0; i < 8; ++i) {
-            const glm::vec3 corner((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y,
-                                   (i & 4) ? hi.z : lo.z);
-            reach = std::max(reach, glm::length(corner - centre));
-        }
+        const Aabb b = meshWorldBounds(reg, e);
+        if (b.empty()) continue;
+        // The box corner farthest from the centre, per axis the farther face.
+        const glm::vec3 far = glm::max(glm::abs(b.min - centre), glm::abs(b.max - centre));
+        reach = std::max(reach, glm::length(far));
     }
     return reach;
 }

@@ -7,7 +7,9 @@
 // single mesh-less root wrapping the whole scene is looked through), so each object can be
 // its own probe layer.
 #include "engine/ecs/registry.h"
+#include "engine/math/aabb.h"
 #include "engine/scene/gltf_loader.h"
+#include "engine/scene/mesh_bounds.h"
 
 #include <string>
 #include <unordered_set>
@@ -33,7 +35,7 @@ struct ReflectorMarkup {
 struct EnvironmentObject {
     std::string name;
     std::vector<ecs::Entity> meshes;
-    glm::vec3 boundsMin{0.f}, boundsMax{0.f}; // world space
+    Aabb bounds; // world space, over every vertex
 };
 
 struct SceneMarkup {
@@ -57,8 +59,5 @@ float markupCellSize(const SceneMarkup& markup);
 // least the corner of the cell.
 float markupReflectorReach(const ecs::Registry& registry, const SceneMarkup& markup,
                            glm::vec3 centre, float cellSize);
-
-// World-space bounds of an entity's mesh (through Transform::world).
-void meshWorldBounds(const ecs::Registry& registry, ecs::Entity e, glm::vec3& lo, glm::vec3& hi);
 
 } // namespace specula

@@ -26,6 +26,14 @@ private:
     std::string file_, field_;
 };
 
+// A wrong command line (exit status 2), as opposed to bad input data (exit 1). The field is
+// the flag, when one is to blame. Tools catch it before Error, so it keeps its own status.
+class UsageError : public Error {
+public:
+    using Error::Error;
+    UsageError(std::string flag, const std::string& what) : Error("", std::move(flag), what) {}
+};
+
 // A run stopped on request (SIGINT/SIGTERM) before its commit point: nothing was replaced.
 // Tools report it apart from bad input, with exit status 130 (128 + SIGINT).
 class Cancelled : public Error {

@@ -1,6 +1,7 @@
 #include "engine/gpu/context.h"
 
 #include "engine/core/error.h"
+#include "engine/core/log.h"
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
@@ -66,8 +67,8 @@ std::string eglFailure(const char* call) {
 void APIENTRY debugCallback(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei,
                             const GLchar* message, const void*) {
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
-    std::fprintf(stderr, "[GL %s] %s (id %u, type 0x%x)\n",
-                 severity == GL_DEBUG_SEVERITY_HIGH ? "high" : "medium/low", message, id, type);
+    log().warn("[GL {}] {} (id {}, type {:#x})",
+               severity == GL_DEBUG_SEVERITY_HIGH ? "high" : "medium/low", message, id, type);
 }
 
 void enableDebugOutput() {

@@ -3,6 +3,7 @@
 // each system that draws them keeps its own GPU copy.
 #include "engine/ecs/entity.h"
 #include "engine/image/image.h"
+#include "engine/math/aabb.h"
 
 #include <cstdint>
 #include <memory>
@@ -34,7 +35,9 @@ struct MeshData {
     std::vector<glm::vec3> normals;     // generated (area-weighted) when the asset has none
     std::vector<glm::vec2> uvs;         // empty when the asset has none
     std::vector<std::uint32_t> indices; // triangle list
-    glm::vec3 boundsMin{0.f}, boundsMax{0.f};
+    // Local bounds; empty until the builder sets them (the glTF loader does), so a mesh
+    // built without them is told apart from one at the origin (see localBounds()).
+    glm::vec3 boundsMin = Aabb{}.min, boundsMax = Aabb{}.max;
 };
 
 struct MaterialData {

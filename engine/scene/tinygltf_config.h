@@ -8,7 +8,7 @@
 //   validated the range itself;
 // - tinygltf 2.7's KHR_draco_mesh_compression path indexes bufferViews and accessors
 //   without bounds checks, dereferences missing attributes and ignores decode failures,
-//   so the loader decodes Draco payloads itself with libdraco (see gltf_loader.cpp).
+//   so the loader decodes Draco payloads itself with libdraco (see gltf_draco.cpp).
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 

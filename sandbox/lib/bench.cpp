@@ -223,14 +223,12 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
         const std::string planDir = probeDir + "_plan";
         const double planBakeSeconds =
             bakeDistanceProbeInto(scene, planDir, report.faceRes, opt.progress, true);
-        if (lightFieldMethodAvailable() && lightFieldBakeAvailable())
-            log << name << ": baking the light fields\n" << std::flush;
+        log << name << ": baking the light fields\n" << std::flush;
         std::vector<LightFieldBake> lfs;
         try {
-            if (lightFieldMethodAvailable())
-                lfs = bakeLightFieldsForBench(
-                    scene, (fs::path(opt.outDir) / "probes" / (name + "_lightfield")).string(),
-                    opt.quick);
+            lfs = bakeLightFieldsForBench(
+                scene, (fs::path(opt.outDir) / "probes" / (name + "_lightfield")).string(),
+                opt.quick);
         } catch (const Error& e) {
             log << name << ": no light-field rows (" << e.what() << ")\n";
         }

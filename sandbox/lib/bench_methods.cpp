@@ -4,11 +4,6 @@
 
 namespace specula {
 
-bool lightFieldMethodAvailable() {
-    LookupMethod m;
-    return parseLookupMethod("lightfield", m);
-}
-
 bool parseSandboxMethod(const std::string& s, LookupMethod& out) {
     return parseLookupMethod(s, out);
 }
@@ -47,13 +42,11 @@ std::vector<MethodVariant> benchVariants(const BenchSweep& sweep) {
 
     // The light field: its accuracy parameters are the cooked sizes (cameras, pixels), one
     // asset per row, with the cooked per-slab disparity.
-    LookupMethod lf;
-    if (parseLookupMethod("lightfield", lf))
-        for (std::size_t i = 0; i < sweep.lightFields.size(); ++i) {
-            MethodVariant* v = add(lf, sweep.lightFields[i], 0.01f);
-            v->probe.flavour = ProbeFlavour::LightFieldSlab;
-            v->lightField = int(i);
-        }
+    for (std::size_t i = 0; i < sweep.lightFields.size(); ++i) {
+        MethodVariant* v = add(LookupMethod::LightField, sweep.lightFields[i], 0.01f);
+        v->probe.flavour = ProbeFlavour::LightFieldSlab;
+        v->lightField = int(i);
+    }
 
     MethodVariant gt;
     gt.method = "groundtruth";

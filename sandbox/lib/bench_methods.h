@@ -1,7 +1,6 @@
 #pragma once
 // The bench's method table: one entry per (method, accuracy parameter) row. Adding a method
-// is one entry in benchVariants(); the light field joins by itself when its LookupMethod
-// exists (parseLookupMethod("lightfield")) and a light-field asset is available.
+// is one entry in benchVariants(); the light field has one row per cooked light field.
 #include "components/reflection_probe/reflection_probe.h"
 
 #include <string>
@@ -25,17 +24,13 @@ struct MethodVariant {
 
 struct BenchSweep {
     std::vector<float> tolerances = {0.1f, 0.03f, 0.01f, 0.003f}; // d_e, metres
-    // One light-field row per cooked light field (its params, e.g. "num=16 res=64"); rows
-    // appear only when this build has the light-field lookup.
+    // One light-field row per cooked light field (its params, e.g. "num=16 res=64").
     std::vector<std::string> lightFields;
 };
 
 // Envmap first (every ratio is to it), then boxproj, the distance methods and their d_e
-// sweeps, the light field when available, the ground truth last.
+// sweeps, the light fields, the ground truth last.
 std::vector<MethodVariant> benchVariants(const BenchSweep& sweep);
-
-// Whether this build knows the light-field lookup.
-bool lightFieldMethodAvailable();
 
 // Parses a method name for walk: the LookupMethod names (plus "lightfield" when built).
 bool parseSandboxMethod(const std::string& s, LookupMethod& out);

@@ -1,8 +1,6 @@
 #pragma once
-// The one place the sandbox needs to know how a light-field probe is baked. Built against a
-// tree without the light-field cooker (assetcooker/lib/lightfield_bake.h) it returns nothing
-// and the bench, the strip and walk simply have no light field; with it, the bench sweeps
-// the cooked sizes below and walk bakes one when asked for --method lightfield.
+// How the sandbox bakes light-field probes: the bench sweeps the cooked sizes below and
+// walk bakes one when asked for --method lightfield.
 #include "sandbox/lib/reflection_scene.h"
 
 #include <string>
@@ -17,15 +15,10 @@ struct LightFieldBake {
     double fetchesPerPixel = 4; // quadrilinear: 4 bilinear fetches per ray (DESIGN §5)
 };
 
-bool lightFieldBakeAvailable();
-
 // The bench's light-field sweep (one bake per size), into dirRoot_<params>.
 std::vector<LightFieldBake> bakeLightFieldsForBench(ReflectionScene& scene,
                                                     const std::string& dirRoot, bool quick);
 // One light field for walk (cameras x res), into dir.
 LightFieldBake bakeLightField(ReflectionScene& scene, const std::string& dir, int cameras, int res);
-
-// "lightfield" or "distance" from a manifest ("distance" when the reader is not built).
-std::string manifestFlavour(const std::string& manifest);
 
 } // namespace specula

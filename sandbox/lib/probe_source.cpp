@@ -2,8 +2,8 @@
 
 #include "assetcooker/lib/distance_bake.h"
 #include "components/reflection_probe/distance_probe_asset.h"
+#include "components/reflection_probe/lightfield_asset.h"
 #include "engine/core/error.h"
-#include "engine/core/flags.h"
 #include "engine/core/progress.h"
 #include "sandbox/lib/lightfield_hook.h"
 
@@ -64,7 +64,7 @@ ProbeSource resolveProbeSource(const std::string& input,
     const std::string ext = fs::path(input).extension().string();
     if (ext == ".json") {
         src.manifest = input;
-        src.lightField = manifestFlavour(input) == "lightfield";
+        src.lightField = probeManifestFlavour(input) == "lightfield";
         // Validates the whole asset (version, fields, checksums) before anything is drawn; a
         // light field is validated when the probe system loads it.
         DistanceProbeAsset asset;
@@ -99,8 +99,6 @@ ProbeSource resolveProbeSource(const std::string& input,
     if (scene.markup().reflectors.empty())
         throw Error(input, "specula_reflector", "the scene has no reflector node");
     if (lightField) {
-        if (!lightFieldBakeAvailable())
-            throw Error(input, "", "this build cannot bake a light field; give a cooked manifest");
         const LightFieldBake b = bakeLightField(scene, bakeDir, 16, 32);
         src.bakeSeconds = b.seconds;
         src.lightField = true;
@@ -164,14 +162,6 @@ Image erodedMask(const Image& mask) {
             out.at(x, y)[0] = all ? 1.f : 0.f;
         }
     return out;
-}
-
-void parseSize(const std::string& flag, const std::string& text, int& width, int& height) {
-    const auto x = text.find('x');
-    if (x == std::string::npos)
-        throw UsageError{flag + ": expected WIDTHxHEIGHT, got '" + text + "'"};
-    width = parseInt(flag, text.substr(0, x), 16, 8192);
-    height = parseInt(flag, text.substr(x + 1), 16, 8192);
 }
 
 } // namespace specula

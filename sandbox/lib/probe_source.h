@@ -47,7 +47,4 @@ glm::vec3 walkOffset(WalkPath path, float t, float amplitude);
 // disagree on which silhouette pixels a reflector covers, never on its interior.
 Image erodedMask(const Image& mask);
 
-// "WxH" -> width, height (each 16..8192); throws UsageError.
-void parseSize(const std::string& flag, const std::string& text, int& width, int& height);
-
 } // namespace specula

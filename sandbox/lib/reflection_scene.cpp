@@ -3,10 +3,10 @@
 #include "engine/core/error.h"
 #include "engine/image/image_io.h"
 #include "engine/scene/components.h"
+#include "engine/scene/mesh_bounds.h"
 #include "engine/scene/transform_system.h"
 
 #include <algorithm>
-#include <limits>
 
 namespace specula {
 
@@ -43,17 +43,13 @@ float ReflectionScene::reflectorReach() const {
 }
 
 float ReflectionScene::walkAmplitude() const {
-    const glm::vec3 c = probeCentre();
     const float half = 0.5f * cellSize();
+    const Aabb cell = Aabb::cube(probeCentre(), half);
     float slack = half;
-    for (ecs::Entity e : markup_.mirrorEntities) {
-        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-        meshWorldBounds(registry_, e, lo, hi);
-        // Bounds at the authored position: take away the current offset.
-        for (int k = 0; k < 3; ++k)
-            slack = std::min(
-                {slack, half - (hi[k] - offset_[k] - c[k]), half + (lo[k] - offset_[k] - c[k])});
-    }
+    // Room to the cell's faces of each mirror at its authored position (the current offset
+    // taken away).
+    for (ecs::Entity e : markup_.mirrorEntities)
+        slack = std::min(slack, -meshWorldBounds(registry_, e).translated(-offset_).overhang(cell));
     return std::clamp(slack, 0.f, 0.2f * cellSize());
 }
 

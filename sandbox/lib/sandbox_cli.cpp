@@ -1,39 +1,31 @@
 #include "sandbox_cli.h"
 
+#include "assetcooker/lib/tool_cli.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
-#include "engine/core/flags.h"
 #include "sandbox/lib/bench.h"
 #include "sandbox/lib/bench_methods.h"
 #include "sandbox/lib/walk.h"
 
 #include <exception>
 #include <filesystem>
-#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
 #include <regex>
-#include <string_view>
 #include <vector>
 
 namespace specula::sandbox {
 
 namespace {
 
-constexpr int kExitOk = 0, kExitFailure = 1, kExitUsage = 2;
-
-constexpr std::string_view kToolUsage = "usage: specula-sandbox <subcommand> [options] [args]\n"
-                                        "       specula-sandbox <subcommand> --help\n";
-
-// The end of every subcommand's --help.
-constexpr std::string_view kOutputAndExitNote =
-    "\n"
+constexpr const char* kOutputAndExitNote =
     "Every write is checked: a full disk or a short write fails the run (exit 1), and a\n"
     "failed run removes the --out folder again if it created it.\n"
     "\n"
     "exit status: 0 ok, 1 the input could not be processed, 2 bad command line\n";
 
-constexpr std::string_view kWalkUsage =
-    "usage: specula-sandbox walk MANIFEST_OR_SCENE [options]\n"
-    "\n"
+constexpr const char* kWalkDescription =
     "Moves the reflectors along a path inside the probe's cell while the camera swings around\n"
     "them, and draws every frame with the chosen method. MANIFEST_OR_SCENE is a cooked probe\n"
     "(manifest.json; its scene is the manifest's \"source\" unless --scene is given) or a\n"
@@ -44,28 +36,9 @@ constexpr std::string_view kWalkUsage =
     "--compare the PSNR against that frame's ground truth). Otherwise it opens a window\n"
     "(GLFW; runs under Xvfb): drag to orbit, wheel to zoom, WASD/arrows and Q/E move the\n"
     "reflector, space plays the path; a Dear ImGui panel switches the method, d_e, the layer\n"
-    "method and (light field) the disparity, and shows the pass time and the current error.\n"
-    "\n"
-    "options:\n"
-    "  --method M      envmap, boxproj, bisection (default), secant, avgdist, layered, plan\n"
-    "                  (the cooked effect plan), lightfield (bakes a light field from a scene;\n"
-    "                  a light-field manifest always draws with it)\n"
-    "  --de D          rectification tolerance d_e in metres, 1e-5..10 (default 0.01)\n"
-    "  --path P        orbit (default), line or figure8; within 0.2 cell sizes of the start\n"
-    "  --frames N      headless: frames to write, 1..100000 (default 60); window: quit after\n"
-    "                  N frames and play the path (default: run until closed)\n"
-    "  --headless      no window: write frames to --out\n"
-    "  --compare       headless: trace every frame's ground truth and add its PSNR\n"
-    "  --out DIR       output folder (default walk-out)\n"
-    "  --size WxH      frame size (default 640x480)\n"
-    "  --scene FILE    the scene of a manifest (overrides its \"source\")\n"
-    "  --sky FILE      equirectangular panorama (default: the bundled field.jpg)\n"
-    "  --face-res N    cube face resolution when baking a scene, 8..2048 (default 128)\n"
-    "  -h, --help      show this help\n";
+    "method and (light field) the disparity, and shows the pass time and the current error.\n";
 
-constexpr std::string_view kBenchUsage =
-    "usage: specula-sandbox bench [--scene S ...] [--quick] [--out DIR] [options]\n"
-    "\n"
+constexpr const char* kBenchDescription =
     "Sweeps every method and its accuracy parameters (d_e in {0.1, 0.03, 0.01, 0.003}; quick:\n"
     "{0.1, 0.01}) on each scene (default: the bundled room and truck_room), and measures per\n"
     "row: median reflector-pass time (GL timer queries on a GPU; wall clock around glFinish on\n"
@@ -77,17 +50,7 @@ constexpr std::string_view kBenchUsage =
     "\n"
     "Writes DIR/bench.csv, DIR/bench.md (machine and renderer named), DIR/accuracy_vs_time.png\n"
     "(PSNR against time, one line per method, Pareto front ringed) and DIR/strip_<scene>.png\n"
-    "(ground truth | envmap | boxproj | distance cubemap | light field, error maps below).\n"
-    "\n"
-    "options:\n"
-    "  --scene FILE    a scene to bench (repeatable; default: room and truck_room)\n"
-    "  --quick         small frame (160x120), 64^2 probe faces, fewer frames and d_e values\n"
-    "  --out DIR       output folder (default bench-out)\n"
-    "  --size WxH      frame size (default 1024x768, quick 160x120)\n"
-    "  --face-res N    cube face resolution of the baked probes, 8..2048 (default 256, quick 64)\n"
-    "  --max-frames N  timed frames per row at most, 4..1000 (default 64, quick 12)\n"
-    "  --sky FILE      equirectangular panorama (default: the bundled field.jpg)\n"
-    "  -h, --help      show this help\n";
+    "(ground truth | envmap | boxproj | distance cubemap | light field, error maps below).\n";
 
 // What walk and bench write into --out, partial outputs and temporaries included.
 bool isOwnOutput(const std::string& name) {
@@ -128,125 +91,143 @@ private:
     std::filesystem::path created_;
 };
 
-int runWalk(std::span<const std::string> args, std::ostream& out) {
-    Flags flags(args);
+// "WxH", each side 16..8192.
+bool parseSize(const std::string& text, int& width, int& height) {
+    const std::size_t x = text.find('x');
+    if (x == std::string::npos) return false;
+    const bool ok = CLI::detail::lexical_cast(text.substr(0, x), width) &&
+                    CLI::detail::lexical_cast(text.substr(x + 1), height);
+    return ok && width >= 16 && width <= 8192 && height >= 16 && height <= 8192;
+}
+
+CLI::Validator sizeText() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            int w = 0, h = 0;
+            return parseSize(text, w, h)
+                       ? std::string()
+                       : "expected WIDTHxHEIGHT, each 16..8192, got '" + text + "'";
+        },
+        "WxH");
+}
+
+// Every walk method by name: the LookupMethod names.
+std::map<std::string, LookupMethod> walkMethods() {
+    std::map<std::string, LookupMethod> names;
+    for (int m = 0; m <= int(LookupMethod::LightField); ++m)
+        names[toString(LookupMethod(m))] = LookupMethod(m);
+    return names;
+}
+
+// What walk's flags set; --size and --frames are resolved once the mode is known.
+struct WalkArgs {
     WalkOptions o;
-    if (auto m = flags.value("--method"); m && !parseSandboxMethod(*m, o.method))
-        throw UsageError{
-            "--method: expected envmap, boxproj, bisection, secant, avgdist, layered, plan or "
-            "lightfield, got '" +
-            *m + "'"};
-    o.tolerance = flags.floatValue("--de", 0.01f, 1e-5f, 10.f);
-    if (auto p = flags.value("--path"); p && !parseWalkPath(*p, o.path))
-        throw UsageError{"--path: expected orbit, line or figure8, got '" + *p + "'"};
-    o.headless = flags.flag("--headless");
-    o.frames = flags.intValue("--frames", o.headless ? 60 : 0, o.headless ? 1 : 0, 100000);
-    o.compare = flags.flag("--compare");
-    o.outDir = flags.value("--out").value_or(o.outDir);
-    if (auto s = flags.value("--size")) parseSize("--size", *s, o.width, o.height);
-    o.scene = flags.value("--scene");
-    o.sky = flags.value("--sky");
-    o.faceRes = flags.intValue("--face-res", o.faceRes, 8, 2048);
-    const auto pos = flags.positionals();
-    if (pos.size() != 1) throw UsageError{"walk needs exactly one MANIFEST_OR_SCENE"};
-    if (o.outDir.empty()) throw UsageError{"--out: expected a folder"};
-    if (o.compare && !o.headless) throw UsageError{"--compare needs --headless"};
-    o.input = pos[0];
+    std::string method = toString(LookupMethod::Bisection), path = "orbit", size;
+    std::optional<int> frames;
+};
+
+int runWalk(WalkArgs& a, std::ostream& out) {
+    WalkOptions& o = a.o;
+    o.method = walkMethods().at(a.method);
+    parseWalkPath(a.path, o.path);
+    if (!a.size.empty()) parseSize(a.size, o.width, o.height);
+    if (o.headless && a.frames && *a.frames < 1)
+        throw UsageError("--frames", "expected at least 1 frame with --headless, got " +
+                                         std::to_string(*a.frames));
+    o.frames = a.frames.value_or(o.headless ? 60 : 0);
+    if (o.compare && !o.headless) throw UsageError("--compare", "needs --headless");
     CreatedOutputFolder created(o.outDir);
     const int status = o.headless ? runWalkHeadless(o, out) : runWalkWindow(o, out);
-    if (status == kExitOk) created.keep();
+    if (status == cli::kExitOk) created.keep();
     return status;
 }
 
-int runBenchCommand(std::span<const std::string> args, std::ostream& out) {
-    Flags flags(args);
+void addWalkCommand(cli::ToolCli& tool) {
+    auto a = std::make_shared<WalkArgs>();
+    WalkOptions& o = a->o;
+    CLI::App* sub = tool.addSubcommand(
+        "walk", "walk the reflectors through a scene (window, or frames to disk)", kWalkDescription,
+        kOutputAndExitNote, [a](std::ostream& out) { return runWalk(*a, out); });
+    sub->add_option("MANIFEST_OR_SCENE", o.input, "a cooked manifest.json or a .gltf/.glb scene")
+        ->required();
+    std::vector<std::string> methods; // in the enum's order, as the help lists them
+    for (int m = 0; m <= int(LookupMethod::LightField); ++m)
+        methods.push_back(toString(LookupMethod(m)));
+    sub->add_option("--method", a->method,
+                    "plan: the cooked effect plan; lightfield bakes a light field from a scene "
+                    "(a light-field manifest always draws with it)")
+        ->check(CLI::IsMember(methods));
+    sub->add_option("--de", o.tolerance, "rectification tolerance d_e in metres")
+        ->check(cli::finiteRange(1e-5, 10.0));
+    sub->add_option("--path", a->path, "within 0.2 cell sizes of the start")
+        ->check(CLI::IsMember({"orbit", "line", "figure8"}));
+    sub->add_option("--frames", a->frames,
+                    "headless: frames to write (default 60); window: quit after N frames and "
+                    "play the path (default: run until closed)")
+        ->check(CLI::Range(0, 100000));
+    sub->add_flag("--headless", o.headless, "no window: write frames to --out");
+    sub->add_flag("--compare", o.compare,
+                  "headless: trace every frame's ground truth and add its PSNR");
+    sub->add_option("--out", o.outDir, "output folder")->check(cli::nonEmpty("a folder"));
+    sub->add_option("--size", a->size, "frame size (default 640x480)")->check(sizeText());
+    sub->add_option("--scene", o.scene, "the scene of a manifest (overrides its \"source\")");
+    sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
+    sub->add_option("--face-res", o.faceRes, "cube face resolution when baking a scene")
+        ->check(CLI::Range(8, 2048));
+}
+
+struct BenchArgs {
     BenchOptions o;
-    o.scenes = flags.values("--scene");
-    o.quick = flags.flag("--quick");
-    o.outDir = flags.value("--out").value_or(o.outDir);
-    if (auto s = flags.value("--size")) parseSize("--size", *s, o.width, o.height);
-    o.faceRes = flags.intValue("--face-res", 0, 8, 2048);
-    o.maxFrames = flags.intValue("--max-frames", 0, 4, 1000);
-    o.sky = flags.value("--sky").value_or("");
-    const auto pos = flags.positionals();
-    if (!pos.empty())
-        throw UsageError{"bench takes no positional argument (use --scene), got '" + pos[0] + "'"};
-    if (o.outDir.empty()) throw UsageError{"--out: expected a folder"};
+    std::string size;
+    std::optional<int> faceRes, maxFrames;
+};
+
+int runBenchCommand(BenchArgs& a, std::ostream& out) {
+    BenchOptions& o = a.o;
+    if (!a.size.empty()) parseSize(a.size, o.width, o.height);
+    o.faceRes = a.faceRes.value_or(0);
+    o.maxFrames = a.maxFrames.value_or(0);
     CreatedOutputFolder created(o.outDir);
     const BenchReport r = runBench(o, out);
     created.keep();
     out << "wrote " << r.rows.size() << " rows to " << o.outDir << "/bench.csv, bench.md, "
         << "accuracy_vs_time.png and the strips\n";
-    return kExitOk;
+    return cli::kExitOk;
 }
 
-struct Subcommand {
-    std::string_view name, summary, usage;
-    std::function<int(std::span<const std::string>, std::ostream&)> run;
-};
-
-const std::vector<Subcommand>& subcommands() {
-    static const std::vector<Subcommand> table = {
-        {"walk", "walk the reflectors through a scene (window, or frames to disk)", kWalkUsage,
-         runWalk},
-        {"bench", "measure every method's time and error against the ground truth", kBenchUsage,
-         runBenchCommand},
-    };
-    return table;
-}
-
-bool isHelp(const std::string& a) {
-    return a == "--help" || a == "-h";
-}
-
-std::string firstLine(const std::string& s) {
-    const auto n = s.find('\n');
-    return n == std::string::npos ? s : s.substr(0, n);
+void addBenchCommand(cli::ToolCli& tool) {
+    auto a = std::make_shared<BenchArgs>();
+    BenchOptions& o = a->o;
+    CLI::App* sub = tool.addSubcommand(
+        "bench", "measure every method's time and error against the ground truth",
+        kBenchDescription, kOutputAndExitNote,
+        [a](std::ostream& out) { return runBenchCommand(*a, out); });
+    sub->add_option("--scene", o.scenes,
+                    "a scene to bench (repeatable; default: room and "
+                    "truck_room)")
+        ->allow_extra_args(false);
+    sub->add_flag("--quick", o.quick,
+                  "small frame (160x120), 64^2 probe faces, fewer frames and d_e values");
+    sub->add_option("--out", o.outDir, "output folder")->check(cli::nonEmpty("a folder"));
+    sub->add_option("--size", a->size, "frame size (default 1024x768, quick 160x120)")
+        ->check(sizeText());
+    sub->add_option("--face-res", a->faceRes,
+                    "cube face resolution of the baked probes (default 256, quick 64)")
+        ->check(CLI::Range(8, 2048));
+    sub->add_option("--max-frames", a->maxFrames,
+                    "timed frames per row at most (default 64, quick 12)")
+        ->check(CLI::Range(4, 1000));
+    sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
 }
 
 } // namespace
 
 int runCli(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
-    if (args.empty()) {
-        err << kToolUsage << "specula-sandbox: error: missing subcommand (try --help)\n";
-        return kExitUsage;
-    }
-    if (isHelp(args[0])) {
-        out << kToolUsage
-            << "\nWalks reflectors through a scene and measures what accuracy costs in time.\n"
-            << "\nsubcommands:\n";
-        for (const Subcommand& s : subcommands())
-            out << "  " << s.name << std::string(10 - s.name.size(), ' ') << s.summary << '\n';
-        out << "\noptions:\n  -h, --help  show this help\n";
-        return kExitOk;
-    }
-    const Subcommand* sub = nullptr;
-    for (const Subcommand& s : subcommands())
-        if (s.name == args[0]) sub = &s;
-    if (!sub) {
-        err << kToolUsage << "specula-sandbox: error: "
-            << (args[0].starts_with("-") ? "unknown option '" : "unknown subcommand '") << args[0]
-            << "' (try --help)\n";
-        return kExitUsage;
-    }
-    const auto rest = args.subspan(1);
-    for (const std::string& a : rest) {
-        if (a == "--") break;
-        if (isHelp(a)) {
-            out << sub->usage << kOutputAndExitNote;
-            return kExitOk;
-        }
-    }
-    try {
-        return sub->run(rest, out);
-    } catch (const UsageError& e) {
-        err << "usage: specula-sandbox " << sub->name << " --help\n"
-            << "specula-sandbox " << sub->name << ": error: " << e.message << '\n';
-        return kExitUsage;
-    } catch (const std::exception& e) {
-        err << "specula-sandbox " << sub->name << ": error: " << firstLine(e.what()) << '\n';
-    }
-    return kExitFailure;
+    cli::ToolCli tool("specula-sandbox",
+                      "Walks reflectors through a scene and measures what accuracy costs in time.");
+    addWalkCommand(tool);
+    addBenchCommand(tool);
+    return tool.run(args, out, err);
 }
 
 } // namespace specula::sandbox

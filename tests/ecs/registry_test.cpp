@@ -1,6 +1,4 @@
-#include "engine/core/error.h"
 #include "engine/ecs/registry.h"
-#include "engine/ecs/scheduler.h"
 
 #include <gtest/gtest.h>
 
@@ -101,27 +99,4 @@ TEST(SparseSet, SwapRemoveKeepsOthersReachable) {
         ASSERT_TRUE(reg.has<Position>(es[i]));
         EXPECT_EQ(reg.get<Position>(es[i]).x, float(i));
     }
-}
-
-TEST(Scheduler, RunsInDeclaredOrder) {
-    Registry reg;
-    Scheduler s;
-    std::vector<std::string> ran;
-    s.add("render", [&](Registry&, const FrameContext&) { ran.push_back("render"); },
-          {"transforms", "probes"});
-    s.add("probes", [&](Registry&, const FrameContext&) { ran.push_back("probes"); },
-          {"transforms"});
-    s.add("transforms", [&](Registry&, const FrameContext&) { ran.push_back("transforms"); });
-    s.run(reg, {});
-    EXPECT_EQ(ran, (std::vector<std::string>{"transforms", "probes", "render"}));
-}
-
-TEST(Scheduler, UnknownDependencyAndCycleAreErrors) {
-    Scheduler a;
-    a.add("x", [](Registry&, const FrameContext&) {}, {"nope"});
-    EXPECT_THROW(a.order(), specula::Error);
-    Scheduler b;
-    b.add("x", [](Registry&, const FrameContext&) {}, {"y"});
-    b.add("y", [](Registry&, const FrameContext&) {}, {"x"});
-    EXPECT_THROW(b.order(), specula::Error);
 }

@@ -225,32 +225,6 @@ TEST(LightFieldLookup, FocalDisparityMakesAWallAtThatDepthExact) {
     EXPECT_GT(sumUnfocused, 5.0 * sumFocused);
 }
 
-TEST(LightFieldLookup, Bc1RoundTripIsCloseAndExactForFlatBlocks) {
-    // The encoder against its decoder on a gradient (error bounded by the 565 endpoint and
-    // 2-bit index quantisation: 12 codes) and on flat blocks (exact up to 565 rounding).
-    const int w = 64, hgt = 32;
-    std::vector<std::uint8_t> rgb(std::size_t(w) * hgt * 3);
-    for (int y = 0; y < hgt; ++y)
-        for (int x = 0; x < w; ++x) {
-            std::uint8_t* p = &rgb[(std::size_t(y) * w + x) * 3];
-            p[0] = std::uint8_t(x * 4), p[1] = std::uint8_t(y * 8), p[2] = std::uint8_t(128);
-            if (x >= 48) p[0] = 200, p[1] = 10, p[2] = 60; // flat blocks
-        }
-    const auto blocks = encodeBC1(rgb.data(), w, hgt);
-    ASSERT_EQ(blocks.size(), std::size_t(w / 4 * hgt / 4 * 8));
-    const auto back = decodeBC1(blocks.data(), w, hgt);
-    int worst = 0, worstFlat = 0;
-    for (int y = 0; y < hgt; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int k = 0; k < 3; ++k) {
-                const std::size_t i = (std::size_t(y) * w + x) * 3 + std::size_t(k);
-                const int e = std::abs(int(back[i]) - int(rgb[i]));
-                (x >= 48 ? worstFlat : worst) = std::max(x >= 48 ? worstFlat : worst, e);
-            }
-    EXPECT_LE(worst, 12);
-    EXPECT_LE(worstFlat, 4);
-}
-
 TEST(LightFieldLookup, StorageFitsTheGlLimitsAndBadSizesAreRefused) {
     LightFieldAsset paper = emptyAsset(2, 4, 1.f);
     paper.cameras = 32, paper.res = 128;

@@ -12,12 +12,9 @@
 namespace specula::testscenes {
 
 inline void finishBounds(MeshData& m) {
-    m.boundsMin = glm::vec3(1e30f);
-    m.boundsMax = glm::vec3(-1e30f);
-    for (const glm::vec3& p : m.positions) {
-        m.boundsMin = glm::min(m.boundsMin, p);
-        m.boundsMax = glm::max(m.boundsMax, p);
-    }
+    const Aabb b = Aabb::of(m.positions);
+    m.boundsMin = b.min;
+    m.boundsMax = b.max;
 }
 
 // Parallelogram corner, corner + u, corner + u + v, corner + v; front side along u x v;

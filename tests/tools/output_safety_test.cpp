@@ -5,6 +5,7 @@
 // killed bake left beside DIR is cleaned by the next bake with a line; a write past a
 // file-size limit (a full disk) fails the bake and leaves DIR as it was.
 #include "tests/support/child_process.h"
+#include "tests/support/scratch_dir_test.h"
 
 #include <gtest/gtest.h>
 
@@ -48,16 +49,9 @@ std::vector<std::string> temporariesBeside(const fs::path& dir) {
     return found;
 }
 
-class OutputSafety : public ::testing::Test {
+class OutputSafety : public specula::test::ScratchDirTest {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        root_ = fs::temp_directory_path() / ("specula-output-safety-" + std::string(info->name()) +
-                                             "-" + std::to_string(::getpid()));
-        fs::remove_all(root_);
-        fs::create_directories(root_ / "scratch");
-    }
-    void TearDown() override { fs::remove_all(root_); }
+    OutputSafety() : ScratchDirTest("specula-output-safety") {}
 
     ChildResult bake(const fs::path& scene, const fs::path& out, const std::string& faceRes = "4",
                      const ChildOptions& o = {}) {
@@ -86,8 +80,6 @@ protected:
         EXPECT_TRUE(snapshot(dir) == before) << "the refused folder changed";
         EXPECT_TRUE(temporariesBeside(dir).empty());
     }
-
-    fs::path root_;
 };
 
 } // namespace

@@ -1,0 +1,176 @@
+#include "tool_cli.h"
+
+#include "engine/core/error.h"
+
+#include <charconv>
+#include <cmath>
+#include <exception>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+namespace specula::cli {
+
+namespace {
+
+std::string firstLine(const std::string& s) {
+    return s.substr(0, s.find('\n'));
+}
+
+std::optional<double> finiteNumber(const std::string& text) {
+    double v = 0.0;
+    const char* end = text.data() + text.size();
+    const auto [p, ec] = std::from_chars(text.data(), end, v);
+    if (ec != std::errc() || p != end || !std::isfinite(v)) return std::nullopt;
+    return v;
+}
+
+std::string rangeText(double lo, double hi) {
+    std::ostringstream s;
+    s << "[" << lo << ", " << hi << "]";
+    return s.str();
+}
+
+// The first positional of a subcommand, e.g. SCENE; empty when it takes none.
+std::string positionalName(const CLI::App* sub) {
+    for (const CLI::Option* o : sub->get_options())
+        if (o->get_positional()) return o->get_name();
+    return {};
+}
+
+// What an argument nobody consumed was, in the words of the subcommand it was given to.
+std::string unexpected(const std::string& arg, const CLI::App* sub) {
+    if (arg.size() > 1 && arg[0] == '-') return "unknown option '" + arg + "'";
+    if (!sub) return "unknown subcommand '" + arg + "' (try --help)";
+    const std::string pos = positionalName(sub);
+    if (pos.empty()) return sub->get_name() + " takes no positional argument, got '" + arg + "'";
+    return sub->get_name() + " takes exactly one " + pos + ", got also '" + arg + "'";
+}
+
+} // namespace
+
+ToolCli::ToolCli(std::string tool, std::string description)
+    : app_(std::move(description), std::move(tool)) {
+    app_.get_formatter()->label("Usage", "usage");
+    app_.get_formatter()->column_width(26);
+    app_.set_help_flag("-h,--help", "show this help");
+    app_.option_defaults()->always_capture_default();
+    app_.set_config("--config", "",
+                    "read options from FILE (TOML or INI, one [section] per subcommand, e.g. "
+                    "[bake] face-res = 64); flags on the command line win")
+        ->type_name("FILE");
+    app_.allow_config_extras(CLI::config_extras_mode::error);
+    app_.require_subcommand(0, 1);
+    // Inherited by every subcommand: its unknown arguments (and --config after the
+    // subcommand name) reach the tool, which names them in its own words.
+    app_.allow_extras();
+    app_.fallthrough();
+}
+
+CLI::App* ToolCli::addSubcommand(const std::string& name, const std::string& summary,
+                                 const std::string& description, const std::string& footer,
+                                 Action run) {
+    CLI::App* sub = app_.add_subcommand(name, summary);
+    // The summary is its line in the tool's help and the first line of its own; the longer
+    // description follows the generated option list.
+    sub->footer("\n" + description + (footer.empty() ? "" : "\n" + footer));
+    actions_[sub] = std::move(run);
+    return sub;
+}
+
+int ToolCli::dispatch(std::span<const std::string> args, std::ostream& out) {
+    std::vector<std::string> reversed(args.rbegin(), args.rend()); // CLI11 pops from the back
+    app_.parse(reversed);
+    const std::vector<CLI::App*> chosen = app_.get_subcommands();
+    const CLI::App* sub = chosen.empty() ? nullptr : chosen.front();
+    const std::vector<std::string> extra = app_.remaining(true);
+    if (!extra.empty()) throw UsageError(unexpected(extra.front(), sub));
+    if (!sub) throw UsageError("missing subcommand (try --help)");
+    return actions_.at(sub)(out);
+}
+
+std::string ToolCli::describe(const std::exception& e) const {
+    const std::string what = firstLine(e.what());
+    const auto* error = dynamic_cast<const Error*>(&e);
+    if (!error || !error->file().empty()) return what;
+    const auto flag = fieldFlags_.find(error->field());
+    return flag == fieldFlags_.end() ? what : flag->second + what.substr(error->field().size());
+}
+
+int ToolCli::run(std::span<const std::string> args, std::ostream& out, std::ostream& err) {
+    auto where = [&] {
+        const std::vector<CLI::App*> chosen = app_.get_subcommands();
+        return chosen.empty() ? app_.get_name() : app_.get_name() + " " + chosen[0]->get_name();
+    };
+    auto usageError = [&](const std::string& message) {
+        err << "usage: " << where() << " --help\n" << where() << ": error: " << message << '\n';
+        return kExitUsage;
+    };
+    try {
+        return dispatch(args, out);
+    } catch (const CLI::CallForHelp&) {
+        out << app_.help();
+        return kExitOk;
+    } catch (const CLI::FileError& e) {
+        return usageError("--config: " + firstLine(e.what()));
+    } catch (const CLI::ConfigError& e) {
+        return usageError("--config: " + firstLine(e.what()));
+    } catch (const CLI::ParseError& e) {
+        return usageError(firstLine(e.what()));
+    } catch (const UsageError& e) {
+        return usageError(firstLine(e.what()));
+    } catch (const Cancelled& e) {
+        err << where() << ": cancelled: " << firstLine(e.what()) << '\n';
+        return kExitCancelled;
+    } catch (const std::exception& e) {
+        err << where() << ": error: " << describe(e) << '\n';
+    }
+    return kExitFailure;
+}
+
+CLI::Validator finiteRange(double lo, double hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            const auto v = finiteNumber(text);
+            if (v && *v >= lo && *v <= hi) return {};
+            return "expected a number in " + rangeText(lo, hi) + ", got '" + text + "'";
+        },
+        rangeText(lo, hi));
+}
+
+CLI::Validator nonEmpty(const std::string& what) {
+    return CLI::Validator(
+        [what](std::string& text) -> std::string {
+            return text.empty() ? "expected " + what + ", got ''" : std::string();
+        },
+        "");
+}
+
+glm::vec3 parseVec3(const std::string& text) {
+    glm::vec3 v(0.f);
+    std::size_t start = 0;
+    for (int i = 0; i < 3; ++i) {
+        const std::size_t comma = text.find(',', start);
+        const auto x = finiteNumber(text.substr(start, comma - start));
+        if ((i < 2) != (comma != std::string::npos) || !x || std::abs(*x) > 1e7)
+            throw UsageError("expected x,y,z (finite numbers up to 1e7), got '" + text + "'");
+        v[i] = float(*x);
+        start = comma + 1;
+    }
+    return v;
+}
+
+CLI::Validator vec3Text() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            try {
+                parseVec3(text);
+                return {};
+            } catch (const UsageError& e) {
+                return e.what();
+            }
+        },
+        "x,y,z");
+}
+
+} // namespace specula::cli

@@ -1,0 +1,66 @@
+#include "gltf_material.h"
+
+#include "engine/scene/gltf_accessors.h"
+#include "engine/scene/texture_decode.h"
+
+namespace specula::gltf_internal {
+
+// Images are decoded here, not by tinygltf: only the images a material uses, and only
+// after the bufferView range they come from has been checked.
+std::shared_ptr<const Image> MaterialCache::baseColorImage(int textureIndex,
+                                                           const std::string& from) {
+    const tinygltf::Model& m = ctx_.model();
+    const auto& tex = ctx_.at(m.textures, textureIndex, "textures", from);
+    const std::string tf = idx("textures", std::size_t(textureIndex));
+    const int source = tex.source;
+    const auto& img = ctx_.at(m.images, source, "images", tf + ".source");
+    if (auto it = images_.find(source); it != images_.end()) return it->second;
+    const std::string imf = idx("images", std::size_t(source));
+    Bytes bytes;
+    if (img.bufferView >= 0) {
+        bytes = viewBytes(ctx_, img.bufferView, imf);
+    } else {
+        bytes = {img.image.data(), img.image.size()};
+        if (bytes.size == 0) ctx_.fail(imf + ".uri", "cannot read image '" + img.uri + "'");
+    }
+    std::string why;
+    auto decoded = decodeTexture8(bytes.data, bytes.size, true, why);
+    if (!decoded) ctx_.fail(imf, "undecodable image: " + why);
+    auto ptr = std::make_shared<const Image>(std::move(*decoded));
+    images_[source] = ptr;
+    return ptr;
+}
+
+std::shared_ptr<const MaterialData> MaterialCache::material(int index, const std::string& from) {
+    if (auto it = materials_.find(index); it != materials_.end()) return it->second;
+    auto md = std::make_shared<MaterialData>();
+    if (index < 0) {
+        md->name = "default";
+        materials_[index] = md;
+        return md;
+    }
+    const auto& mat = ctx_.at(ctx_.model().materials, index, "materials", from);
+    const std::string mf = idx("materials", std::size_t(index));
+    md->name = mat.name;
+    md->doubleSided = mat.doubleSided;
+    const auto& f = mat.pbrMetallicRoughness.baseColorFactor;
+    if (f.size() != 4)
+        ctx_.fail(mf + ".pbrMetallicRoughness.baseColorFactor", "expected 4 numbers");
+    for (int c = 0; c < 4; ++c) {
+        if (!std::isfinite(f[std::size_t(c)]))
+            ctx_.fail(mf + ".pbrMetallicRoughness.baseColorFactor", "non-finite value");
+        md->baseColorFactor[c] = float(f[std::size_t(c)]);
+    }
+    const auto& bct = mat.pbrMetallicRoughness.baseColorTexture;
+    if (bct.index >= 0) {
+        if (bct.texCoord != 0)
+            ctx_.warn(mf, "baseColorTexture uses TEXCOORD_" + std::to_string(bct.texCoord) +
+                              "; only TEXCOORD_0 is loaded");
+        md->baseColorTexture =
+            baseColorImage(bct.index, mf + ".pbrMetallicRoughness.baseColorTexture");
+    }
+    materials_[index] = md;
+    return md;
+}
+
+} // namespace specula::gltf_internal
