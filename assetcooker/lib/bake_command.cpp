@@ -1,18 +1,11 @@
 #include "bake_command.h"
 
-#include "assetcooker/lib/distance_bake.h"
-#include "assetcooker/lib/effect_plan.h"
-#include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/cook.h"
 #include "components/reflection_probe/probe_folder.h"
-#include "components/reflection_probe/scene_markup.h"
 #include "engine/core/error.h"
-#include "engine/core/progress.h"
-#include "engine/image/image_io.h"
-#include "engine/scene/gltf_loader.h"
 
 #include <chrono>
 #include <csignal>
-#include <filesystem>
 #include <memory>
 #include <optional>
 
@@ -84,78 +77,39 @@ struct SignalGuard {
     }
 };
 
-// Before any work: repair what killed bakes left beside DIR (a line each on `out`), and
-// refuse a DIR that may not be replaced now rather than after a long bake.
-void prepareOutput(const std::string& dir, const std::string& scene, std::ostream& out) {
-    removeStaleProbeTemporaries(dir, out);
-    checkProbeFolderReplaceable(dir, scene);
+// The cooking options the flags give (the flavour's settings by --flavour).
+CookOptions cookOptions(const BakeArgs& a) {
+    CookOptions o;
+    o.scene = a.scene;
+    o.out = a.out;
+    if (a.sky) o.sky = *a.sky;
+    if (a.probe) o.probeCentre = cli::parseVec3(*a.probe);
+    if (a.flavour == "lightfield") {
+        LightFieldCookSettings s;
+        if (a.cellCentre) s.cellCentre = cli::parseVec3(*a.cellCentre);
+        s.cellSize = a.cellSize;
+        s.cameras = a.cameras;
+        s.imageRes = a.imageRes;
+        s.compression =
+            a.compress == "bc1" ? LightFieldCompression::BC1 : LightFieldCompression::None;
+        o.flavour = s;
+    } else {
+        DistanceCookSettings s;
+        s.faceRes = a.faceRes;
+        s.planned = a.layers == "plan";
+        o.flavour = s;
+    }
+    return o;
 }
 
-// Runs a baker. Polled cancelled, the bakers stop with a plain Error ("bake: cancelled");
-// reported as the cancel it is, naming DIR.
-template <class Bake> auto bakeUnlessCancelled(const std::string& dir, Bake&& bake) {
-    try {
-        return bake();
-    } catch (const Error&) {
-        throwIfCancelled(dir);
-        throw;
-    }
-}
-
-// What both flavours load: the scene, its markup and the optional sky panorama.
-struct BakeInput {
-    ecs::Registry registry;
-    LoadedScene scene;
-    SceneMarkup markup;
-    Image sky;
-    BakeInput(const std::string& scenePath, const std::optional<std::string>& skyPath)
-        : scene(loadGltf(scenePath, registry)), markup(readSceneMarkup(registry, scene, scenePath)),
-          sky(skyPath ? readImage(*skyPath) : Image()) {}
-};
-
-// `bake --flavour lightfield`: the bake on all cores with a progress bar, the same cancel
-// checks and atomic write as the distance flavour.
-int runLightFieldBake(const BakeArgs& a, std::ostream& out) {
-    if (a.cameras * a.imageRes > 16384)
-        throw UsageError("--cameras",
-                         "NUM x --image-res RES = " + std::to_string(a.cameras * a.imageRes) +
-                             " exceeds 16384 (the 2D texture side)");
-    const std::string& outDir = a.out;
-    prepareOutput(outDir, a.scene, out);
-    const auto start = std::chrono::steady_clock::now();
-    BakeInput in(a.scene, a.sky);
-    throwIfCancelled(outDir);
-
-    LightFieldBakeOptions o;
-    o.cellCentre = a.cellCentre ? cli::parseVec3(*a.cellCentre)
-                   : a.probe    ? cli::parseVec3(*a.probe)
-                                : markupProbeCentre(in.registry, in.markup, in.scene);
-    o.cellSize = a.cellSize ? *a.cellSize : markupCellSize(in.markup);
-    o.cameras = a.cameras;
-    o.res = a.imageRes;
-    o.compression = a.compress == "bc1" ? LightFieldCompression::BC1 : LightFieldCompression::None;
-    o.sky = in.sky.empty() ? nullptr : &in.sky;
-    o.cancelled = [] { return cancelRequested(); };
-    std::vector<std::string> warnings; // the probe placement's (checkProbePlacement)
-    o.warnings = &warnings;
-    LightFieldAsset asset;
-    {
-        ProgressBar bar("baking light field " + std::filesystem::path(a.scene).filename().string());
-        o.progress = [&](double f) { bar.update(f); };
-        asset = bakeUnlessCancelled(outDir,
-                                    [&] { return bakeLightFieldProbe(in.registry, in.markup, o); });
-    }
-    for (const std::string& w : warnings)
-        out << "  warning: " << w << '\n';
-    throwIfCancelled(outDir);
-    writeLightFieldProbe(asset, outDir, a.scene);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+void printLightFieldSummary(const BakeArgs& a, const CookResult& r, double seconds,
+                            std::ostream& out) {
+    const auto& asset = std::get<LightFieldAsset>(r.asset);
     out << "baked light field: 6 slabs x " << a.cameras << "^2 cameras x " << a.imageRes
-        << "^2 px, cell " << o.cellSize << " m, " << toString(o.compression) << ", "
+        << "^2 px, cell " << r.cellSize << " m, " << toString(asset.compression) << ", "
         << asset.diskBytes() << " bytes on disk, " << asset.gpuBytes()
         << " bytes of GPU memory, bake " << asset.bakeSeconds << " s, total " << seconds << " s -> "
-        << outDir << "/manifest.json\n";
+        << a.out << "/manifest.json\n";
     for (int k = 0; k < 6; ++k) {
         const LightFieldSlab& s = asset.slabs[std::size_t(k)];
         out << "  slab " << slabName(k) << ": depth " << s.nearDepth << " .. " << s.farDepth
@@ -169,58 +123,23 @@ int runLightFieldBake(const BakeArgs& a, std::ostream& out) {
             << (i.region == "cell" ? ": reflectors there see it wrongly; shrink the cell\n"
                                    : ": baked from where each line leaves the cell, so "
                                      "reflectors inside the cell still see it right\n");
-    for (const ReflectorOverhang& r :
-         findReflectorOverhangs(in.registry, in.markup, o.cellCentre, o.cellSize))
-        out << "  warning: reflector " << r.node << " reaches " << r.metres
-            << " m outside the cell (--cell-size " << o.cellSize + 2.f * r.metres
+    for (const ReflectorOverhang& o : r.overhangs)
+        out << "  warning: reflector " << o.node << " reaches " << o.metres
+            << " m outside the cell (--cell-size " << r.cellSize + 2.f * o.metres
             << " would hold it)\n";
-    return cli::kExitOk;
 }
 
-// `bake --flavour distance`: the effect plan's layers (or one per object), traced on all cores.
-int runDistanceBake(const BakeArgs& a, std::ostream& out) {
-    const std::string& outDir = a.out;
-    prepareOutput(outDir, a.scene, out);
-    const auto start = std::chrono::steady_clock::now();
-    BakeInput in(a.scene, a.sky);
-    throwIfCancelled(outDir);
-
-    DistanceBakeOptions o;
-    o.centre =
-        a.probe ? cli::parseVec3(*a.probe) : markupProbeCentre(in.registry, in.markup, in.scene);
-    o.faceRes = a.faceRes;
-    o.sky = in.sky.empty() ? nullptr : &in.sky;
-    o.reflectorReach =
-        markupReflectorReach(in.registry, in.markup, o.centre, markupCellSize(in.markup));
-    const EffectPlan plan = planEffects(in.registry, in.markup, o.centre, o.reflectorReach);
-    if (a.layers == "plan") applyPlan(plan, o);
-    throwIfCancelled(outDir);
-    o.cancelled = [] { return cancelRequested(); };
-    std::vector<std::string> warnings; // the probe placement's (checkProbePlacement)
-    o.warnings = &warnings;
-    DistanceProbeAsset asset;
-    {
-        ProgressBar bar("baking " + std::filesystem::path(a.scene).filename().string());
-        o.progress = [&](double f) { bar.update(f); };
-        asset = bakeUnlessCancelled(outDir,
-                                    [&] { return bakeDistanceProbe(in.registry, in.markup, o); });
-    }
-    for (const std::string& w : warnings)
-        out << "  warning: " << w << '\n';
-    throwIfCancelled(outDir);
-    asset.effectPlan = plan.toJson().dump();
-    writeDistanceProbe(asset, outDir, a.scene);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+void printDistanceSummary(const BakeArgs& a, const CookResult& r, double seconds,
+                          std::ostream& out) {
+    const auto& asset = std::get<DistanceProbeAsset>(r.asset);
     out << "baked " << asset.layers.size() << " layers (" << asset.objectLayerCount()
-        << " objects + composite) at " << a.faceRes << "^2 x 6 in " << seconds << " s -> " << outDir
+        << " objects + composite) at " << a.faceRes << "^2 x 6 in " << seconds << " s -> " << a.out
         << "/manifest.json\n";
     for (std::size_t i = 0; i < asset.layers.size(); ++i) {
         const DistanceProbeLayer& L = asset.layers[i];
         out << "  layer " << i << " " << L.name << ": d-bar " << L.avgDistance << " m, "
             << L.solidAngle << " sr, " << L.method << "\n";
     }
-    return cli::kExitOk;
 }
 
 // A flag of one flavour given with the other is refused, not ignored.
@@ -233,8 +152,21 @@ void refuseOtherFlavoursOptions(const BakeArgs& a) {
 
 int runBake(const BakeArgs& a, std::ostream& out) {
     refuseOtherFlavoursOptions(a);
+    const bool lightField = a.flavour == "lightfield";
+    if (lightField && a.cameras * a.imageRes > 16384)
+        throw UsageError("--cameras",
+                         "NUM x --image-res RES = " + std::to_string(a.cameras * a.imageRes) +
+                             " exceeds 16384 (the 2D texture side)");
     const SignalGuard guard; // first: a signal during the load and the plan is honoured too
-    return a.flavour == "lightfield" ? runLightFieldBake(a, out) : runDistanceBake(a, out);
+    const auto start = std::chrono::steady_clock::now();
+    const CookResult r = cookProbe(cookOptions(a), &out);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (lightField)
+        printLightFieldSummary(a, r, seconds, out);
+    else
+        printDistanceSummary(a, r, seconds, out);
+    return cli::kExitOk;
 }
 
 // BC1 blocks (4x4 texels) must not straddle two cameras of an atlas.

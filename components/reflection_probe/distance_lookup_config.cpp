@@ -89,30 +89,35 @@ int bisectionSteps(float range, float tolerance) {
 }
 
 DistanceLookupConfig makeLookupConfig(const ReflectionProbe& probe, const DistanceProbeAsset& a) {
-    DistanceLookupConfig c;
-    c.boxMin = a.boxMin;
-    c.boxMax = a.boxMax;
-    c.range = probe.range > 0.f ? probe.range : a.range;
+    if (a.layers.size() > std::size_t(glsl::kMaxDistanceLayers))
+        throw Error(probe.asset, "layers",
+                    "at most " + std::to_string(glsl::kMaxDistanceLayers - 1) +
+                        " object layers are supported");
+    DistanceLookupConfig c{}; // every unused layer entry and pad zero
+    glsl::DistanceParams& p = c.params;
+    p.boxMin = a.boxMin;
+    p.boxMax = a.boxMax;
+    p.centre = a.centre;
+    p.faceRes = a.faceRes;
+    p.range = probe.range > 0.f ? probe.range : a.range;
     // A range past the sentinel only loses x in x + D l (float) and searches nothing real.
-    c.range = std::min(c.range, 0.5f * a.dInf);
-    c.tolerance = std::isfinite(probe.errorTolerance) && probe.errorTolerance > 0.f
+    p.range = std::min(p.range, 0.5f * a.dInf);
+    p.tolerance = std::isfinite(probe.errorTolerance) && probe.errorTolerance > 0.f
                       ? probe.errorTolerance
                       : std::numeric_limits<float>::min();
-    c.dInf = a.dInf;
-    c.maxSteps = bisectionSteps(c.range, c.tolerance);
-    c.layerMethods.assign(a.layers.size(), 0);
-    c.layerAvgDistance.assign(a.layers.size(), 0.f);
+    p.dInf = a.dInf;
+    p.maxSteps = bisectionSteps(p.range, p.tolerance);
     for (std::size_t i = 0; i < a.layers.size(); ++i) {
-        c.layerAvgDistance[i] = a.layers[i].avgDistance;
-        c.layerBoxMin.push_back(a.layers[i].boxMin);
-        c.layerBoxMax.push_back(a.layers[i].boxMax);
+        c.layers[i].avgDistance = a.layers[i].avgDistance;
+        c.layers[i].boxMin = a.layers[i].boxMin;
+        c.layers[i].boxMax = a.layers[i].boxMax;
     }
-    c.layerReach.assign(a.layers.size(), 0.f);
     float reach = std::numeric_limits<float>::max();
     for (std::size_t i = a.layers.size(); i-- > 1;) {
-        const glm::vec3 closest = glm::clamp(glm::vec3(0.f), c.layerBoxMin[i], c.layerBoxMax[i]);
+        const glm::vec3 closest =
+            glm::clamp(glm::vec3(0.f), c.layers[i].boxMin, c.layers[i].boxMax);
         reach = std::min(reach, glm::length(closest));
-        c.layerReach[i] = reach;
+        c.layers[i].reach = reach;
     }
 
     if (probe.method == LookupMethod::Planned) {
@@ -128,28 +133,28 @@ DistanceLookupConfig makeLookupConfig(const ReflectionProbe& probe, const Distan
             return methodIndex(m);
         };
         if (a.objectLayerCount() == 0) {
-            c.method = planned(0);
-            c.features = featureOf(c.method);
+            p.method = planned(0);
+            c.features = featureOf(p.method);
             return c;
         }
-        c.layerCount = a.objectLayerCount();
+        p.layerCount = a.objectLayerCount();
         c.features = kFeatureLayers;
-        for (int i = 1; i <= c.layerCount; ++i) {
-            c.layerMethods[std::size_t(i)] = planned(std::size_t(i));
-            c.features |= featureOf(c.layerMethods[std::size_t(i)]);
+        for (int i = 1; i <= p.layerCount; ++i) {
+            c.layers[i].method = planned(std::size_t(i));
+            c.features |= featureOf(c.layers[i].method);
         }
         return c;
     }
     if (probe.method != LookupMethod::Layered) {
-        c.method = methodIndex(probe.method);
-        c.features = featureOf(c.method);
+        p.method = methodIndex(probe.method);
+        c.features = featureOf(p.method);
         return c;
     }
     if (a.objectLayerCount() < 1)
         throw Error(probe.asset, "layers", "layered lookup needs at least one object layer");
-    c.layerCount = a.objectLayerCount();
+    p.layerCount = a.objectLayerCount();
     c.features = kFeatureLayers;
-    for (int i = 1; i <= c.layerCount; ++i) {
+    for (int i = 1; i <= p.layerCount; ++i) {
         LookupMethod m = probe.layerMethod;
         if (m == LookupMethod::Envmap || m == LookupMethod::BoxProj || m == LookupMethod::Layered) {
             // The cooked plan decides: a layer without a usable plan gets bisection.
@@ -157,7 +162,7 @@ DistanceLookupConfig makeLookupConfig(const ReflectionProbe& probe, const Distan
                 (m != LookupMethod::AvgDist && m != LookupMethod::Secant))
                 m = LookupMethod::Bisection;
         }
-        c.layerMethods[std::size_t(i)] = methodIndex(m);
+        c.layers[i].method = methodIndex(m);
         c.features |= featureOf(methodIndex(m));
     }
     return c;

@@ -1,13 +1,18 @@
 #pragma once
 // What the distance-cubemap lookup needs, derived once from the component and the cooked
-// asset (not per frame). The GPU system turns it into uniforms; the CPU twin reads it as is.
+// asset (not per frame). The GPU system uploads its block as is; the CPU twin reads it.
 #include "components/reflection_probe/distance_probe_asset.h"
 #include "components/reflection_probe/reflection_probe.h"
+#include "engine/core/glsl_host.h"
 
+#include <cstddef>
 #include <cstdint>
-#include <vector>
 
 namespace specula {
+
+namespace glsl {
+#include "components/reflection_probe/shaders/distance_params.glsl.h"
+} // namespace glsl
 
 // Bits of the shader permutation: one per compiled-in feature. The cache key is the mask.
 enum DistanceFeature : std::uint32_t {
@@ -20,20 +25,9 @@ enum DistanceFeature : std::uint32_t {
     kFeatureFresnel = 1u << 6,
 };
 
-struct DistanceLookupConfig {
-    glm::vec3 boxMin{0.f}, boxMax{0.f};
-    float range = 1.f;
-    float tolerance = 0.01f;
-    float dInf = 1e4f;
-    int maxSteps = 1;
-    int method = 0;                // kMethod* of distance_lookup.glsl.h (single-layer mode)
-    int layerCount = 0;            // object layers used in layered mode
-    std::vector<int> layerMethods; // index = layer (0 unused)
-    std::vector<float> layerAvgDistance;
-    std::vector<glm::vec3> layerBoxMin, layerBoxMax; // probe-local
-    // Closest that layers i.. (every later one too) come to the probe centre: once a hit is
-    // nearer than that, no later layer can occlude it and the layered loop ends.
-    std::vector<float> layerReach;
+// The shared parameter block (shaders/distance_params.glsl.h) plus the permutation bits,
+// which pick the shader and so are not a uniform.
+struct DistanceLookupConfig : glsl::DistanceParamsBlock {
     std::uint32_t features = 0; // DistanceFeature bits (Fresnel is added per reflector)
 };
 

@@ -342,13 +342,7 @@ DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
     const json m = parseManifestJson(manifestText, manifestPath);
     const ManifestFields r{manifestPath};
     const fs::path dir = fs::path(manifestPath).parent_path();
-    if (r.string(m, "format", "") != "specula-probe")
-        throw Error(manifestPath, "format", "expected \"specula-probe\"");
-    if (r.integer(m, "version", "", 0, 1000000) != kProbeFormatVersion)
-        throw Error(manifestPath, "version",
-                    "unknown format version " + m["version"].dump() + " (this build reads " +
-                        std::to_string(kProbeFormatVersion) + ")");
-    if (r.string(m, "flavour", "") != "distance")
+    if (r.probeFlavour(m, kProbeFormatVersion) != "distance")
         throw Error(manifestPath, "flavour", "expected \"distance\"");
 
     DistanceProbeAsset a;

@@ -36,11 +36,12 @@ struct TwinFetches {
         if (asset->sky.empty()) return vec3(0.f);
         return vec3(sampleBilinear(asset->sky, equirectUv(dir), Wrap::Repeat, Wrap::Clamp));
     }
-    int layerMethod(int layer) const { return config->layerMethods[std::size_t(layer)]; }
-    float layerAvgDistance(int layer) const { return config->layerAvgDistance[std::size_t(layer)]; }
-    vec3 layerBoxMin(int layer) const { return config->layerBoxMin[std::size_t(layer)]; }
-    vec3 layerBoxMax(int layer) const { return config->layerBoxMax[std::size_t(layer)]; }
-    float layerReach(int layer) const { return config->layerReach[std::size_t(layer)]; }
+    const DistanceLayerParams& layerParams(int i) const { return config->layers[i]; }
+    int layerMethod(int i) const { return layerParams(i).method; }
+    float layerAvgDistance(int i) const { return layerParams(i).avgDistance; }
+    vec3 layerBoxMin(int i) const { return layerParams(i).boxMin; }
+    vec3 layerBoxMax(int i) const { return layerParams(i).boxMax; }
+    float layerReach(int i) const { return layerParams(i).reach; }
 };
 
 // The shared lookup is included inside a struct so that its calls to fetchDistance and
@@ -65,32 +66,17 @@ struct TwinLayered : TwinFetches {
 };
 #undef HAS_LAYERS
 
-ProbeLookupParams toParams(const DistanceLookupConfig& c) {
-    ProbeLookupParams p;
-    p.boxMin = c.boxMin;
-    p.boxMax = c.boxMax;
-    p.range = c.range;
-    p.tolerance = c.tolerance;
-    p.dInf = c.dInf;
-    p.maxSteps = c.maxSteps;
-    p.method = c.method;
-    p.layerCount = c.layerCount;
-    return p;
-}
-
 } // namespace glsl
 
 struct CpuDistanceProbe::Twin {
     glsl::TwinSingle single;
     glsl::TwinLayered layered;
-    glsl::ProbeLookupParams params;
 };
 
 CpuDistanceProbe::CpuDistanceProbe(const DistanceProbeAsset& asset, DistanceLookupConfig config)
     : twin_(std::make_unique<Twin>()), config_(std::move(config)) {
     twin_->single.asset = twin_->layered.asset = &asset;
     twin_->single.config = twin_->layered.config = &config_;
-    twin_->params = glsl::toParams(config_);
 }
 
 CpuDistanceProbe::~CpuDistanceProbe() = default;
@@ -102,8 +88,8 @@ glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches,
                                : static_cast<glsl::TwinFetches&>(twin_->single);
     f.skyFetched = false;
     const glm::vec3 c = (config_.features & kFeatureLayers)
-                            ? twin_->layered.probeRadiance(x, lhat, twin_->params, fetches)
-                            : twin_->single.probeRadiance(x, lhat, twin_->params, fetches);
+                            ? twin_->layered.probeRadiance(x, lhat, config_.params, fetches)
+                            : twin_->single.probeRadiance(x, lhat, config_.params, fetches);
     if (sawSky) *sawSky = f.skyFetched;
     return c;
 }

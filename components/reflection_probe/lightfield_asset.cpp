@@ -186,11 +186,6 @@ void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
     });
 }
 
-std::string probeManifestFlavour(const std::string& manifestPath) {
-    const json m = parseManifestJson(readManifestText(manifestPath), manifestPath);
-    return ManifestFields{manifestPath}.string(m, "flavour", "");
-}
-
 LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
     return parseLightFieldProbe(readManifestText(manifestPath), manifestPath);
 }
@@ -200,13 +195,7 @@ LightFieldAsset parseLightFieldProbe(const std::string& manifestText,
     const json m = parseManifestJson(manifestText, manifestPath);
     const ManifestFields r{manifestPath};
     const fs::path dir = fs::path(manifestPath).parent_path();
-    if (r.string(m, "format", "") != "specula-probe")
-        throw Error(manifestPath, "format", "expected \"specula-probe\"");
-    if (r.integer(m, "version", "", 0, 1000000) != kProbeFormatVersion)
-        throw Error(manifestPath, "version",
-                    "unknown format version " + m["version"].dump() + " (this build reads " +
-                        std::to_string(kProbeFormatVersion) + ")");
-    if (const std::string f = r.string(m, "flavour", ""); f != "lightfield")
+    if (const std::string f = r.probeFlavour(m, kProbeFormatVersion); f != "lightfield")
         throw Error(manifestPath, "flavour", "expected \"lightfield\", got \"" + f + "\"");
 
     LightFieldAsset a;

@@ -108,8 +108,4 @@ LightFieldAsset readLightFieldProbe(const std::string& manifestPath);
 LightFieldAsset parseLightFieldProbe(const std::string& manifestText,
                                      const std::string& manifestPath);
 
-// The manifest's "flavour" member ("distance", "lightfield"), so a loader can dispatch.
-// Throws Error naming the file when it cannot be read.
-std::string probeManifestFlavour(const std::string& manifestPath);
-
 } // namespace specula

@@ -116,4 +116,14 @@ void ManifestFields::rethrowNamed(const std::string& field, const std::exception
     throw Error(file, field, e.what());
 }
 
+std::string ManifestFields::probeFlavour(const json& m, int version) const {
+    if (string(m, "format", "") != "specula-probe")
+        throw Error(file, "format", "expected \"specula-probe\"");
+    if (integer(m, "version", "", 0, 1000000) != version)
+        throw Error(file, "version",
+                    "unknown format version " + m["version"].dump() + " (this build reads " +
+                        std::to_string(version) + ")");
+    return string(m, "flavour", "");
+}
+
 } // namespace specula

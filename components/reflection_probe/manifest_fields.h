@@ -53,6 +53,9 @@ struct ManifestFields {
     // Compares the checksum stored at path + "checksum" with `actual`; returns the stored one.
     std::string checksum(const nlohmann::json& obj, const std::string& path,
                          const std::string& actual) const;
+    // The "flavour" of a Specula probe manifest ("format": "specula-probe") of format
+    // `version`; a manifest of another format or version is refused naming that field.
+    std::string probeFlavour(const nlohmann::json& manifest, int version) const;
     // Runs `read` on a file the manifest names; an Error it throws (the file is missing, a
     // FIFO, a directory, a symlink loop...) is re-thrown naming the manifest and the field
     // as well.

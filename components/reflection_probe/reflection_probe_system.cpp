@@ -19,7 +19,9 @@ struct ReflectionProbeSystem::ProbeGpu {
     ReflectionProbe component; // the copy the GPU state was built from
     std::shared_ptr<const DistanceProbeAsset> asset;
     DistanceLookupConfig config;
+    gpu::UniformBuffer<glsl::DistanceParamsBlock> params; // config's block, as the shader reads it
     gpu::Texture layers;
+    int layersUploaded = 0; // cube layers in `layers`: the composite, or every layer
     gpu::Texture sky;
     std::size_t bytes = 0;
     // Light-field flavour: the cooked slabs and their atlas array (lightfield_asset.h).
@@ -28,42 +30,60 @@ struct ReflectionProbeSystem::ProbeGpu {
 };
 
 namespace {
-// The component fields that are uniforms only: editing them must not rebuild GPU state.
-ReflectionProbe buildKey(ReflectionProbe p) {
-    p.disparity = -1.f;
-    p.lightFieldBackground = false;
-    return p;
+// Same flavour and asset: an edit of the other fields changes parameters only, which the
+// uniforms and the parameter block carry; the textures stay.
+bool sameAsset(const ReflectionProbe& a, const ReflectionProbe& b) {
+    return a.flavour == b.flavour && a.asset == b.asset;
+}
+
+void refuseLightFieldMethod(const ReflectionProbe& probe) {
+    if (probe.method == LookupMethod::LightField)
+        throw Error(probe.asset, "method", "'lightfield' needs a probe of flavour LightFieldSlab");
+}
+
+std::size_t layerTextureBytes(const DistanceProbeAsset& a, int layerCount) {
+    return std::size_t(a.faceRes) * std::size_t(a.faceRes) * 6 * std::size_t(layerCount) * 16;
+}
+
+std::size_t skyTextureBytes(const DistanceProbeAsset& a) {
+    return std::size_t(a.sky.width) * std::size_t(a.sky.height) * 4 * sizeof(float);
+}
+
+// Layers 0 .. layerCount-1 of the asset as one RGBA32F array, six faces per layer.
+gpu::Texture uploadLayers(const DistanceProbeAsset& a, int layerCount) {
+    const int n = a.faceRes;
+    gpu::Texture layers = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    const GLuint tex = layers.id();
+    glTextureStorage3D(tex, 1, GL_RGBA32F, n, n, 6 * layerCount);
+    for (int L = 0; L < layerCount; ++L)
+        for (int f = 0; f < 6; ++f)
+            glTextureSubImage3D(tex, 0, 0, 0, 6 * L + f, n, n, 1, GL_RGBA, GL_FLOAT,
+                                a.layers[std::size_t(L)].faces[std::size_t(f)].pixels.data());
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return layers;
+}
+
+gpu::Texture uploadSky(const DistanceProbeAsset& a) {
+    gpu::Texture sky = gpu::Texture::create(GL_TEXTURE_2D);
+    const GLuint s = sky.id();
+    std::vector<float> rgba(std::size_t(a.sky.width) * a.sky.height * 4);
+    for (int y = 0; y < a.sky.height; ++y)
+        for (int x = 0; x < a.sky.width; ++x) {
+            const glm::vec4 v = a.sky.rgba(x, y);
+            std::copy(&v[0], &v[0] + 4, &rgba[(std::size_t(y) * a.sky.width + x) * 4]);
+        }
+    glTextureStorage2D(s, 1, GL_RGBA32F, a.sky.width, a.sky.height);
+    glTextureSubImage2D(s, 0, 0, 0, a.sky.width, a.sky.height, GL_RGBA, GL_FLOAT, rgba.data());
+    glTextureParameteri(s, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(s, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(s, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return sky;
 }
 } // namespace
-
-void setDistanceLookupUniforms(gpu::Program& prog, const DistanceLookupConfig& c, int faceRes,
-                               glm::vec3 probeCentre) {
-    prog.setUniform("uFaceRes", faceRes);
-    prog.setUniform("uProbeCentre", probeCentre);
-    prog.setUniform("uBoxMin", c.boxMin);
-    prog.setUniform("uBoxMax", c.boxMax);
-    prog.setUniform("uRange", c.range);
-    prog.setUniform("uTolerance", c.tolerance);
-    prog.setUniform("uDInf", c.dInf);
-    prog.setUniform("uMaxSteps", c.maxSteps);
-    prog.setUniform("uMethod", c.method);
-    prog.setUniform("uLayerCount", c.layerCount);
-    for (std::size_t i = 0; i < c.layerMethods.size(); ++i) {
-        // Appended piecewise: GCC 12's -Wrestrict misfires on chained string operator+.
-        auto element = [i](const char* array) {
-            std::string name(array);
-            name += '[';
-            name += std::to_string(i);
-            name += ']';
-            return name;
-        };
-        prog.setUniform(element("uLayerMethod"), c.layerMethods[i]);
-        prog.setUniform(element("uLayerAvgDistance"), c.layerAvgDistance[i]);
-        prog.setUniform(element("uLayerBoxMin"), c.layerBoxMin[i]);
-        prog.setUniform(element("uLayerBoxMax"), c.layerBoxMax[i]);
-        prog.setUniform(element("uLayerReach"), c.layerReach[i]);
-    }
-}
 
 std::string featureName(std::uint32_t f) {
     std::string s;
@@ -128,20 +148,23 @@ void ReflectionProbeSystem::sync(ecs::Registry& registry) {
     });
     registry.view<ReflectionProbe>().each([&](ecs::Entity e, ReflectionProbe& probe) {
         auto& slot = probes_[e];
-        if (slot && buildKey(slot->component) == buildKey(probe)) {
-            slot->component = probe; // uniform-only fields (disparity, background)
+        if (slot && slot->component == probe) return;
+        if (slot && sameAsset(slot->component, probe)) {
+            if (probe.flavour == ProbeFlavour::LightFieldSlab)
+                slot->component = probe; // disparity, background: uniforms at draw time
+            else
+                setDistanceParams(*slot, probe);
             return;
         }
         auto gpuProbe = std::make_unique<ProbeGpu>();
         gpuProbe->component = probe;
         if (probe.flavour == ProbeFlavour::LightFieldSlab) {
             syncLightField(*gpuProbe);
+            ++stats_.textureUploads;
             slot = std::move(gpuProbe);
             return;
         }
-        if (probe.method == LookupMethod::LightField)
-            throw Error(probe.asset, "method",
-                        "'lightfield' needs a probe of flavour LightFieldSlab");
+        refuseLightFieldMethod(probe); // before reading the asset from disk
         // Probes that share an asset share its CPU copy; the GPU copy is per probe since the
         // methods (and so the layers uploaded) may differ.
         auto& cached = assetCache_[probe.asset];
@@ -151,51 +174,32 @@ void ReflectionProbeSystem::sync(ecs::Registry& registry) {
                 std::make_shared<const DistanceProbeAsset>(readDistanceProbe(probe.asset));
             cached = gpuProbe->asset;
         }
-        const DistanceProbeAsset& a = *gpuProbe->asset;
-        gpuProbe->config = makeLookupConfig(probe, a);
-        if (gpuProbe->config.layerMethods.size() > 64)
-            throw Error(probe.asset, "layers", "at most 63 object layers are supported");
-
-        // Only the layers the method reads go to the GPU: the composite alone unless layered.
-        const int layerCount =
-            (gpuProbe->config.features & kFeatureLayers) ? int(a.layers.size()) : 1;
-        const int n = a.faceRes;
-        gpuProbe->layers = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
-        const GLuint tex = gpuProbe->layers.id();
-        glTextureStorage3D(tex, 1, GL_RGBA32F, n, n, 6 * layerCount);
-        for (int L = 0; L < layerCount; ++L)
-            for (int f = 0; f < 6; ++f)
-                glTextureSubImage3D(tex, 0, 0, 0, 6 * L + f, n, n, 1, GL_RGBA, GL_FLOAT,
-                                    a.layers[std::size_t(L)].faces[std::size_t(f)].pixels.data());
-        glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        gpuProbe->bytes = std::size_t(n) * n * 6 * layerCount * 16;
-
-        if (!a.sky.empty()) {
-            gpuProbe->sky = gpu::Texture::create(GL_TEXTURE_2D);
-            const GLuint s = gpuProbe->sky.id();
-            std::vector<float> rgba(std::size_t(a.sky.width) * a.sky.height * 4);
-            for (int y = 0; y < a.sky.height; ++y)
-                for (int x = 0; x < a.sky.width; ++x) {
-                    const glm::vec4 v = a.sky.rgba(x, y);
-                    std::copy(&v[0], &v[0] + 4, &rgba[(std::size_t(y) * a.sky.width + x) * 4]);
-                }
-            glTextureStorage2D(s, 1, GL_RGBA32F, a.sky.width, a.sky.height);
-            glTextureSubImage2D(s, 0, 0, 0, a.sky.width, a.sky.height, GL_RGBA, GL_FLOAT,
-                                rgba.data());
-            glTextureParameteri(s, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-            glTextureParameteri(s, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-            glTextureParameteri(s, GL_TEXTURE_WRAP_S, GL_REPEAT);
-            glTextureParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-            gpuProbe->bytes += rgba.size() * sizeof(float);
-        }
+        setDistanceParams(*gpuProbe, probe); // throws on a bad configuration before uploading
+        if (!gpuProbe->asset->sky.empty()) gpuProbe->sky = uploadSky(*gpuProbe->asset);
         slot = std::move(gpuProbe);
     });
     stats_.probeGpuBytes = 0;
     for (const auto& [e, p] : probes_)
         stats_.probeGpuBytes += p->bytes;
+}
+
+void ReflectionProbeSystem::setDistanceParams(ProbeGpu& g, const ReflectionProbe& probe) {
+    refuseLightFieldMethod(probe); // an edit may set it too
+    const DistanceProbeAsset& a = *g.asset;
+    DistanceLookupConfig config = makeLookupConfig(probe, a); // throws before any change
+    // Only the layers the method reads go to the GPU: the composite alone unless layered. A
+    // texture that already holds them is kept, so a method edit re-uploads only to grow.
+    const int needed = (config.features & kFeatureLayers) ? int(a.layers.size()) : 1;
+    if (needed > g.layersUploaded) {
+        g.layers = uploadLayers(a, needed);
+        g.layersUploaded = needed;
+        ++stats_.textureUploads;
+    }
+    g.bytes = layerTextureBytes(a, g.layersUploaded) + (a.sky.empty() ? 0 : skyTextureBytes(a));
+    g.component = probe;
+    g.config = std::move(config);
+    g.params.upload(g.config);
+    ++stats_.parameterUploads;
 }
 
 void ReflectionProbeSystem::render(ecs::Registry& registry, const CameraView& camera,
@@ -259,7 +263,7 @@ void ReflectionProbeSystem::render(ecs::Registry& registry, const CameraView& ca
         prog.setUniform("uLayers", 1);
         prog.setUniform("uSky", 2);
         prog.setUniform("uHasSky", p.sky.id() != 0 ? 1 : 0);
-        setDistanceLookupUniforms(prog, c, p.asset->faceRes, p.asset->centre);
+        p.params.bind(glsl::kDistanceParamsBinding);
         prog.setUniform("uF0", r.fresnelF0);
         scene.drawEntity(e, prog);
         ++stats_.reflectorsDrawn;

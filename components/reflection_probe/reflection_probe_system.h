@@ -1,7 +1,8 @@
 #pragma once
-// Owns the GPU side of every ReflectionProbe: cooked asset, texture array, sky, and one
-// shader permutation per distinct feature mask. Components stay plain structs: sync() sees
-// a new or edited component (compared with the copy it last built from) and rebuilds.
+// Owns the GPU side of every ReflectionProbe: cooked asset, texture array, sky, parameter
+// block, and one shader permutation per distinct feature mask. Components stay plain
+// structs: sync() sees a new or edited component (compared with the copy it last built
+// from); a new asset rebuilds the textures, a parameter edit rewrites the block only.
 #include "components/reflection_probe/distance_lookup_config.h"
 #include "components/reflection_probe/lightfield_asset.h"
 #include "components/reflection_probe/reflection_probe.h"
@@ -31,6 +32,12 @@ struct ProbeFrameStats {
     std::size_t reflectorsOutsideCell = 0;
     bool reflectorLeftCell = false;
     bool lightFieldBackgroundDrawn = false; // the light field drew the environment this frame
+    // Since the system was made (sync() adds, render() never resets): texture sets uploaded
+    // (a probe's cube layers and sky, or its light-field atlas) and parameter blocks
+    // uploaded. A new asset uploads textures; an edit of d_e, D or a method within the
+    // flavour uploads the block only (or, to grow from the composite to every layer, both).
+    std::size_t textureUploads = 0;
+    std::size_t parameterUploads = 0;
 };
 
 class ReflectionProbeSystem {
@@ -60,6 +67,7 @@ public:
 private:
     struct ProbeGpu;
     gpu::Program& program(std::uint32_t features, int output);
+    void setDistanceParams(ProbeGpu& gpuProbe, const ReflectionProbe& probe);
     void syncLightField(ProbeGpu& gpuProbe);
     void bindLightField(gpu::Program& prog, const ProbeGpu& p);
     void drawLightFieldBackground(const ProbeGpu& p, const CameraView& camera, int output);
@@ -79,10 +87,6 @@ private:
 // never confuses the two.
 inline constexpr std::uint32_t kFeatureLightField = 1u << 16;
 inline constexpr std::uint32_t kFeatureLightFieldBackground = 1u << 17;
-
-// Fills the uniforms of shaders/distance_probe_gpu.glsl from a lookup configuration.
-void setDistanceLookupUniforms(gpu::Program& program, const DistanceLookupConfig& config,
-                               int faceRes, glm::vec3 probeCentre);
 
 // Human-readable name of a feature mask, e.g. "layers+bisection+avgdist+fresnel".
 std::string featureName(std::uint32_t features);

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 #include <utility>
 
@@ -76,6 +77,27 @@ public:
     static Buffer create();
     // Immutable storage (glNamedBufferStorage) holding `bytes` copied from `data`.
     static Buffer create(const void* data, GLsizeiptr bytes, GLbitfield flags = 0);
+};
+
+// One std140 struct in a uniform buffer: created on the first upload, rewritten in place
+// (no new storage) on later ones, bound to a binding point while drawing. T is a struct
+// shared with GLSL whose layout the caller has checked with static_asserts.
+template <typename T> class UniformBuffer {
+    static_assert(std::is_trivially_copyable_v<T>, "uploaded byte for byte");
+
+public:
+    void upload(const T& value) {
+        if (!buffer_)
+            buffer_ = Buffer::create(&value, sizeof(T), GL_DYNAMIC_STORAGE_BIT);
+        else
+            glNamedBufferSubData(buffer_.id(), 0, sizeof(T), &value);
+    }
+    void bind(GLuint binding) const { glBindBufferBase(GL_UNIFORM_BUFFER, binding, buffer_.id()); }
+    GLuint id() const { return buffer_.id(); }
+    explicit operator bool() const { return bool(buffer_); }
+
+private:
+    Buffer buffer_;
 };
 
 class Texture : public detail::GlName<detail::TextureTraits> {

@@ -219,16 +219,16 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
         log << name << ": baking the distance probe (" << report.faceRes << "^2 faces)\n"
             << std::flush;
         const double bakeSeconds =
-            bakeDistanceProbeInto(scene, probeDir, report.faceRes, opt.progress);
+            bakeDistanceProbeInto(scene, probeDir, report.faceRes, opt.progress, false, &log);
         const std::string planDir = probeDir + "_plan";
         const double planBakeSeconds =
-            bakeDistanceProbeInto(scene, planDir, report.faceRes, opt.progress, true);
+            bakeDistanceProbeInto(scene, planDir, report.faceRes, opt.progress, true, &log);
         log << name << ": baking the light fields\n" << std::flush;
         std::vector<LightFieldBake> lfs;
         try {
             lfs = bakeLightFieldsForBench(
                 scene, (fs::path(opt.outDir) / "probes" / (name + "_lightfield")).string(),
-                opt.quick);
+                opt.quick, &log);
         } catch (const Error& e) {
             log << name << ": no light-field rows (" << e.what() << ")\n";
         }

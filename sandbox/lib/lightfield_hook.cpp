@@ -1,31 +1,25 @@
 #include "lightfield_hook.h"
 
-#include "assetcooker/lib/lightfield_bake.h"
-
-#include <chrono>
+#include "sandbox/lib/probe_source.h"
 
 namespace specula {
 
-LightFieldBake bakeLightField(ReflectionScene& scene, const std::string& dir, int cameras,
-                              int res) {
+LightFieldBake bakeLightField(ReflectionScene& scene, const std::string& dir, int cameras, int res,
+                              bool showProgress, std::ostream* log) {
     LightFieldBake b;
     b.params = "num=" + std::to_string(cameras) + " res=" + std::to_string(res);
-    const auto t0 = std::chrono::steady_clock::now();
-    LightFieldBakeOptions o;
-    o.cellCentre = scene.probeCentre();
-    o.cellSize = scene.cellSize();
-    o.cameras = cameras;
-    o.res = res;
-    o.sky = scene.sky().empty() ? nullptr : &scene.sky();
-    const LightFieldAsset asset = bakeLightFieldProbe(scene.registry(), scene.markup(), o);
-    b.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    writeLightFieldProbe(asset, dir, scene.path());
-    b.manifest = dir + "/manifest.json";
+    LightFieldCookSettings s;
+    s.cameras = cameras;
+    s.imageRes = res;
+    const CookResult r = cookSceneInto(scene, dir, s, showProgress, log);
+    b.seconds = r.bakeSeconds;
+    b.manifest = r.manifest;
     return b;
 }
 
 std::vector<LightFieldBake> bakeLightFieldsForBench(ReflectionScene& scene,
-                                                    const std::string& dirRoot, bool quick) {
+                                                    const std::string& dirRoot, bool quick,
+                                                    std::ostream* log) {
     std::vector<LightFieldBake> out;
     const std::vector<std::pair<int, int>> sizes =
         quick ? std::vector<std::pair<int, int>>{{8, 16}}
@@ -33,7 +27,7 @@ std::vector<LightFieldBake> bakeLightFieldsForBench(ReflectionScene& scene,
     for (auto [cameras, res] : sizes)
         out.push_back(bakeLightField(
             scene, dirRoot + "_" + std::to_string(cameras) + "x" + std::to_string(res), cameras,
-            res));
+            res, false, log));
     return out;
 }
 

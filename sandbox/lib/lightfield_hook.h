@@ -3,6 +3,7 @@
 // walk bakes one when asked for --method lightfield.
 #include "sandbox/lib/reflection_scene.h"
 
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,10 @@ struct LightFieldBake {
 
 // The bench's light-field sweep (one bake per size), into dirRoot_<params>.
 std::vector<LightFieldBake> bakeLightFieldsForBench(ReflectionScene& scene,
-                                                    const std::string& dirRoot, bool quick);
-// One light field for walk (cameras x res), into dir.
-LightFieldBake bakeLightField(ReflectionScene& scene, const std::string& dir, int cameras, int res);
+                                                    const std::string& dirRoot, bool quick,
+                                                    std::ostream* log = nullptr);
+// One light field for walk (cameras x res), into dir, through the cooking API (cookProbe).
+LightFieldBake bakeLightField(ReflectionScene& scene, const std::string& dir, int cameras, int res,
+                              bool showProgress = false, std::ostream* log = nullptr);
 
 } // namespace specula

@@ -1,82 +1,56 @@
 #include "probe_source.h"
 
-#include "assetcooker/lib/distance_bake.h"
-#include "components/reflection_probe/distance_probe_asset.h"
-#include "components/reflection_probe/lightfield_asset.h"
 #include "engine/core/error.h"
-#include "engine/core/progress.h"
 #include "sandbox/lib/lightfield_hook.h"
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-
-#include "assetcooker/lib/effect_plan.h"
 
 #include <glm/gtc/constants.hpp>
-#include <nlohmann/json.hpp>
 
 namespace fs = std::filesystem;
 
 namespace specula {
 
 double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int faceRes,
-                             bool showProgress, bool planned) {
-    const auto start = std::chrono::steady_clock::now();
-    DistanceBakeOptions o;
-    o.centre = scene.probeCentre();
-    o.faceRes = faceRes;
-    o.sky = scene.sky().empty() ? nullptr : &scene.sky();
-    o.reflectorReach = scene.reflectorReach();
-    std::string planJson;
-    if (planned) {
-        const EffectPlan plan =
-            planEffects(scene.registry(), scene.markup(), o.centre, o.reflectorReach);
-        applyPlan(plan, o);
-        planJson = plan.toJson().dump();
-    }
-    DistanceProbeAsset asset;
-    {
-        std::optional<ProgressBar> bar;
-        if (showProgress) {
-            bar.emplace("baking " + fs::path(scene.path()).filename().string());
-            o.progress = [&](double f) { bar->update(f); };
-        }
-        asset = bakeDistanceProbe(scene.registry(), scene.markup(), o);
-    }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    asset.effectPlan = planJson;
-    writeDistanceProbe(asset, dir, scene.path());
-    return seconds;
+                             bool showProgress, bool planned, std::ostream* log) {
+    DistanceCookSettings s;
+    s.faceRes = faceRes;
+    s.planned = s.recordPlan = planned;
+    return cookSceneInto(scene, dir, s, showProgress, log).bakeSeconds;
+}
+
+CookResult cookSceneInto(ReflectionScene& scene, const std::string& dir, const CookFlavour& flavour,
+                         bool showProgress, std::ostream* log) {
+    CookOptions o;
+    o.out = dir;
+    o.flavour = flavour;
+    o.progress = showProgress;
+    return cookProbe(scene.probeScene(), o, log);
 }
 
 ProbeSource resolveProbeSource(const std::string& input,
                                const std::optional<std::string>& sceneOverride,
                                const std::optional<std::string>& skyOverride,
                                const std::string& bakeDir, int faceRes, bool showProgress,
-                               bool lightField) {
+                               bool lightField, std::ostream* log) {
     std::error_code ec; // a symlink loop or unreadable parent is an error naming the input
     if (!fs::exists(input, ec))
         throw Error(input, "", ec ? "cannot open: " + ec.message() : "no such file");
     ProbeSource src;
     const std::string ext = fs::path(input).extension().string();
     if (ext == ".json") {
+        // One read of the manifest here; the asset (fields, files, checksums) is validated
+        // when the probe system loads it, before anything is drawn.
+        const CookedProbeFacts facts = readCookedProbeFacts(input);
         src.manifest = input;
-        src.lightField = probeManifestFlavour(input) == "lightfield";
-        // Validates the whole asset (version, fields, checksums) before anything is drawn; a
-        // light field is validated when the probe system loads it.
-        DistanceProbeAsset asset;
-        if (!src.lightField) asset = readDistanceProbe(input);
+        src.lightField = facts.flavour == "lightfield";
         if (sceneOverride) {
             src.scenePath = *sceneOverride;
         } else {
-            std::ifstream in(input);
-            const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-            if (!j.is_object() || !j.contains("source") || !j["source"].is_string())
+            if (facts.source.empty())
                 throw Error(input, "source", "expected the scene's path (or give --scene)");
-            const fs::path s = j["source"].get<std::string>();
+            const fs::path s = facts.source;
             const fs::path besideManifest = fs::path(input).parent_path() / s;
             src.scenePath = fs::exists(s) || s.is_absolute() || !fs::exists(besideManifest)
                                 ? s.string()
@@ -86,9 +60,7 @@ ProbeSource resolveProbeSource(const std::string& input,
             throw Error(input, "source", "scene '" + src.scenePath + "' not found (give --scene)");
         src.skyPath = skyOverride      ? *skyOverride
                       : src.lightField ? defaultSkyPath()
-                      : asset.skyFile.empty()
-                          ? std::string()
-                          : (fs::path(input).parent_path() / asset.skyFile).string();
+                                       : facts.skyFile;
         return src;
     }
     if (ext != ".gltf" && ext != ".glb")
@@ -99,11 +71,11 @@ ProbeSource resolveProbeSource(const std::string& input,
     if (scene.markup().reflectors.empty())
         throw Error(input, "specula_reflector", "the scene has no reflector node");
     if (lightField) {
-        const LightFieldBake b = bakeLightField(scene, bakeDir, 16, 32);
+        const LightFieldBake b = bakeLightField(scene, bakeDir, 16, 32, showProgress, log);
         src.bakeSeconds = b.seconds;
         src.lightField = true;
     } else {
-        src.bakeSeconds = bakeDistanceProbeInto(scene, bakeDir, faceRes, showProgress);
+        src.bakeSeconds = bakeDistanceProbeInto(scene, bakeDir, faceRes, showProgress, false, log);
     }
     src.manifest = (fs::path(bakeDir) / "manifest.json").string();
     src.baked = true;

@@ -2,11 +2,13 @@
 // What walk and bench start from: a scene (.gltf/.glb, baked here into a probe) or a cooked
 // manifest (its scene found through the manifest's "source"). Plus the small helpers both
 // subcommands share: the reflector path inside the cell and the reflector-pixel mask.
+#include "assetcooker/lib/cook.h"
 #include "engine/image/image.h"
 #include "sandbox/lib/reflection_scene.h"
 
 #include <memory>
 #include <optional>
+#include <ostream>
 #include <string>
 
 namespace specula {
@@ -24,17 +26,22 @@ struct ProbeSource {
 // (else its "source", relative to the working directory or to the manifest's folder).
 // A scene is baked with Embree into `bakeDir` (replaced): a distance probe with `faceRes`, or
 // with `lightField` a light field (16 cameras of 32^2 pixels a slab). Throws Error naming the
-// file on bad input.
+// file on bad input. `log`: the bake's warnings (null: dropped).
 ProbeSource resolveProbeSource(const std::string& input,
                                const std::optional<std::string>& sceneOverride,
                                const std::optional<std::string>& skyOverride,
                                const std::string& bakeDir, int faceRes, bool showProgress,
-                               bool lightField = false);
+                               bool lightField = false, std::ostream* log = nullptr);
 
-// Bakes the distance probe of a loaded scene into `dir`; returns the seconds it took.
-// planned: the layers and methods of the effect plan (else one layer per object).
+// Bakes the distance probe of a loaded scene into `dir` through the cooking API (cookProbe);
+// returns the seconds it took. planned: the layers and methods of the effect plan (else one
+// layer per object). `log`: the cook's warnings (null: dropped).
 double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int faceRes,
-                             bool showProgress, bool planned = false);
+                             bool showProgress, bool planned = false, std::ostream* log = nullptr);
+
+// The cooking API (cookProbe) on the sandbox's scene: `flavour`'s probe into `dir`.
+CookResult cookSceneInto(ReflectionScene& scene, const std::string& dir, const CookFlavour& flavour,
+                         bool showProgress, std::ostream* log);
 
 // Walk paths: where the reflectors are at time t in [0, 1), as an offset from their authored
 // position. Every path stays within 0.2 cell sizes of it on each axis, inside the cell.

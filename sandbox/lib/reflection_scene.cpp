@@ -1,7 +1,6 @@
 #include "reflection_scene.h"
 
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
 #include "engine/scene/components.h"
 #include "engine/scene/mesh_bounds.h"
 #include "engine/scene/transform_system.h"
@@ -18,28 +17,24 @@ std::string defaultSkyPath() {
 }
 
 ReflectionScene::ReflectionScene(const std::string& gltfPath, const std::string& skyPath)
-    : path_(gltfPath) {
-    loaded_ = loadGltf(gltfPath, registry_);
-    updateWorldTransforms(registry_);
-    markup_ = readSceneMarkup(registry_, loaded_, gltfPath);
-    if (!skyPath.empty()) sky_ = readImage(skyPath);
+    : scene_(gltfPath, skyPath) {
     // Reflector roots: the nodes carrying the markup, found by name.
-    for (const ReflectorMarkup& r : markup_.reflectors)
-        for (ecs::Entity e : loaded_.entities)
-            if (const Name* n = registry_.find<Name>(e); n && n->value == r.node)
-                reflectorRoots_.emplace_back(e, registry_.get<Transform>(e).translation);
+    for (const ReflectorMarkup& r : scene_.markup.reflectors)
+        for (ecs::Entity e : scene_.loaded.entities)
+            if (const Name* n = scene_.registry.find<Name>(e); n && n->value == r.node)
+                reflectorRoots_.emplace_back(e, scene_.registry.get<Transform>(e).translation);
 }
 
 glm::vec3 ReflectionScene::probeCentre() const {
-    return markupProbeCentre(registry_, markup_, loaded_);
+    return markupProbeCentre(scene_.registry, scene_.markup, scene_.loaded);
 }
 
 float ReflectionScene::cellSize() const {
-    return markupCellSize(markup_);
+    return markupCellSize(scene_.markup);
 }
 
 float ReflectionScene::reflectorReach() const {
-    return markupReflectorReach(registry_, markup_, probeCentre(), cellSize());
+    return markupReflectorReach(scene_.registry, scene_.markup, probeCentre(), cellSize());
 }
 
 float ReflectionScene::walkAmplitude() const {
@@ -48,15 +43,16 @@ float ReflectionScene::walkAmplitude() const {
     float slack = half;
     // Room to the cell's faces of each mirror at its authored position (the current offset
     // taken away).
-    for (ecs::Entity e : markup_.mirrorEntities)
-        slack = std::min(slack, -meshWorldBounds(registry_, e).translated(-offset_).overhang(cell));
+    for (ecs::Entity e : scene_.markup.mirrorEntities)
+        slack = std::min(slack,
+                         -meshWorldBounds(scene_.registry, e).translated(-offset_).overhang(cell));
     return std::clamp(slack, 0.f, 0.2f * cellSize());
 }
 
 CameraView ReflectionScene::camera(int width, int height) const {
-    for (ecs::Entity e : loaded_.entities) {
-        const Camera* cam = registry_.find<Camera>(e);
-        const Transform* t = registry_.find<Transform>(e);
+    for (ecs::Entity e : scene_.loaded.entities) {
+        const Camera* cam = scene_.registry.find<Camera>(e);
+        const Transform* t = scene_.registry.find<Transform>(e);
         if (!cam || !t) continue;
         const glm::mat4 world = t->world;
         CameraView v;
@@ -79,13 +75,7 @@ CameraView ReflectionScene::orbitCamera(int width, int height, float angle, floa
 }
 
 ecs::Entity ReflectionScene::attachProbe(const ReflectionProbe& probe) {
-    if (!probe_.isNull()) registry_.destroy(probe_);
-    probe_ = registry_.create();
-    registry_.emplace<Name>(probe_, Name{"reflection_probe"});
-    registry_.emplace<ReflectionProbe>(probe_, probe);
-    for (const ReflectorMarkup& r : markup_.reflectors)
-        for (ecs::Entity e : r.meshes)
-            registry_.emplace<Reflector>(e, Reflector{probe_, r.f0});
+    probe_ = attachProbeComponents(scene_.registry, scene_.markup, probe, probe_);
     return probe_;
 }
 
@@ -94,18 +84,18 @@ void ReflectionScene::setProbe(const ReflectionProbe& probe) {
         attachProbe(probe);
         return;
     }
-    registry_.get<ReflectionProbe>(probe_) = probe;
+    scene_.registry.get<ReflectionProbe>(probe_) = probe;
 }
 
 void ReflectionScene::setReflectorOffset(glm::vec3 offset) {
     offset_ = offset;
     for (auto& [e, authored] : reflectorRoots_) {
-        Transform& t = registry_.get<Transform>(e);
+        Transform& t = scene_.registry.get<Transform>(e);
         // The authored translation is in the parent's space; offsets are world space, which is
         // the same for root nodes (the reflectors of our scenes).
         t.translation = authored + offset;
     }
-    updateWorldTransforms(registry_);
+    updateWorldTransforms(scene_.registry);
 }
 
 glm::vec3 ReflectionScene::reflectorPosition() const {
@@ -115,11 +105,11 @@ glm::vec3 ReflectionScene::reflectorPosition() const {
 GroundTruthImage ReflectionScene::groundTruth(const CameraView& camera, bool environmentOnly) {
     TraceOptions o;
     o.environmentOnly = environmentOnly;
-    o.mirrors = markup_.mirrorEntities;
-    o.sky = sky_.empty() ? nullptr : &sky_;
+    o.mirrors = scene_.markup.mirrorEntities;
+    o.sky = scene_.sky.empty() ? nullptr : &scene_.sky;
     // Probes reflect at most once; the full ground truth follows a few bounces.
     o.maxBounces = environmentOnly ? 1 : 4;
-    GroundTruthTracer tracer(registry_, std::move(o));
+    GroundTruthTracer tracer(scene_.registry, std::move(o));
     return tracer.render(camera);
 }
 

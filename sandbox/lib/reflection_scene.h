@@ -2,13 +2,9 @@
 // A glTF scene set up for reflection work: loaded into a registry, its Specula markup read,
 // the sky panorama loaded, the camera found, and helpers to attach a probe, move the
 // reflectors and trace the ground truth. Shared by specula-sandbox and the tests.
-#include "components/reflection_probe/reflection_probe.h"
-#include "components/reflection_probe/scene_markup.h"
-#include "engine/ecs/registry.h"
-#include "engine/image/image.h"
+#include "components/reflection_probe/probe_setup.h"
 #include "engine/math/camera.h"
 #include "engine/raytrace/ground_truth.h"
-#include "engine/scene/gltf_loader.h"
 
 #include <string>
 
@@ -22,11 +18,13 @@ public:
     // Throws Error naming the file on bad input. An empty skyPath means a black sky.
     ReflectionScene(const std::string& gltfPath, const std::string& skyPath);
 
-    ecs::Registry& registry() { return registry_; }
-    const LoadedScene& loaded() const { return loaded_; }
-    const SceneMarkup& markup() const { return markup_; }
-    const Image& sky() const { return sky_; }
-    const std::string& path() const { return path_; }
+    ecs::Registry& registry() { return scene_.registry; }
+    const LoadedScene& loaded() const { return scene_.loaded; }
+    const SceneMarkup& markup() const { return scene_.markup; }
+    const Image& sky() const { return scene_.sky; }
+    const std::string& path() const { return scene_.path; }
+    // The opened scene itself, for the cooking API (cookProbe) to bake from.
+    ProbeScene& probeScene() { return scene_; }
 
     // The probe position: the first `specula_probe` node, else the centre of the
     // reflectors' bounds, else the scene's centre.
@@ -46,7 +44,7 @@ public:
                            float height_) const;
 
     // Creates (or replaces) the probe entity and gives every reflector mesh a Reflector
-    // component pointing at it.
+    // component pointing at it (attachProbeComponents).
     ecs::Entity attachProbe(const ReflectionProbe& probe);
     ecs::Entity probeEntity() const { return probe_; }
     void setProbe(const ReflectionProbe& probe);
@@ -58,18 +56,14 @@ public:
     // the scene has no reflector.
     glm::vec3 reflectorPosition() const;
 
-    bool isMirror(ecs::Entity e) const { return markup_.mirrorEntities.count(e) > 0; }
+    bool isMirror(ecs::Entity e) const { return scene_.markup.mirrorEntities.count(e) > 0; }
 
     // Ray-traced ground truth of the current state. environmentOnly: reflected rays see
     // only the environment (what a probe represents).
     GroundTruthImage groundTruth(const CameraView& camera, bool environmentOnly);
 
 private:
-    std::string path_;
-    ecs::Registry registry_;
-    LoadedScene loaded_;
-    SceneMarkup markup_;
-    Image sky_;
+    ProbeScene scene_;
     ecs::Entity probe_ = ecs::kNullEntity;
     glm::vec3 offset_{0.f};
     std::vector<std::pair<ecs::Entity, glm::vec3>> reflectorRoots_; // entity, authored position

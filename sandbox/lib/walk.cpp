@@ -46,7 +46,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     fs::create_directories(o.outDir);
     const ProbeSource src =
         resolveProbeSource(o.input, o.scene, o.sky, (fs::path(o.outDir) / "probe").string(),
-                           o.faceRes, o.progress, o.method == LookupMethod::LightField);
+                           o.faceRes, o.progress, o.method == LookupMethod::LightField, &out);
     if (src.baked) out << "baked " << src.manifest << " in " << src.bakeSeconds << " s\n";
     auto context = gpu::GlContext::createHeadless();
     ReflectionScene scene(src.scenePath, src.skyPath);

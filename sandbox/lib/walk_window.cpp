@@ -87,8 +87,9 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             fs::remove_all(dir, ec);
         }
     } cleanup{bakeDir};
-    const ProbeSource src = resolveProbeSource(o.input, o.scene, o.sky, bakeDir.string(), o.faceRes,
-                                               o.progress, o.method == LookupMethod::LightField);
+    const ProbeSource src =
+        resolveProbeSource(o.input, o.scene, o.sky, bakeDir.string(), o.faceRes, o.progress,
+                           o.method == LookupMethod::LightField, &out);
     auto context = gpu::GlContext::createWindow(o.width, o.height, "specula-sandbox walk");
     GLFWwindow* window = context->window();
     glfwSwapInterval(0);

@@ -65,7 +65,7 @@ void checkCase(const std::string& name, const DistanceProbeAsset& asset,
             want.push_back(ref(m, r.x, r.d));
             cpu.add(twin.radiance(r.x, r.d, fetches), want.back());
             // The search may not spend more than N fetches per layer, plus radiance and sky.
-            EXPECT_LE(fetches, (cfg.maxSteps + 1) * std::max(1, cfg.layerCount) + 1)
+            EXPECT_LE(fetches, (cfg.params.maxSteps + 1) * std::max(1, cfg.params.layerCount) + 1)
                 << name << " " << toString(m);
             gr.push_back({r.x, r.d});
         }
@@ -308,9 +308,9 @@ TEST(DistanceHardCases, ToleranceToZero) {
         rays.push_back({randomInCell(rng), randomUnit(rng)});
     for (float de : {0.f, FLT_MIN, 1e-40f, -1.f, kNaN, kInf}) {
         const DistanceLookupConfig c = configFor(boxProbe(), LookupMethod::Bisection, de);
-        EXPECT_GT(c.tolerance, 0.f);
-        EXPECT_TRUE(std::isfinite(c.tolerance));
-        EXPECT_LE(c.maxSteps, 40) << "N is capped so d_e -> 0 cannot loop for long";
+        EXPECT_GT(c.params.tolerance, 0.f);
+        EXPECT_TRUE(std::isfinite(c.params.tolerance));
+        EXPECT_LE(c.params.maxSteps, 40) << "N is capped so d_e -> 0 cannot loop for long";
         char name[64];
         std::snprintf(name, sizeof name, "d_e -> 0 (d_e = %g)", double(de));
         checkCase(name, boxProbe(), rays, boxIdeal(boxProbe()),

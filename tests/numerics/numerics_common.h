@@ -280,7 +280,10 @@ public:
         prog.setUniform("uB", 3);
         prog.setUniform("uC", 4);
         prog.setUniform("uMode", mode);
-        setDistanceLookupUniforms(prog, c, n, centre);
+        DistanceLookupConfig placed = c; // the block as the system uploads it, at `centre`
+        placed.params.centre = centre;
+        params_.upload(placed);
+        params_.bind(glsl::kDistanceParamsBinding);
         gpu::RenderTarget colour(w, h);
         gpu::RenderTarget dir(w, h);
         std::vector<GpuResult> out(rays.size());
@@ -370,12 +373,12 @@ void main() {
                                                        texelFetch(uC, px, 0).xyz)));
     } else if (uMode == 2) {
         vec3 world = x;
-        x = world - uProbeCentre;
+        x = world - probeCentre();
         vec3 v = normalize(world - a);
         lhat = normalize(mirrorDirection(v, safeNormal(texelFetch(uB, px, 0).xyz,
                                                        texelFetch(uC, px, 0).xyz)));
     }
-    ProbeLookupParams p = lookupParams();
+    DistanceParams p = lookupParams();
     int fetches = 0;
     vec3 colour = probeRadiance(x, lhat, p, fetches);
     fragColor = uOutput == 0 ? vec4(colour, gSky ? 2.0 : 1.0) : vec4(lhat, 1.0);
@@ -384,6 +387,7 @@ void main() {
 
     std::unique_ptr<gpu::GlContext> context_;
     gpu::VertexArray vao_;
+    gpu::UniformBuffer<glsl::DistanceParamsBlock> params_;
     std::map<std::uint32_t, gpu::Program> programs_;
 };
 

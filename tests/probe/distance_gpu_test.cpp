@@ -1,9 +1,9 @@
 // The distance-cubemap shader against its CPU twin and against the Embree ground truth, on
 // the default room.
-#include "components/reflection_probe/distance_probe_cpu.h"
 #include "engine/image/compare.h"
 #include "engine/image/image_io.h"
 #include "probe_fixture.h"
+#include "twin_agreement.h"
 
 #include <cstdio>
 
@@ -32,42 +32,17 @@ TEST_F(RoomProbe, ShaderMatchesCpuTwinPerPixel) {
     const Image mask = test::erodedMask(scene_->groundTruth(cam, true).mirrorMask);
     for (LookupMethod m : kMethods) {
         scene_->setProbe(probeFor(m));
-        const Image colour = renderer_->render(cam, 0);
-        const Image pos = renderer_->render(cam, 1);
-        const Image dir = renderer_->render(cam, 2);
-        const ecs::Entity probe = scene_->probeEntity();
-        CpuDistanceProbe twin(*renderer_->probes().asset(probe),
-                              *renderer_->probes().config(probe));
-        long n = 0, close = 0, skyN = 0;
-        double sum = 0, worst = 0, worstSky = 0;
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x) {
-                if (mask.at(x, y)[0] < 0.5f) continue;
-                int fetches = 0;
-                bool sky = false;
-                const glm::vec3 cpu = twin.radiance(glm::vec3(pos.rgba(x, y)),
-                                                    glm::vec3(dir.rgba(x, y)), fetches, &sky);
-                const float err = glm::length(cpu - glm::vec3(colour.rgba(x, y)));
-                if (sky) {
-                    ++skyN;
-                    worstSky = std::max(worstSky, double(err));
-                    continue;
-                }
-                ++n;
-                sum += err;
-                worst = std::max(worst, double(err));
-                if (err < 2e-3f) ++close;
-            }
-        ASSERT_GT(n, 500) << "the camera must see the reflectors";
-        const double share = double(close) / double(n);
+        const test::TwinAgreement t = test::compareWithTwin(*renderer_, *scene_, cam, mask);
+        ASSERT_GT(t.layerPx, 500) << "the camera must see the reflectors";
         std::printf("%-9s twin vs GLSL: %ld layer px, %.3f%% within 2e-3, mean %.2e, worst %.4f; "
                     "%ld sky px, worst %.4f\n",
-                    toString(m), n, 100.0 * share, sum / n, worst, skyN, worstSky);
+                    toString(m), t.layerPx, 100.0 * t.share(), t.mean(), t.worst, t.skyPx,
+                    t.worstSky);
         // A nearest distance fetch right on a texel boundary can flip on the last bit of a
         // float between GPU and CPU and end the search one texel apart: allow 0.5 % of pixels.
-        EXPECT_GT(share, 0.995) << toString(m);
-        EXPECT_LT(sum / n, 5e-4) << toString(m);
-        EXPECT_LT(worstSky, 0.03) << toString(m);
+        EXPECT_GT(t.share(), 0.995) << toString(m);
+        EXPECT_LT(t.mean(), 5e-4) << toString(m);
+        EXPECT_LT(t.worstSky, 0.03) << toString(m);
     }
 }
 

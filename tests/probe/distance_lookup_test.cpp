@@ -24,7 +24,7 @@ Errors measure(const DistanceProbeAsset& a, LookupMethod method, float de, int r
     probe.method = method;
     probe.errorTolerance = de;
     DistanceLookupConfig cfg = makeLookupConfig(probe, a);
-    if (toleranceOverride >= 0.f) cfg.tolerance = toleranceOverride;
+    if (toleranceOverride >= 0.f) cfg.params.tolerance = toleranceOverride;
     CpuDistanceProbe twin(a, cfg);
     AnalyticBox box;
     std::mt19937 rng(1234);
@@ -96,7 +96,7 @@ TEST_F(DistanceLookup, FetchCountIsNWhenConditionOneNeverFires) {
         probe.errorTolerance = de;
         const DistanceLookupConfig cfg = makeLookupConfig(probe, *asset_);
         const int n = int(std::ceil(std::log2(2.0 * asset_->range / de)));
-        EXPECT_EQ(cfg.maxSteps, n);
+        EXPECT_EQ(cfg.params.maxSteps, n);
         // Tolerance 0: condition 1 cannot fire, so every ray spends exactly N distance
         // fetches plus one radiance fetch (every ray hits the closed box).
         const Errors e = measure(*asset_, LookupMethod::Bisection, de, 2000, 0.f);
@@ -158,7 +158,7 @@ TEST_F(DistanceLookup, MissesFallToTheSky) {
         EXPECT_NEAR(c.r, 0.25f, 1e-6f) << toString(m);
         // Every distance fetch sees d_inf, so no method can stop early: N distance fetches
         // (one for the average distance) and one sky fetch.
-        const int n = makeLookupConfig(probe, a).maxSteps;
+        const int n = makeLookupConfig(probe, a).params.maxSteps;
         EXPECT_EQ(fetches, m == LookupMethod::AvgDist ? 2 : n + 1) << toString(m);
     }
 }

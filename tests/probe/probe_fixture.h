@@ -1,7 +1,6 @@
 #pragma once
 // The default room with its distance probe baked once per test binary (face resolution 128
 // keeps the bake under a few seconds), a headless GL context, and a frame renderer.
-#include "assetcooker/lib/distance_bake.h"
 #include "engine/gpu/context.h"
 #include "sandbox/lib/frame_renderer.h"
 #include "sandbox/lib/probe_source.h"
@@ -24,15 +23,12 @@ protected:
         dir_ = (std::filesystem::temp_directory_path() /
                 ("specula-probe-test-" + std::to_string(::getpid())))
                    .string();
-        DistanceBakeOptions o;
-        o.centre = scene_->probeCentre();
-        o.faceRes = std::getenv("SPECULA_TEST_FACE_RES")
-                        ? std::atoi(std::getenv("SPECULA_TEST_FACE_RES"))
-                        : 128;
-        o.sky = &scene_->sky();
-        o.reflectorReach = scene_->reflectorReach();
-        writeDistanceProbe(bakeDistanceProbe(scene_->registry(), scene_->markup(), o), dir_,
-                           scene_->path());
+        // One layer per object, no plan recorded, through the cooking API.
+        const char* faceRes = std::getenv("SPECULA_TEST_FACE_RES");
+        DistanceCookSettings s;
+        s.faceRes = faceRes ? std::atoi(faceRes) : 128;
+        s.planned = s.recordPlan = false;
+        cookSceneInto(*scene_, dir_, s, false, nullptr);
         renderer_ = new FrameRenderer(*scene_, kWidth, kHeight);
     }
     static void TearDownTestSuite() {

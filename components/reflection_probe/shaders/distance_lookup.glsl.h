@@ -81,7 +81,7 @@ RaySpan makeSpan(float t0, float t1, int steps) {
 // (condition 1) or the steps run out. The average-distance correction is its one-step
 // case on the empty span at d-bar (one fetch at x + d-bar l), so a shader that mixes the
 // two methods over its layers runs a single loop.
-LayerHit lookupBisection(int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RaySpan span) {
+LayerHit lookupBisection(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
     float step = 0.5f * (span.t1 - span.t0);
     vec3 l = x + (span.t0 + step) * lhat;
     float d = p.dInf;
@@ -103,7 +103,7 @@ LayerHit lookupBisection(int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RayS
 // bracketed by a point before it (f > 0) and one beyond it (f < 0) the next t comes from
 // the secant through both, with the Illinois weighting so one end cannot stall. A secant
 // step that leaves the bracket, or an end that saw only d_inf, falls back to the midpoint.
-LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RaySpan span) {
+LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
     float ta = span.t0;
     float fa = 0.0f;
     bool haveA = false; // ta: last t before the surface with a finite stored distance
@@ -164,13 +164,13 @@ vec2 layerSpan(int layer, vec3 x, vec3 lhat) {
 
 // Steps that bring a span of the given width down to d_e: the layered counterpart of N.
 // In logarithms, and clamped as a float, so d_e -> 0 (FLT_MIN) cannot overflow the int.
-int spanSteps(float width, ProbeLookupParams p) {
+int spanSteps(float width, DistanceParams p) {
     float n = ceil(log2(max(width, 1e-6f)) - log2(p.tolerance));
     return int(clamp(n, 1.0f, float(p.maxSteps)));
 }
 #endif
 
-LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, ProbeLookupParams p, RaySpan span) {
+LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
 #if HAS_BISECTION || HAS_AVGDIST
     if (method == kMethodBisection || method == kMethodAvgDist) {
         // Average distance: one fetch at x + d-bar l, exact when the object lies at the
@@ -201,7 +201,7 @@ LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, ProbeLookupParams
 }
 
 // Radiance seen from probe-local point x along the unit reflected direction lhat.
-vec3 probeRadiance(vec3 x, vec3 lhat, ProbeLookupParams p, INOUT(int) fetches) {
+vec3 probeRadiance(vec3 x, vec3 lhat, DistanceParams p, INOUT(int) fetches) {
 #if HAS_LAYERS
     // The hit nearest along the ray occludes the others. Wang et al. let the first layer
     // with a hit win, which holds for nested shells; per-object layers overlap in depth

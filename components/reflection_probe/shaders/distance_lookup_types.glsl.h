@@ -3,22 +3,13 @@
 #ifndef SPECULA_DISTANCE_LOOKUP_TYPES_GLSL_H
 #define SPECULA_DISTANCE_LOOKUP_TYPES_GLSL_H
 
+#include "components/reflection_probe/shaders/distance_params.glsl.h"
+
 SHARED_CONST int kMethodEnvmap = 0;
 SHARED_CONST int kMethodBoxProj = 1;
 SHARED_CONST int kMethodBisection = 2;
 SHARED_CONST int kMethodSecant = 3;
 SHARED_CONST int kMethodAvgDist = 4;
-
-struct ProbeLookupParams {
-    vec3 boxMin; // probe-local environment box (box projection)
-    vec3 boxMax;
-    float range;     // D: every hit lies within (x, x + 2D l)
-    float tolerance; // d_e: stop when |stored - |l|| < d_e
-    float dInf;      // sentinel distance of texels that see nothing
-    int maxSteps;    // N = ceil(log2(2D / d_e))
-    int method;      // single-layer method; layered mode reads layerMethod()
-    int layerCount;  // object layers after the composite
-};
 
 struct LayerHit {
     vec3 radiance;

@@ -26,13 +26,13 @@ vec3 fetchSky(vec3 dir) {
 
 void main() {
     // Probe-local space: the lookup never sees world coordinates.
-    vec3 x = vWorldPos - uProbeCentre;
+    vec3 x = vWorldPos - probeCentre();
     vec3 v = normalize(vWorldPos - uEye);
     vec3 geometric = normalize(cross(dFdx(vWorldPos), dFdy(vWorldPos)));
     vec3 n = safeNormal(vNormal, geometric);
     vec3 lhat = normalize(mirrorDirection(v, n));
 
-    ProbeLookupParams p = lookupParams();
+    DistanceParams p = lookupParams();
     int fetches = 0;
     vec3 colour = probeRadiance(x, lhat, p, fetches);
 #if HAS_FRESNEL

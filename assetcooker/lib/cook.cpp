@@ -1,0 +1,142 @@
+#include "cook.h"
+
+#include "assetcooker/lib/distance_bake.h"
+#include "assetcooker/lib/effect_plan.h"
+#include "components/reflection_probe/probe_folder.h"
+#include "engine/core/error.h"
+#include "engine/core/progress.h"
+
+#include <chrono>
+#include <filesystem>
+#include <sstream>
+
+namespace specula {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Before any work: repair what killed bakes left beside DIR (a line each on the log), and
+// refuse a DIR that may not be replaced now rather than after a long bake.
+void prepareOutput(const CookOptions& o, std::ostream* log) {
+    std::ostringstream dropped;
+    removeStaleProbeTemporaries(o.out, log ? *log : dropped);
+    checkProbeFolderReplaceable(o.out, o.scene);
+}
+
+// Runs a baker with the options every flavour shares: the cancel poll, the placement
+// warnings (on the log too) and a progress bar. Polled cancelled, the bakers stop with a
+// plain Error; reported as the cancel it is, naming DIR.
+template <class BakeOptions, class Bake>
+auto bakeShared(const CookOptions& o, const std::string& label, BakeOptions& b, CookResult& result,
+                std::ostream* log, Bake&& bake) {
+    b.cancelled = [] { return cancelRequested(); };
+    b.warnings = &result.warnings;
+    std::optional<ProgressBar> bar;
+    if (o.progress) {
+        bar.emplace(label + " " + std::filesystem::path(o.scene).filename().string());
+        b.progress = [&](double f) { bar->update(f); };
+    }
+    auto asset = [&] {
+        try {
+            return bake();
+        } catch (const Error&) {
+            throwIfCancelled(o.out);
+            throw;
+        }
+    }();
+    bar.reset();
+    if (log)
+        for (const std::string& w : result.warnings)
+            *log << "  warning: " << w << '\n';
+    throwIfCancelled(o.out);
+    return asset;
+}
+
+void cookDistance(ProbeScene& scene, const CookOptions& o, const DistanceCookSettings& s,
+                  CookResult& result, std::ostream* log) {
+    const auto start = Clock::now();
+    DistanceBakeOptions b;
+    b.centre = o.probeCentre ? *o.probeCentre
+                             : markupProbeCentre(scene.registry, scene.markup, scene.loaded);
+    b.faceRes = s.faceRes;
+    b.sky = scene.sky.empty() ? nullptr : &scene.sky;
+    b.reflectorReach =
+        markupReflectorReach(scene.registry, scene.markup, b.centre, markupCellSize(scene.markup));
+    std::string planJson;
+    if (s.planned || s.recordPlan) {
+        const EffectPlan plan =
+            planEffects(scene.registry, scene.markup, b.centre, b.reflectorReach);
+        if (s.planned) applyPlan(plan, b);
+        if (s.recordPlan) planJson = plan.toJson().dump();
+    }
+    throwIfCancelled(o.out);
+    DistanceProbeAsset asset = bakeShared(o, "baking", b, result, log, [&] {
+        return bakeDistanceProbe(scene.registry, scene.markup, b);
+    });
+    result.bakeSeconds = secondsSince(start);
+    asset.effectPlan = planJson;
+    writeDistanceProbe(asset, o.out, scene.path);
+    result.asset = std::move(asset);
+}
+
+void cookLightField(ProbeScene& scene, const CookOptions& o, const LightFieldCookSettings& s,
+                    CookResult& result, std::ostream* log) {
+    const auto start = Clock::now();
+    LightFieldBakeOptions b;
+    b.cellCentre = s.cellCentre    ? *s.cellCentre
+                   : o.probeCentre ? *o.probeCentre
+                                   : markupProbeCentre(scene.registry, scene.markup, scene.loaded);
+    b.cellSize = s.cellSize ? *s.cellSize : markupCellSize(scene.markup);
+    b.cameras = s.cameras;
+    b.res = s.imageRes;
+    b.compression = s.compression;
+    b.sky = scene.sky.empty() ? nullptr : &scene.sky;
+    LightFieldAsset asset = bakeShared(o, "baking light field", b, result, log, [&] {
+        return bakeLightFieldProbe(scene.registry, scene.markup, b);
+    });
+    result.bakeSeconds = secondsSince(start);
+    writeLightFieldProbe(asset, o.out, scene.path);
+    result.cellCentre = b.cellCentre;
+    result.cellSize = b.cellSize;
+    result.overhangs =
+        findReflectorOverhangs(scene.registry, scene.markup, b.cellCentre, b.cellSize);
+    result.asset = std::move(asset);
+}
+
+CookResult cookPrepared(ProbeScene& scene, const CookOptions& o, std::ostream* log) {
+    CookResult result;
+    std::visit(
+        [&](const auto& settings) {
+            using Settings = std::decay_t<decltype(settings)>;
+            if constexpr (std::is_same_v<Settings, DistanceCookSettings>)
+                cookDistance(scene, o, settings, result, log);
+            else
+                cookLightField(scene, o, settings, result, log);
+        },
+        o.flavour);
+    result.manifest = (std::filesystem::path(o.out) / "manifest.json").string();
+    return result;
+}
+
+} // namespace
+
+CookResult cookProbe(const CookOptions& options, std::ostream* log) {
+    prepareOutput(options, log);
+    ProbeScene scene(options.scene, options.sky);
+    throwIfCancelled(options.out);
+    return cookPrepared(scene, options, log);
+}
+
+CookResult cookProbe(ProbeScene& scene, const CookOptions& options, std::ostream* log) {
+    CookOptions o = options;
+    o.scene = scene.path;
+    prepareOutput(o, log);
+    return cookPrepared(scene, o, log);
+}
+
+} // namespace specula

@@ -1,0 +1,69 @@
+#pragma once
+// The cooking API: a scene and options in, a cooked probe folder out. `specula-cook bake`,
+// the sandbox and the tests' fixtures all bake through it, so each flavour's
+// plan -> bake -> write is written once. The folder is replaced atomically (probe_folder.h):
+// a cancel requested (cancelRequested) before the commit leaves it as it was and throws
+// Cancelled naming it.
+#include "assetcooker/lib/lightfield_bake.h"
+#include "components/reflection_probe/distance_probe_asset.h"
+#include "components/reflection_probe/lightfield_asset.h"
+#include "components/reflection_probe/probe_setup.h"
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace specula {
+
+// Distance-cubemap flavour.
+struct DistanceCookSettings {
+    int faceRes = 256;
+    // true: the layers and methods of the effect plan; false: one layer per object. The plan
+    // is recorded in the manifest either way when `recordPlan`.
+    bool planned = true;
+    bool recordPlan = true;
+};
+
+// Light-field-slab flavour. The cell defaults to the probe markup's (cell_size, else 1.5 m)
+// around the probe centre.
+struct LightFieldCookSettings {
+    std::optional<glm::vec3> cellCentre;
+    std::optional<float> cellSize;
+    int cameras = 8, imageRes = 64;
+    LightFieldCompression compression = LightFieldCompression::None;
+};
+
+// The flavour is the settings' type: one flavour's settings cannot reach the other.
+using CookFlavour = std::variant<DistanceCookSettings, LightFieldCookSettings>;
+
+struct CookOptions {
+    std::string scene;                    // .gltf/.glb; opened by cookProbe(options, log)
+    std::string sky;                      // equirectangular panorama; empty: a black sky
+    std::string out;                      // the cooked folder
+    std::optional<glm::vec3> probeCentre; // default: the markup's (markupProbeCentre)
+    CookFlavour flavour;
+    bool progress = true; // a progress bar on the terminal while tracing
+};
+
+struct CookResult {
+    std::string manifest;   // out/manifest.json
+    double bakeSeconds = 0; // planning and tracing; without opening the scene and writing
+    std::vector<std::string> warnings; // the probe placement's (also written to the log)
+    std::variant<DistanceProbeAsset, LightFieldAsset> asset; // as written
+    // Light field: the cell baked and the reflectors reaching outside it.
+    glm::vec3 cellCentre{0.f};
+    float cellSize = 0.f;
+    std::vector<ReflectorOverhang> overhangs;
+};
+
+// Repairs what killed bakes left beside options.out and refuses an out that may not be
+// replaced (before any work), opens options.scene and options.sky, bakes and writes. On
+// `log` (may be null): the repairs and the placement warnings. Throws Error naming the file
+// and field on bad input, Cancelled when cancelled.
+CookResult cookProbe(const CookOptions& options, std::ostream* log);
+// The same on a scene already open (options.scene and options.sky are not read).
+CookResult cookProbe(ProbeScene& scene, const CookOptions& options, std::ostream* log);
+
+} // namespace specula

@@ -1,0 +1,56 @@
+#pragma once
+// Holds the distance-probe shader to its CPU twin over one frame: the shader renders
+// colour and the twin's inputs (probe-local position, reflected direction, read back as
+// float32), the twin runs on exactly those inputs with the configuration the system holds
+// now, and the two are compared on the mirror pixels of `mask`.
+#include "components/reflection_probe/distance_probe_cpu.h"
+#include "sandbox/lib/frame_renderer.h"
+#include "sandbox/lib/reflection_scene.h"
+
+#include <algorithm>
+
+namespace specula::test {
+
+struct TwinAgreement {
+    Image colour;     // what the shader drew
+    long layerPx = 0; // mirror pixels a layer answered
+    long close = 0;   // of those, within 2e-3 of the twin
+    double sum = 0.0; // summed error over layer pixels
+    double worst = 0.0;
+    long skyPx = 0; // mirror pixels the sky answered
+    double worstSky = 0.0;
+
+    double share() const { return layerPx ? double(close) / double(layerPx) : 0.0; }
+    double mean() const { return layerPx ? sum / double(layerPx) : 0.0; }
+};
+
+inline TwinAgreement compareWithTwin(FrameRenderer& renderer, const ReflectionScene& scene,
+                                     const CameraView& cam, const Image& mask) {
+    TwinAgreement a;
+    a.colour = renderer.render(cam, 0);
+    const Image pos = renderer.render(cam, 1);
+    const Image dir = renderer.render(cam, 2);
+    const ecs::Entity probe = scene.probeEntity();
+    const CpuDistanceProbe twin(*renderer.probes().asset(probe), *renderer.probes().config(probe));
+    for (int y = 0; y < mask.height; ++y)
+        for (int x = 0; x < mask.width; ++x) {
+            if (mask.at(x, y)[0] < 0.5f) continue;
+            int fetches = 0;
+            bool sky = false;
+            const glm::vec3 cpu =
+                twin.radiance(glm::vec3(pos.rgba(x, y)), glm::vec3(dir.rgba(x, y)), fetches, &sky);
+            const float err = glm::length(cpu - glm::vec3(a.colour.rgba(x, y)));
+            if (sky) {
+                ++a.skyPx;
+                a.worstSky = std::max(a.worstSky, double(err));
+                continue;
+            }
+            ++a.layerPx;
+            a.sum += err;
+            a.worst = std::max(a.worst, double(err));
+            if (err < 2e-3f) ++a.close;
+        }
+    return a;
+}
+
+} // namespace specula::test
