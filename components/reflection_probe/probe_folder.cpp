@@ -2,6 +2,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
+#include "engine/core/regular_file.h"
 
 #include <algorithm>
 #include <atomic>
@@ -11,7 +12,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <set>
 #include <signal.h>
 #include <thread>
@@ -72,6 +72,16 @@ void collectListedFiles(const json& j, std::set<std::string>& files, int depth =
     }
 }
 
+// The JSON in a regular file, or null when it cannot be read or parsed (the caller decides
+// what a non-manifest means).
+json parseJsonOrNull(const fs::path& file, std::uint64_t maxBytes) {
+    try {
+        return json::parse(readRegularFile(file.string(), maxBytes), nullptr, false);
+    } catch (const Error&) {
+        return json();
+    }
+}
+
 // The files a Specula manifest lists; throws when manifest.json is not one.
 std::set<std::string> probeFolderFiles(const fs::path& manifest, const std::string& dir) {
     std::error_code ec;
@@ -81,13 +91,7 @@ std::set<std::string> probeFolderFiles(const fs::path& manifest, const std::stri
                     "is a folder without manifest.json (not a cooked probe); refusing to "
                     "replace it");
     constexpr std::uintmax_t kMaxManifestBytes = 64u << 20;
-    json j;
-    if (fs::is_regular_file(st) && fs::file_size(manifest, ec) <= kMaxManifestBytes && !ec) {
-        std::ifstream in(manifest, std::ios::binary);
-        const std::string text((std::istreambuf_iterator<char>(in)),
-                               std::istreambuf_iterator<char>());
-        j = json::parse(text, nullptr, false);
-    }
+    const json j = fs::is_regular_file(st) ? parseJsonOrNull(manifest, kMaxManifestBytes) : json();
     const auto format = j.is_object() ? j.find("format") : j.end();
     if (!j.is_object() || format == j.end() || *format != "specula-probe")
         throw Error(dir, "manifest.json",
