@@ -382,7 +382,10 @@ DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
         L.checksum = r.checksum(j, path, r.namedFile(path, [&] {
             return fileChecksum(file, maxLayerFileBytes(a.faceRes));
         }));
-        const Image stacked = readFloatExr(file);
+        // The manifest's face_res is the size the header must declare, checked before the
+        // pixels are allocated (a forged header could otherwise ask for gigabytes).
+        const Image stacked =
+            readFloatExr(file, {.width = a.faceRes, .height = 6 * a.faceRes});
         if (stacked.width != a.faceRes || stacked.height != 6 * a.faceRes || stacked.channels < 4)
             throw Error(file, "size",
                         "expected " + std::to_string(a.faceRes) + " x " +

@@ -44,21 +44,20 @@ bool defaultSrgb(const OIIO::ImageSpec& spec) {
 
 // Reads the first subimage of an opened input; returns an empty Image on failure and
 // leaves the reason in `error`.
-Image readOpened(OIIO::ImageInput& in, std::optional<bool> srgbToLinear, std::string& error) {
+Image readOpened(OIIO::ImageInput& in, std::optional<bool> srgbToLinear,
+                 const ImageReadLimits& limits, std::string& error) {
     const OIIO::ImageSpec& spec = in.spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
         error = "image has no pixels";
         return {};
     }
     const int channels = std::min(spec.nchannels, 4);
-    // A header can declare any size (a constant EXR of 10^5 x 10^5 compresses to bytes); the
-    // largest image the project reads is a face-res 8192 probe layer, 1.6e9 values.
-    constexpr std::uint64_t kMaxValues = 1ull << 31;
     if (std::uint64_t(spec.width) * std::uint64_t(spec.height) * std::uint64_t(channels) >
-        kMaxValues) {
+        limits.maxValues) {
         error = "image too large: " + std::to_string(spec.width) + " x " +
                 std::to_string(spec.height) + " x " + std::to_string(channels) +
-                " values, more than the " + std::to_string(kMaxValues) + " this reader holds";
+                " values, more than the " + std::to_string(limits.maxValues) +
+                " this reader holds";
         return {};
     }
     Image img(spec.width, spec.height, channels);
@@ -139,9 +138,9 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
 }
 
 Image readAndClose(OIIO::ImageInput& in, const std::string& path,
-                   std::optional<bool> srgbToLinear) {
+                   std::optional<bool> srgbToLinear, const ImageReadLimits& limits) {
     std::string error;
-    Image img = readOpened(in, srgbToLinear, error);
+    Image img = readOpened(in, srgbToLinear, limits, error);
     in.close();
     if (img.empty()) throw Error(path, "", "cannot read image: " + error);
     return img;
@@ -149,12 +148,13 @@ Image readAndClose(OIIO::ImageInput& in, const std::string& path,
 
 } // namespace
 
-Image readImage(const std::string& path, std::optional<bool> srgbToLinear) {
+Image readImage(const std::string& path, std::optional<bool> srgbToLinear,
+                const ImageReadLimits& limits) {
     auto in = openImage(path);
-    return readAndClose(*in, path, srgbToLinear);
+    return readAndClose(*in, path, srgbToLinear, limits);
 }
 
-Image readFloatExr(const std::string& path) {
+Image readFloatExr(const std::string& path, const ImageReadLimits& limits) {
     auto in = openImage(path);
     const std::string format = in->format_name();
     if (format != "openexr")
@@ -167,7 +167,13 @@ Image readFloatExr(const std::string& path) {
                         "expected float or half channels, channel " + std::to_string(c) + " is " +
                             t.c_str());
     }
-    return readAndClose(*in, path, false);
+    if ((limits.width > 0 && spec.width != limits.width) ||
+        (limits.height > 0 && spec.height != limits.height))
+        throw Error(path, "size",
+                    "expected " + std::to_string(limits.width) + " x " +
+                        std::to_string(limits.height) + ", the header declares " +
+                        std::to_string(spec.width) + " x " + std::to_string(spec.height));
+    return readAndClose(*in, path, false, limits);
 }
 
 void writeImage(const std::string& path, const Image& image, const ImageWriteOptions& options) {
@@ -271,7 +277,7 @@ std::optional<Image> decodeImageFromMemory(const void* data, std::size_t size,
         return std::nullopt;
     }
     std::string error;
-    Image img = readOpened(*in, srgbToLinear, error);
+    Image img = readOpened(*in, srgbToLinear, ImageReadLimits{}, error);
     in->close();
     if (img.empty()) return std::nullopt;
     return img;

@@ -4,21 +4,34 @@
 #include "engine/image/image.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 
 namespace specula {
 
+// What a read may allocate, checked against the file's header before any pixel is decoded: a
+// header can declare any size (a constant 10^5 x 10^5 EXR compresses to a few bytes).
+struct ImageReadLimits {
+    // width x height x channels read; the default admits a face-res 8192 probe layer.
+    std::uint64_t maxValues = 1ull << 31;
+    // When > 0, the header must declare exactly this size (a probe layer's is in its manifest).
+    int width = 0;
+    int height = 0;
+};
+
 // Reads any format OIIO knows. srgbToLinear: decode the colour channels (never alpha) from
 // sRGB; when not given, true for integer pixel formats (PNG, JPG, ...) and false for float
 // ones (EXR, HDR). Throws Error naming the file when it cannot be read.
 // Only a regular file is opened: a FIFO, device or directory is refused before OIIO sees it.
-Image readImage(const std::string& path, std::optional<bool> srgbToLinear = std::nullopt);
+Image readImage(const std::string& path, std::optional<bool> srgbToLinear = std::nullopt,
+                const ImageReadLimits& limits = {});
 
 // readImage for the files a cooked probe stores: the file must really be OpenEXR (a PNG
 // renamed .exr is refused, field "format") with float or half channels (field "channels");
-// the pixels are read as they are, linear.
-Image readFloatExr(const std::string& path);
+// the pixels are read as they are, linear. A size other than the limits' (field "size") is
+// refused before the pixels are allocated.
+Image readFloatExr(const std::string& path, const ImageReadLimits& limits = {});
 
 struct ImageWriteOptions {
     bool halfFloat = false; // EXR only: store half instead of float

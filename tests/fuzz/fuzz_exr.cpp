@@ -2,7 +2,14 @@
 // readImage, which takes any format) on arbitrary bytes, written to a private temporary
 // .exr file because the loader reads from a path. Any specula::Error is the expected
 // refusal; anything else escaping, a crash or a sanitizer report is a finding. Seeds: the
-// committed probe's layers (tests/fuzz/data/probe/*.exr) and tests/fuzz/corpus/exr/.
+// committed probe's layers (tests/fuzz/data/probe/*.exr, face-res 2) and
+// tests/fuzz/corpus/exr/.
+//
+// Memory: a header may declare any size and the fuzzer runs under -rss_limit_mb=2048, so the
+// harness reads with a limit of 2^26 values (what a 4096^2 RGBA texture needs) and lowers
+// OIIO's own uncompressed-size limit to match; the probe loader's path is the exact-size
+// read with the seeds' face-res (2 x 12), refused before allocation when the header differs.
+// An allocation past these limits is a finding: it means a limit is not checked first.
 #include "engine/core/error.h"
 #include "engine/image/image_io.h"
 
@@ -13,7 +20,13 @@
 #include <string>
 #include <unistd.h>
 
+#include <OpenImageIO/imageio.h>
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    static const bool limited = [] {
+        return OIIO::attribute("limits:imagesize_MB", 256);
+    }();
+    (void)limited;
     static const std::filesystem::path path = [] {
         const auto dir = std::filesystem::temp_directory_path() /
                          ("specula-fuzz-exr-" + std::to_string(::getpid()));
@@ -24,10 +37,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         std::ofstream out(path, std::ios::binary | std::ios::trunc);
         out.write(reinterpret_cast<const char*>(data), std::streamsize(size));
     }
-    for (const bool exrOnly : {true, false}) {
+    const specula::ImageReadLimits any{.maxValues = 1ull << 26};
+    const specula::ImageReadLimits layer{.maxValues = 1ull << 26, .width = 2, .height = 12};
+    for (int reader = 0; reader < 3; ++reader) {
         try {
-            (void)(exrOnly ? specula::readFloatExr(path.string())
-                           : specula::readImage(path.string()));
+            if (reader == 0) (void)specula::readFloatExr(path.string(), layer);
+            if (reader == 1) (void)specula::readFloatExr(path.string(), any);
+            if (reader == 2) (void)specula::readImage(path.string(), std::nullopt, any);
         } catch (const specula::Error&) {
         }
     }

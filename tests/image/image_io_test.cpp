@@ -169,6 +169,16 @@ TEST_F(ImageIoTest, HugeDeclaredSizeIsRefusedBeforeAllocating) {
     test::spit(path("huge.exr"), bytes);
     test::expectNames(test::errorOf([&] { (void)readImage(path("huge.exr")); }),
                       {path("huge.exr"), "too large", "100000 x 100000"});
+    // A probe layer is read at the size its manifest names: the forged header is refused by
+    // size, and a tighter value limit refuses what the default would hold.
+    test::expectNames(
+        test::errorOf([&] { (void)readFloatExr(path("huge.exr"), {.width = 4, .height = 24}); }),
+        {path("huge.exr"), "size", "4 x 24", "100000 x 100000"});
+    writeImage(path("mid.exr"), gradient(64, 64, 4));
+    test::expectNames(
+        test::errorOf([&] { (void)readImage(path("mid.exr"), std::nullopt, {.maxValues = 4096}); }),
+        {path("mid.exr"), "too large", "64 x 64 x 4"});
+    EXPECT_EQ(readImage(path("mid.exr"), std::nullopt, {.maxValues = 64 * 64 * 4}).width, 64);
 }
 
 TEST_F(ImageIoTest, WriteIsAtomicAndLeavesNoTemporary) {
