@@ -5,8 +5,8 @@
 // a cancel requested (cancelRequested) before the commit leaves it as it was and throws
 // Cancelled naming it.
 #include "assetcooker/lib/lightfield_bake.h"
-#include "components/reflection_probe/distance_probe_asset.h"
-#include "components/reflection_probe/lightfield_asset.h"
+#include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/probe_setup.h"
 
 #include <optional>

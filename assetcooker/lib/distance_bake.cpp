@@ -1,6 +1,7 @@
 #include "distance_bake.h"
 
 #include "assetcooker/lib/probe_sanity.h"
+#include "components/reflection_probe/distance/distance_probe.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
@@ -161,7 +162,8 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
         L.minDistance = s.weight > 0 ? s.minD : 0.f;
         L.maxDistance = s.maxD;
         if (L.method.empty())
-            L.method = L.solidAngle >= opt.rectifySolidAngle ? "bisection" : "avgdist";
+            L.method = L.solidAngle >= opt.rectifySolidAngle ? toString(DistanceMethod::Bisection)
+                                                             : toString(DistanceMethod::AvgDist);
         return s;
     };
     const LayerStats all = finish(composite);

@@ -3,7 +3,7 @@
 // the probe centre gives the radiance (house shading, same as the ground truth) and the
 // exact Euclidean distance. Layer 0 holds the whole environment with the sky where nothing
 // is hit; then one layer per environment object, sorted near to far.
-#include "components/reflection_probe/distance_probe_asset.h"
+#include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/scene_markup.h"
 #include "engine/ecs/registry.h"
 

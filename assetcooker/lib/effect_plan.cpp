@@ -2,6 +2,7 @@
 
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/plan_visibility.h"
+#include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "engine/core/error.h"
 
 #include <algorithm>
@@ -245,18 +246,13 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     plan.backgroundReason =
         forcedBackground ? "the user said so (specula_probe.background)" : "not asked for";
 
-    std::vector<std::string> f;
-    if (plan.mode == "layered") f.push_back("layers");
-    for (const char* m : {"envmap", "bisection", "avgdist"})
-        if (std::any_of(plan.layers.begin(), plan.layers.end(),
-                        [&](const PlannedLayer& l) { return l.method == m; }) ||
-            (plan.mode == "envmap" && std::string(m) == "envmap"))
-            f.push_back(m);
-    if (plan.fresnel) f.push_back("fresnel");
-    for (const std::string& name : f) {
-        if (!plan.features.empty()) plan.features += '+';
-        plan.features += name;
-    }
+    // The shader variant this plan compiles, named by the distance flavour's method table.
+    std::uint32_t bits = plan.mode == "layered" ? kFeatureLayers : 0;
+    if (plan.mode == "envmap") bits |= info(DistanceMethod::Envmap).feature;
+    for (const PlannedLayer& l : plan.layers)
+        if (const DistanceMethodInfo* row = findDistanceMethod(l.method)) bits |= row->feature;
+    if (plan.fresnel) bits |= kFeatureFresnel;
+    plan.features = distanceFeatureName(bits);
     return plan;
 }
 

@@ -7,7 +7,7 @@
 // where a rasterised camera would have it behind it or clipped. Lines that miss the cell
 // start on the camera plane. The same tracer and shading as the ground truth, so the probe
 // can be exact where the light field's sampling allows.
-#include "components/reflection_probe/lightfield_asset.h"
+#include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/scene_markup.h"
 #include "engine/ecs/registry.h"
 #include "engine/image/image.h"

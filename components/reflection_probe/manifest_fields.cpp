@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -17,10 +18,53 @@ std::string shortNumber(double v) {
     std::snprintf(buf, sizeof buf, "%g", v);
     return buf;
 }
+
+// FNV-1a 64-bit, fed in pieces.
+struct Fnv1a64 {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    void add(const unsigned char* p, std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i) {
+            h ^= p[i];
+            h *= 0x100000001b3ull;
+        }
+    }
+    std::string text() const {
+        char hex[32];
+        std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+        return std::string("fnv1a64:") + hex;
+    }
+};
 } // namespace
+
+std::string fileChecksum(const std::string& path, std::uint64_t maxBytes) {
+    RegularFile file(path, maxBytes);
+    Fnv1a64 h;
+    std::vector<unsigned char> buf(1 << 16);
+    while (const std::size_t got = file.read(buf.data(), buf.size()))
+        h.add(buf.data(), got);
+    return h.text();
+}
+
+std::string bytesChecksum(const void* data, std::size_t size) {
+    Fnv1a64 h;
+    h.add(static_cast<const unsigned char*>(data), size);
+    return h.text();
+}
+
+json vec3Json(glm::vec3 v) {
+    return json::array({v.x, v.y, v.z});
+}
 
 std::string readManifestText(const std::string& path) {
     return readRegularFile(path, kMaxManifestBytes);
+}
+
+ParsedManifest ParsedManifest::load(const std::string& path) {
+    return parse(readManifestText(path), path);
+}
+
+ParsedManifest ParsedManifest::parse(const std::string& text, const std::string& path) {
+    return ParsedManifest{path, parseManifestJson(text, path)};
 }
 
 json parseManifestJson(const std::string& text, const std::string& file) {

@@ -3,6 +3,7 @@
 // manifest as a bounded regular file, parsing it so that even a number JSON cannot hold
 // names its field, and typed, range-checked field access that names the file and the JSON
 // path on every failure.
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -11,6 +12,9 @@
 #include <nlohmann/json.hpp>
 
 namespace specula {
+
+// Version of the cooked-probe manifest format every flavour writes and reads.
+inline constexpr int kProbeFormatVersion = 1;
 
 // A manifest is a few kB; an effect plan for a level of tens of thousands of nodes a few
 // MB. Anything larger is not a manifest.
@@ -22,12 +26,40 @@ inline constexpr std::uint64_t kMaxManifestBytes = 64ull << 20;
 // float at all. No real level is 10,000 km across.
 inline constexpr float kMaxCoordinate = 1e7f;
 
+// FNV-1a 64-bit of a file's bytes as "fnv1a64:<16 hex digits>", the checksum a manifest
+// stores for every file it names. Only a regular file of at most maxBytes is read (never a
+// FIFO, device or directory). Throws Error naming the file.
+std::string fileChecksum(const std::string& path, std::uint64_t maxBytes = 16ull << 30);
+// The same checksum of bytes in memory.
+std::string bytesChecksum(const void* data, std::size_t size);
+
+// A vec3 as the JSON array a manifest stores.
+nlohmann::json vec3Json(glm::vec3 v);
+
 // The manifest text at `path`, read as a regular file of at most kMaxManifestBytes.
 std::string readManifestText(const std::string& path);
 
 // Parses manifest text. A syntax error or a number beyond double range ("d_inf": 1e999)
 // throws Error naming `file` and the last key read before the failure.
 nlohmann::json parseManifestJson(const std::string& text, const std::string& file);
+
+// A cooked manifest, read and parsed once per load: its path (for errors and the files it
+// names) and its JSON. A view: ParsedManifest owns.
+struct ProbeManifest {
+    const std::string& path;
+    const nlohmann::json& json;
+};
+
+// A manifest read from disk (load) or parsed from text in memory (parse), owning its JSON.
+// Throws Error naming the file (and, for a syntax error, the last key read).
+struct ParsedManifest {
+    std::string path;
+    nlohmann::json json;
+
+    static ParsedManifest load(const std::string& path);
+    static ParsedManifest parse(const std::string& text, const std::string& path);
+    ProbeManifest view() const { return {path, json}; }
+};
 
 // Typed access to a manifest's JSON; every failure throws Error(file, path + key, ...).
 struct ManifestFields {

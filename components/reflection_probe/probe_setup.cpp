@@ -1,6 +1,6 @@
 #include "probe_setup.h"
 
-#include "components/reflection_probe/distance_probe_asset.h"
+#include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
 #include "engine/image/image_io.h"

@@ -1,5 +1,7 @@
 #include "accuracy_plot.h"
 
+#include "sandbox/lib/bench_methods.h"
+
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
@@ -26,25 +28,12 @@ const std::string& plotFont() {
     return font;
 }
 
-// One colour per method, the same in every panel (linear RGB, bright enough on dark grey);
-// a method not listed in kMethodOrder gets the last (grey).
-constexpr std::array<std::array<float, 3>, 9> kPalette = {{{0.90f, 0.10f, 0.08f},
-                                                           {0.95f, 0.45f, 0.02f},
-                                                           {0.90f, 0.90f, 0.10f},
-                                                           {0.10f, 0.70f, 0.15f},
-                                                           {0.10f, 0.30f, 1.00f},
-                                                           {0.55f, 0.20f, 0.90f},
-                                                           {0.10f, 0.85f, 0.85f},
-                                                           {0.90f, 0.25f, 0.65f},
-                                                           {0.60f, 0.60f, 0.60f}}};
-
-constexpr std::array<const char*, 8> kMethodOrder = {
-    "envmap", "boxproj", "bisection", "secant", "avgdist", "layered", "plan", "lightfield"};
-
-int colourIndex(const std::string& method) {
-    for (std::size_t i = 0; i < kMethodOrder.size(); ++i)
-        if (method == kMethodOrder[i]) return int(i);
-    return int(kPalette.size()) - 1;
+// One colour per method, the same in every panel: the flavours' method tables give it; a
+// method they do not list gets grey.
+std::array<float, 3> methodColour(const std::string& method) {
+    for (const MethodLabel& m : sandboxMethods())
+        if (method == m.name) return m.colour;
+    return {0.60f, 0.60f, 0.60f};
 }
 
 struct Canvas {
@@ -132,16 +121,16 @@ void drawPanel(Canvas& cv, int ox, int pw, int ph, const PlotPanel& panel) {
     cv.text((left + right) / 2, 24, panel.title, 17, white, TextAlignX::Center);
 
     // Lines per method, then the points, then the Pareto front on top.
-    std::map<std::string, int> colourOf;
+    std::map<std::string, std::array<float, 3>> colourOf;
     std::vector<std::string> order;
     for (const PlotPoint& p : pts)
-        if (colourOf.emplace(p.method, colourIndex(p.method)).second) order.push_back(p.method);
+        if (colourOf.emplace(p.method, methodColour(p.method)).second) order.push_back(p.method);
     for (const std::string& m : order) {
         std::vector<const PlotPoint*> line;
         for (const PlotPoint& p : pts)
             if (p.method == m) line.push_back(&p);
         std::sort(line.begin(), line.end(), [](auto* a, auto* b) { return a->ratio < b->ratio; });
-        const auto& c = kPalette[std::size_t(colourOf[m])];
+        const std::array<float, 3>& c = colourOf[m];
         for (std::size_t i = 1; i < line.size(); ++i)
             cv.thickLine(X(line[i - 1]->ratio), Y(line[i - 1]->psnr), X(line[i]->ratio),
                          Y(line[i]->psnr), c);
@@ -160,7 +149,7 @@ void drawPanel(Canvas& cv, int ox, int pw, int ph, const PlotPanel& panel) {
     // Legend, bottom right inside the frame.
     int ly = bottom - 14 - 18 * int(order.size());
     for (const std::string& m : order) {
-        const auto& c = kPalette[std::size_t(colourOf[m])];
+        const std::array<float, 3>& c = colourOf[m];
         cv.box(right - 130, ly - 9, right - 118, ly + 1, c, true);
         cv.text(right - 112, ly, m, 13, axis);
         ly += 18;

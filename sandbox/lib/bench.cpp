@@ -1,6 +1,8 @@
 #include "bench.h"
 
-#include "components/reflection_probe/distance_probe_cpu.h"
+#include "components/reflection_probe/distance/distance_probe_cpu.h"
+#include "components/reflection_probe/distance/distance_store.h"
+#include "components/reflection_probe/lightfield/lightfield_probe.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/gpu/context.h"
@@ -90,8 +92,9 @@ double countFetches(FrameRenderer& fr, ReflectionScene& scene, const CameraView&
     const Image pos = fr.render(cam, 1);
     const Image dir = fr.render(cam, 2);
     const ecs::Entity probe = scene.probeEntity();
-    const DistanceProbeAsset* asset = fr.probes().asset(probe);
-    const DistanceLookupConfig* config = fr.probes().config(probe);
+    const DistanceStore* store = fr.probes().store<DistanceStore>();
+    const DistanceProbeAsset* asset = store ? store->asset(probe) : nullptr;
+    const DistanceLookupConfig* config = store ? store->config(probe) : nullptr;
     if (!asset || !config) return std::numeric_limits<double>::quiet_NaN();
     const CpuDistanceProbe twin(*asset, *config);
     using Sum = std::pair<long long, long long>; // fetches, pixels
@@ -277,11 +280,13 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
             } else {
                 const LightFieldBake* lf =
                     v.lightField >= 0 ? &lfs[std::size_t(v.lightField)] : nullptr;
-                ReflectionProbe probe = v.probe;
-                probe.asset = lf          ? lf->manifest
-                              : v.planned ? planDir + "/manifest.json"
-                                          : probeDir + "/manifest.json";
-                scene.setProbe(probe);
+                const std::string asset = lf          ? lf->manifest
+                                          : v.planned ? planDir + "/manifest.json"
+                                                      : probeDir + "/manifest.json";
+                if (lf)
+                    scene.setProbe(asset, LightFieldProbe{});
+                else
+                    scene.setProbe(asset, v.distance);
                 try {
                     fr.probes().sync(scene.registry());
                 } catch (const Error& e) {

@@ -1,11 +1,17 @@
 #include "bench_methods.h"
 
+#include "components/reflection_probe/lightfield/lightfield_probe.h"
+
 #include <cstdio>
 
 namespace specula {
 
-bool parseSandboxMethod(const std::string& s, LookupMethod& out) {
-    return parseLookupMethod(s, out);
+std::vector<MethodLabel> sandboxMethods() {
+    std::vector<MethodLabel> labels;
+    for (const DistanceMethodInfo& row : kDistanceMethods)
+        labels.push_back(row.label);
+    labels.push_back(kLightFieldMethod);
+    return labels;
 }
 
 std::string formatTolerance(float de) {
@@ -16,36 +22,37 @@ std::string formatTolerance(float de) {
 
 std::vector<MethodVariant> benchVariants(const BenchSweep& sweep) {
     std::vector<MethodVariant> rows;
-    auto add = [&](LookupMethod m, std::string params, float de) {
-        MethodVariant v;
-        v.method = toString(m);
-        v.params = std::move(params);
-        v.probe.method = m;
-        v.probe.errorTolerance = de;
-        // Layered: every object layer uses the cooked plan's method (bisection for large
-        // layers, average distance for small ones) at this d_e.
-        v.probe.layerMethod = LookupMethod::Envmap;
-        rows.push_back(std::move(v));
-        return &rows.back();
-    };
-    add(LookupMethod::Envmap, "-", 0.01f);
-    add(LookupMethod::BoxProj, "-", 0.01f);
-    for (LookupMethod m : {LookupMethod::Bisection, LookupMethod::Secant})
+    // One row per distance method of the table, one per d_e where its accuracy depends on it.
+    for (const DistanceMethodInfo& info : kDistanceMethods) {
+        auto add = [&](std::string params, float de) {
+            MethodVariant v;
+            v.method = info.label.name;
+            v.params = std::move(params);
+            v.distance.method = info.method;
+            v.distance.errorTolerance = de;
+            // Layered: every object layer uses the cooked plan's method (bisection for large
+            // layers, average distance for small ones) at this d_e.
+            v.distance.layerMethod = DistanceMethod::Envmap;
+            // The effect plan's choice comes from its own bake (only the layers it keeps).
+            v.planned = info.method == DistanceMethod::Planned;
+            rows.push_back(std::move(v));
+        };
+        if (!info.usesTolerance) {
+            add("-", 0.01f);
+            continue;
+        }
         for (float de : sweep.tolerances)
-            add(m, formatTolerance(de), de);
-    add(LookupMethod::AvgDist, "-", 0.01f);
-    for (float de : sweep.tolerances)
-        add(LookupMethod::Layered, formatTolerance(de), de);
-    // The effect plan's choice, from its own bake (only the layers the plan keeps).
-    for (float de : sweep.tolerances)
-        add(LookupMethod::Planned, formatTolerance(de), de)->planned = true;
+            add(formatTolerance(de), de);
+    }
 
     // The light field: its accuracy parameters are the cooked sizes (cameras, pixels), one
     // asset per row, with the cooked per-slab disparity.
     for (std::size_t i = 0; i < sweep.lightFields.size(); ++i) {
-        MethodVariant* v = add(LookupMethod::LightField, sweep.lightFields[i], 0.01f);
-        v->probe.flavour = ProbeFlavour::LightFieldSlab;
-        v->lightField = int(i);
+        MethodVariant v;
+        v.method = kLightFieldMethod.name;
+        v.params = sweep.lightFields[i];
+        v.lightField = int(i);
+        rows.push_back(std::move(v));
     }
 
     MethodVariant gt;

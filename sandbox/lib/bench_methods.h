@@ -1,7 +1,9 @@
 #pragma once
-// The bench's method table: one entry per (method, accuracy parameter) row. Adding a method
-// is one entry in benchVariants(); the light field has one row per cooked light field.
-#include "components/reflection_probe/reflection_probe.h"
+// The bench's rows, made from the flavours' method tables: one per (method, accuracy
+// parameter). A distance method is swept over d_e when its table row says its accuracy
+// depends on it; the light field has one row per cooked light field.
+#include "components/reflection_probe/distance/distance_probe.h"
+#include "components/reflection_probe/method_label.h"
 
 #include <string>
 #include <vector>
@@ -17,9 +19,9 @@ struct MethodVariant {
     std::string method; // "envmap", "bisection", ..., "lightfield", "groundtruth"
     std::string params; // "d_e=0.01", "-" when the method has none
     VariantKind kind = VariantKind::Probe;
-    ReflectionProbe probe; // asset left empty: filled with the scene's manifest
-    int lightField = -1;   // >= 0: index of the light-field asset it uses (else the distance probe)
-    bool planned = false;  // uses the probe baked by the effect plan
+    DistanceProbe distance; // the distance probe's settings (asset: the scene's manifest)
+    int lightField = -1;    // >= 0: index of the light-field asset it uses (else distance)
+    bool planned = false;   // uses the probe baked by the effect plan
 };
 
 struct BenchSweep {
@@ -28,12 +30,13 @@ struct BenchSweep {
     std::vector<std::string> lightFields;
 };
 
-// Envmap first (every ratio is to it), then boxproj, the distance methods and their d_e
+// The distance methods in table order (envmap first: every ratio is to it) with their d_e
 // sweeps, the light fields, the ground truth last.
 std::vector<MethodVariant> benchVariants(const BenchSweep& sweep);
 
-// Parses a method name for walk: the LookupMethod names (plus "lightfield" when built).
-bool parseSandboxMethod(const std::string& s, LookupMethod& out);
+// Every method the sandbox offers, from the flavours' method tables: the distance rows in
+// table order, then the light field. Names walk's --method, the plot's colours and legend.
+std::vector<MethodLabel> sandboxMethods();
 
 // The plot and the tables name a sweep by its method: rows of one method form a line.
 std::string formatTolerance(float de);

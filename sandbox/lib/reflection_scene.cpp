@@ -74,19 +74,6 @@ CameraView ReflectionScene::orbitCamera(int width, int height, float angle, floa
     return CameraView::lookAt(eye, c, glm::vec3(0, 1, 0), glm::radians(50.f), width, height);
 }
 
-ecs::Entity ReflectionScene::attachProbe(const ReflectionProbe& probe) {
-    probe_ = attachProbeComponents(scene_.registry, scene_.markup, probe, probe_);
-    return probe_;
-}
-
-void ReflectionScene::setProbe(const ReflectionProbe& probe) {
-    if (probe_.isNull()) {
-        attachProbe(probe);
-        return;
-    }
-    scene_.registry.get<ReflectionProbe>(probe_) = probe;
-}
-
 void ReflectionScene::setReflectorOffset(glm::vec3 offset) {
     offset_ = offset;
     for (auto& [e, authored] : reflectorRoots_) {

@@ -43,11 +43,26 @@ public:
     CameraView orbitCamera(int width, int height, float angleRadians, float distance,
                            float height_) const;
 
-    // Creates (or replaces) the probe entity and gives every reflector mesh a Reflector
-    // component pointing at it (attachProbeComponents).
-    ecs::Entity attachProbe(const ReflectionProbe& probe);
+    // Creates (or replaces) the probe entity: a ReflectionProbe on `asset` with the flavour's
+    // settings component, and a Reflector on every reflector mesh (attachProbeComponents).
+    template <typename Settings>
+    ecs::Entity attachProbe(const std::string& asset, const Settings& settings) {
+        probe_ =
+            attachProbeComponents(scene_.registry, scene_.markup, ReflectionProbe{asset}, probe_);
+        scene_.registry.emplace<Settings>(probe_, settings);
+        return probe_;
+    }
     ecs::Entity probeEntity() const { return probe_; }
-    void setProbe(const ReflectionProbe& probe);
+    // Edits the probe in place when it holds settings of this flavour (the system sees an
+    // edit); otherwise attaches a new one.
+    template <typename Settings> void setProbe(const std::string& asset, const Settings& settings) {
+        if (probe_.isNull() || !scene_.registry.has<Settings>(probe_)) {
+            attachProbe(asset, settings);
+            return;
+        }
+        scene_.registry.get<ReflectionProbe>(probe_).asset = asset;
+        scene_.registry.get<Settings>(probe_) = settings;
+    }
 
     // Moves every reflector node to its authored position + offset (world space).
     void setReflectorOffset(glm::vec3 offset);

@@ -111,24 +111,15 @@ CLI::Validator sizeText() {
         "WxH");
 }
 
-// Every walk method by name: the LookupMethod names.
-std::map<std::string, LookupMethod> walkMethods() {
-    std::map<std::string, LookupMethod> names;
-    for (int m = 0; m <= int(LookupMethod::LightField); ++m)
-        names[toString(LookupMethod(m))] = LookupMethod(m);
-    return names;
-}
-
 // What walk's flags set; --size and --frames are resolved once the mode is known.
 struct WalkArgs {
     WalkOptions o;
-    std::string method = toString(LookupMethod::Bisection), path = "orbit", size;
+    std::string path = "orbit", size;
     std::optional<int> frames;
 };
 
 int runWalk(WalkArgs& a, std::ostream& out) {
     WalkOptions& o = a.o;
-    o.method = walkMethods().at(a.method);
     parseWalkPath(a.path, o.path);
     if (!a.size.empty()) parseSize(a.size, o.width, o.height);
     if (o.headless && a.frames && *a.frames < 1)
@@ -150,13 +141,15 @@ void addWalkCommand(cli::ToolCli& tool) {
         kOutputAndExitNote, [a](std::ostream& out) { return runWalk(*a, out); });
     sub->add_option("MANIFEST_OR_SCENE", o.input, "a cooked manifest.json or a .gltf/.glb scene")
         ->required();
-    std::vector<std::string> methods; // in the enum's order, as the help lists them
-    for (int m = 0; m <= int(LookupMethod::LightField); ++m)
-        methods.push_back(toString(LookupMethod(m)));
-    sub->add_option("--method", a->method,
-                    "plan: the cooked effect plan; lightfield bakes a light field from a scene "
-                    "(a light-field manifest always draws with it)")
-        ->check(CLI::IsMember(methods));
+    std::vector<std::string> methods; // the flavours' method tables, in order
+    std::string methodHelp = "how reflections are looked up:";
+    for (const MethodLabel& m : sandboxMethods()) {
+        methods.push_back(m.name);
+        methodHelp += std::string("\n  ") + m.name + ": " + m.help;
+    }
+    methodHelp += "\n(lightfield bakes a light field from a scene; a light-field manifest "
+                  "always draws with it)";
+    sub->add_option("--method", o.method, methodHelp)->check(CLI::IsMember(methods));
     sub->add_option("--de", o.tolerance, "rectification tolerance d_e in metres")
         ->check(cli::finiteRange(1e-5, 10.0));
     sub->add_option("--path", a->path, "within 0.2 cell sizes of the start")

@@ -42,21 +42,30 @@ CameraView walkCamera(const ReflectionScene& scene, int width, int height, float
                       distance, h);
 }
 
+ecs::Entity attachWalkProbe(ReflectionScene& scene, const ProbeSource& src, const WalkOptions& o) {
+    if (src.lightField) return scene.attachProbe(src.manifest, LightFieldProbe{});
+    const DistanceMethodInfo* row = findDistanceMethod(o.method);
+    if (!row)
+        throw Error(src.manifest, "flavour",
+                    "method '" + o.method + "' needs a " + o.method +
+                        " probe; this manifest is a distance probe (methods: " +
+                        distanceMethodNames() + ")");
+    DistanceProbe probe;
+    probe.method = row->method;
+    probe.errorTolerance = o.tolerance;
+    probe.layerMethod = DistanceMethod::Envmap; // the cooked plan's choice per layer
+    return scene.attachProbe(src.manifest, probe);
+}
+
 int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     fs::create_directories(o.outDir);
     const ProbeSource src =
         resolveProbeSource(o.input, o.scene, o.sky, (fs::path(o.outDir) / "probe").string(),
-                           o.faceRes, o.progress, o.method == LookupMethod::LightField, &out);
+                           o.faceRes, o.progress, o.method == kLightFieldMethod.name, &out);
     if (src.baked) out << "baked " << src.manifest << " in " << src.bakeSeconds << " s\n";
     auto context = gpu::GlContext::createHeadless();
     ReflectionScene scene(src.scenePath, src.skyPath);
-    ReflectionProbe probe;
-    probe.asset = src.manifest;
-    probe.method = src.lightField ? LookupMethod::LightField : o.method;
-    probe.flavour = src.lightField ? ProbeFlavour::LightFieldSlab : ProbeFlavour::DistanceCubemap;
-    probe.errorTolerance = o.tolerance;
-    probe.layerMethod = LookupMethod::Envmap; // the cooked plan's choice per layer
-    scene.attachProbe(probe);
+    attachWalkProbe(scene, src, o);
 
     std::ostringstream csv;
     csv << "frame,reflector_x,reflector_y,reflector_z,camera_angle_deg,pass_ms"
@@ -105,7 +114,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     writeImage(
         (fs::path(o.outDir) / "contact_sheet.png").string(),
         contactSheet(sheet, labels, std::min<int>(6, int(sheet.size())), std::min(o.width, 256)));
-    out << "wrote " << o.frames << " frames (" << toString(o.method) << ", " << toString(o.path)
+    out << "wrote " << o.frames << " frames (" << o.method << ", " << toString(o.path)
         << " path), contact_sheet.png and frames.csv to " << o.outDir << '\n';
     return 0;
 }

@@ -3,6 +3,8 @@
 // camera swings around them, every frame drawn with the chosen method. Headless it writes
 // frame_NNNN.png, contact_sheet.png and frames.csv; with a window it is an interactive
 // walkthrough (GLFW + Dear ImGui).
+#include "components/reflection_probe/distance/distance_probe.h"
+#include "components/reflection_probe/lightfield/lightfield_probe.h"
 #include "components/reflection_probe/reflection_probe.h"
 #include "sandbox/lib/probe_source.h"
 
@@ -15,8 +17,8 @@ namespace specula {
 struct WalkOptions {
     std::string input; // scene (.gltf/.glb) or probe manifest (.json)
     std::optional<std::string> scene, sky;
-    LookupMethod method = LookupMethod::Bisection;
-    float tolerance = 0.01f; // d_e
+    std::string method = "bisection"; // a row of sandboxMethods()
+    float tolerance = 0.01f;          // d_e
     WalkPath path = WalkPath::Orbit;
     int frames = 60; // headless: frames written; window: 0 = until closed, else exit after N
     bool headless = false;
@@ -33,6 +35,13 @@ CameraView walkCamera(const ReflectionScene& scene, int width, int height, float
 CameraView walkCamera(const ReflectionScene& scene, int width, int height, float angle,
                       float distance, float height_);
 void walkCameraOrbit(const ReflectionScene& scene, float& angle, float& distance, float& height);
+
+// Attaches the walk's probe to `scene`: the light-field flavour when src is a light field,
+// else the distance flavour with the options' method and d_e (each object layer with the
+// cooked plan's method). Throws Error naming the manifest when the method is not of its
+// flavour.
+ecs::Entity attachWalkProbe(ReflectionScene& scene, const ProbeSource& src,
+                            const WalkOptions& options);
 
 // Returns the exit status; throws Error on bad input.
 int runWalkHeadless(const WalkOptions& options, std::ostream& out);

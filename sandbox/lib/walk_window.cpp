@@ -68,11 +68,48 @@ void uploadFrame(const Image& img, const gpu::Texture& tex, std::vector<std::uin
                         bytes.data());
 }
 
-const LookupMethod kWindowMethods[] = {LookupMethod::Envmap,    LookupMethod::BoxProj,
-                                       LookupMethod::Bisection, LookupMethod::Secant,
-                                       LookupMethod::AvgDist,   LookupMethod::Layered};
-const LookupMethod kLayerMethods[] = {LookupMethod::Envmap, LookupMethod::Bisection,
-                                      LookupMethod::Secant, LookupMethod::AvgDist};
+// The distance flavour's panel, from its method table: the method, d_e, and in layered mode
+// every object layer's method (the cooked plan's by default).
+void distancePanel(DistanceProbe& p) {
+    if (ImGui::BeginCombo("method", toString(p.method))) {
+        for (const DistanceMethodInfo& row : kDistanceMethods)
+            if (ImGui::Selectable(row.label.name, row.method == p.method)) p.method = row.method;
+        ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", info(p.method).label.help);
+    ImGui::SliderFloat("d_e (m)", &p.errorTolerance, 0.001f, 0.3f, "%.4f",
+                       ImGuiSliderFlags_Logarithmic);
+    ImGui::BeginDisabled(p.method != DistanceMethod::Layered);
+    const bool cooked = !info(p.layerMethod).perLayer;
+    if (ImGui::BeginCombo("layers", cooked ? "cooked plan" : toString(p.layerMethod))) {
+        if (ImGui::Selectable("cooked plan", cooked)) p.layerMethod = DistanceMethod::Envmap;
+        for (const DistanceMethodInfo& row : kDistanceMethods)
+            if (row.perLayer && ImGui::Selectable(row.label.name, row.method == p.layerMethod))
+                p.layerMethod = row.method;
+        ImGui::EndCombo();
+    }
+    ImGui::EndDisabled();
+}
+
+// The light-field flavour's panel: its one method, the focal disparity and the background.
+void lightFieldPanel(LightFieldProbe& p) {
+    ImGui::Text("method %s", kLightFieldMethod.name);
+    ImGui::SliderFloat("disparity", &p.disparity, -1.f, 16.f,
+                       p.disparity < 0.f ? "cooked" : "%.2f px");
+    ImGui::Checkbox("background from light field", &p.background);
+}
+
+// Shows the panel of the probe's flavour; true when its settings changed (written back).
+template <typename Settings, typename Panel>
+bool settingsPanel(ecs::Registry& registry, ecs::Entity probe, Panel panel) {
+    Settings* current = registry.find<Settings>(probe);
+    if (!current) return false;
+    Settings edited = *current;
+    panel(edited);
+    if (edited == *current) return false;
+    *current = edited;
+    return true;
+}
 
 } // namespace
 
@@ -89,18 +126,12 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
     } cleanup{bakeDir};
     const ProbeSource src =
         resolveProbeSource(o.input, o.scene, o.sky, bakeDir.string(), o.faceRes, o.progress,
-                           o.method == LookupMethod::LightField, &out);
+                           o.method == kLightFieldMethod.name, &out);
     auto context = gpu::GlContext::createWindow(o.width, o.height, "specula-sandbox walk");
     GLFWwindow* window = context->window();
     glfwSwapInterval(0);
     ReflectionScene scene(src.scenePath, src.skyPath);
-    ReflectionProbe probe;
-    probe.asset = src.manifest;
-    probe.method = src.lightField ? LookupMethod::LightField : o.method;
-    probe.flavour = src.lightField ? ProbeFlavour::LightFieldSlab : ProbeFlavour::DistanceCubemap;
-    probe.errorTolerance = o.tolerance;
-    probe.layerMethod = LookupMethod::Envmap;
-    scene.attachProbe(probe);
+    attachWalkProbe(scene, src, o);
     out << "walk: " << context->renderer() << "; drag to orbit, wheel to zoom, WASD/QE move the "
         << "reflector, space plays the path, Esc quits\n";
 
@@ -167,33 +198,10 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             // The panel.
             ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
             ImGui::Begin("Specula");
-            ReflectionProbe p = scene.registry().get<ReflectionProbe>(scene.probeEntity());
-            if (ImGui::BeginCombo("method", toString(p.method))) {
-                if (src.lightField)
-                    ImGui::Selectable(toString(LookupMethod::LightField), true);
-                else
-                    for (LookupMethod m : kWindowMethods)
-                        if (ImGui::Selectable(toString(m), m == p.method)) p.method = m;
-                ImGui::EndCombo();
-            }
-            ImGui::SliderFloat("d_e (m)", &p.errorTolerance, 0.001f, 0.3f, "%.4f",
-                               ImGuiSliderFlags_Logarithmic);
-            ImGui::BeginDisabled(p.method != LookupMethod::Layered);
-            const char* layerName =
-                p.layerMethod == LookupMethod::Envmap ? "cooked plan" : toString(p.layerMethod);
-            if (ImGui::BeginCombo("layers", layerName)) {
-                for (LookupMethod m : kLayerMethods)
-                    if (ImGui::Selectable(m == LookupMethod::Envmap ? "cooked plan" : toString(m),
-                                          m == p.layerMethod))
-                        p.layerMethod = m;
-                ImGui::EndCombo();
-            }
-            ImGui::EndDisabled();
-            ImGui::BeginDisabled(!src.lightField);
-            ImGui::SliderFloat("disparity", &p.disparity, -1.f, 16.f,
-                               p.disparity < 0.f ? "cooked" : "%.2f px");
-            ImGui::EndDisabled();
-            if (!src.lightField) ImGui::TextDisabled("(disparity: light-field probes only)");
+            const bool edited = settingsPanel<DistanceProbe>(scene.registry(), scene.probeEntity(),
+                                                             distancePanel) ||
+                                settingsPanel<LightFieldProbe>(
+                                    scene.registry(), scene.probeEntity(), lightFieldPanel);
             ImGui::Checkbox("play path", &playing);
             ImGui::SameLine();
             ImGui::Checkbox("error", &showError);
@@ -209,8 +217,7 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             }
             ImGui::Text("reflector offset %.2f %.2f %.2f", offset.x, offset.y, offset.z);
             ImGui::End();
-            if (!(p == scene.registry().get<ReflectionProbe>(scene.probeEntity()))) {
-                scene.setProbe(p);
+            if (edited) {
                 passMs.clear();
                 changed = true;
             }

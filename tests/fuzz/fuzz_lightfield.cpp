@@ -1,12 +1,12 @@
-// libFuzzer target: the cooked light-field manifest parser (parseLightFieldProbe) on arbitrary
-// text. The manifest "lives" in a folder this target fills at start-up with the slab files of
-// the synthetic probe (tests/fuzz/synthetic_lightfield.h), RGB8 and BC1 side by side; the
-// bytes are the same every run, so the seed manifests' checksums match and inputs that keep a
-// slab's file name and checksum reach the slab reader and the BC1 check. Any specula::Error is
-// the expected refusal; anything else is a finding.
+// libFuzzer target: the cooked light-field manifest parser (ParsedManifest::parse,
+// readLightFieldProbe) on arbitrary text. The manifest "lives" in a folder this target fills at
+// start-up with the slab files of the synthetic probe (tests/fuzz/synthetic_lightfield.h), RGB8 and
+// BC1 side by side; the bytes are the same every run, so the seed manifests' checksums match and
+// inputs that keep a slab's file name and checksum reach the slab reader and the BC1 check. Any
+// specula::Error is the expected refusal; anything else is a finding.
 //   SPECULA_FUZZ_WRITE_SEEDS=DIR: also writes the two cooked manifests to DIR as seeds (how
 //   tests/fuzz/corpus/lightfield/ was made).
-#include "components/reflection_probe/lightfield_asset.h"
+#include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "engine/core/error.h"
 #include "tests/fuzz/synthetic_lightfield.h"
 
@@ -52,7 +52,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     static const fs::path probe = makeProbeFolder();
     const std::string text(reinterpret_cast<const char*>(data), size);
     try {
-        (void)specula::parseLightFieldProbe(text, (probe / "manifest.json").string());
+        const auto parsed =
+            specula::ParsedManifest::parse(text, (probe / "manifest.json").string());
+        (void)specula::readLightFieldProbe(parsed.view());
     } catch (const specula::Error&) {
     }
     return 0;

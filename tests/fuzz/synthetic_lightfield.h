@@ -2,7 +2,7 @@
 // A small light-field probe made in code (NUM 2, RES 4: an 8 x 8 atlas per slab, a gradient
 // per slab so BC1 has real blocks), the same bytes every time: the bad-input tests tamper
 // with it and the light-field fuzz target parses manifests beside it.
-#include "components/reflection_probe/lightfield_asset.h"
+#include "components/reflection_probe/lightfield/lightfield_asset.h"
 
 #include <cstdint>
 #include <vector>

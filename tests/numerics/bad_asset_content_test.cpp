@@ -4,7 +4,7 @@
 // tampered probe is made here from a small valid one.
 #include "bad_input_support.h"
 
-#include "components/reflection_probe/distance_probe_asset.h"
+#include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "engine/image/image_io.h"
 #include "probe/analytic_probe.h"
 

@@ -5,8 +5,8 @@
 // and BC1.
 #include "bad_input_support.h"
 
-#include "components/reflection_probe/distance_probe_asset.h"
-#include "components/reflection_probe/lightfield_asset.h"
+#include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "tests/fuzz/synthetic_lightfield.h"
 
 #include <gtest/gtest.h>

@@ -33,8 +33,8 @@ constexpr float kCell = 0.7f; // reflectors move within |x_i| <= kCell of the pr
 struct Ray {
     glm::vec3 x, d;
 };
-using Reference = std::function<glm::vec3(LookupMethod, glm::vec3 x, glm::vec3 d)>;
-using Bounds = std::map<LookupMethod, double>;
+using Reference = std::function<glm::vec3(DistanceMethod, glm::vec3 x, glm::vec3 d)>;
+using Bounds = std::map<DistanceMethod, double>;
 
 const DistanceProbeAsset& boxProbe() {
     static const DistanceProbeAsset a = makeBoxProbe(room(), 256);
@@ -43,8 +43,9 @@ const DistanceProbeAsset& boxProbe() {
 
 Reference boxIdeal(const DistanceProbeAsset& a) {
     const float avg = a.layers[0].avgDistance;
-    return
-        [avg](LookupMethod m, glm::vec3 x, glm::vec3 d) { return idealBox(room(), m, avg, x, d); };
+    return [avg](DistanceMethod m, glm::vec3 x, glm::vec3 d) {
+        return idealBox(room(), m, avg, x, d);
+    };
 }
 
 // Runs `rays` through twin and shader for every method in `bounds` and checks both.
@@ -52,9 +53,10 @@ void checkCase(const std::string& name, const DistanceProbeAsset& asset,
                const std::vector<Ray>& rays, const Reference& ref, const Bounds& bounds,
                float de = 0.01f, float range = 0.f) {
     for (const auto& [m, bound] : bounds) {
-        const DistanceProbeAsset layered =
-            m == LookupMethod::Layered ? withObjectLayer(asset, "bisection") : DistanceProbeAsset{};
-        const DistanceProbeAsset& a = m == LookupMethod::Layered ? layered : asset;
+        const DistanceProbeAsset layered = m == DistanceMethod::Layered
+                                               ? withObjectLayer(asset, "bisection")
+                                               : DistanceProbeAsset{};
+        const DistanceProbeAsset& a = m == DistanceMethod::Layered ? layered : asset;
         const DistanceLookupConfig cfg = configFor(a, m, de, range);
         CpuDistanceProbe twin(a, cfg);
         Worst cpu, gpu;
@@ -170,12 +172,12 @@ TEST(DistanceHardCases, LookupsAlongCubeEdgesAndCorners) {
             rays.push_back({s * d, -d});
         }
     checkCase("ties: cube edges and corners", boxProbe(), rays, boxIdeal(boxProbe()),
-              {{LookupMethod::Envmap, 0.02},
-               {LookupMethod::BoxProj, 0.02},
-               {LookupMethod::Bisection, 0.05},
-               {LookupMethod::Secant, 0.05},
-               {LookupMethod::AvgDist, 0.02},
-               {LookupMethod::Layered, 0.05}});
+              {{DistanceMethod::Envmap, 0.02},
+               {DistanceMethod::BoxProj, 0.02},
+               {DistanceMethod::Bisection, 0.05},
+               {DistanceMethod::Secant, 0.05},
+               {DistanceMethod::AvgDist, 0.02},
+               {DistanceMethod::Layered, 0.05}});
 }
 
 // ---------------------------------------------------------------------------------------
@@ -199,15 +201,15 @@ TEST(DistanceHardCases, ReflectorTouchingTheEnvironment) {
         }
     // Probe-local points at the wall lie beyond the cell; D (bracket) still covers them.
     checkCase("reflector touching environment", boxProbe(), rays, boxIdeal(boxProbe()),
-              {{LookupMethod::BoxProj, 0.02},
-               {LookupMethod::Bisection, 0.1},
-               {LookupMethod::Secant, 0.1},
-               {LookupMethod::Layered, 0.1}});
+              {{DistanceMethod::BoxProj, 0.02},
+               {DistanceMethod::Bisection, 0.1},
+               {DistanceMethod::Secant, 0.1},
+               {DistanceMethod::Layered, 0.1}});
     checkCase("reflector touching env (grazing)", boxProbe(), grazing, boxIdeal(boxProbe()),
-              {{LookupMethod::BoxProj, 0.02},
-               {LookupMethod::Bisection, 1.39},
-               {LookupMethod::Secant, 1.39},
-               {LookupMethod::Layered, 1.39}});
+              {{DistanceMethod::BoxProj, 0.02},
+               {DistanceMethod::Bisection, 1.39},
+               {DistanceMethod::Secant, 1.39},
+               {DistanceMethod::Layered, 1.39}});
 }
 
 // ---------------------------------------------------------------------------------------
@@ -226,10 +228,10 @@ TEST(DistanceHardCases, RaysThatHitNothing) {
         rays.push_back({randomInCell(rng), glm::normalize(d)});
     }
     checkCase("rays that hit nothing (d_inf)", a, rays,
-              [&](LookupMethod, glm::vec3 x, glm::vec3 d) { return ob.trace(x, d); },
-              {{LookupMethod::Bisection, 1e-6},
-               {LookupMethod::Secant, 1e-6},
-               {LookupMethod::Layered, 1e-6}});
+              [&](DistanceMethod, glm::vec3 x, glm::vec3 d) { return ob.trace(x, d); },
+              {{DistanceMethod::Bisection, 1e-6},
+               {DistanceMethod::Secant, 1e-6},
+               {DistanceMethod::Layered, 1e-6}});
 }
 
 TEST(DistanceHardCases, SilhouettesAgainstDInf) {
@@ -252,9 +254,10 @@ TEST(DistanceHardCases, SilhouettesAgainstDInf) {
         const glm::vec3 target = s.c + perp * (s.r * (1.f + 0.25f * u(rng)));
         rays.push_back({x, glm::normalize(target - x)});
     }
-    for (LookupMethod m : {LookupMethod::Bisection, LookupMethod::Secant, LookupMethod::Layered}) {
+    for (DistanceMethod m :
+         {DistanceMethod::Bisection, DistanceMethod::Secant, DistanceMethod::Layered}) {
         const DistanceProbeAsset al =
-            m == LookupMethod::Layered ? withObjectLayer(a, "bisection") : a;
+            m == DistanceMethod::Layered ? withObjectLayer(a, "bisection") : a;
         const DistanceLookupConfig cfg = configFor(al, m);
         CpuDistanceProbe twin(al, cfg);
         std::vector<GpuRay> gr;
@@ -307,16 +310,16 @@ TEST(DistanceHardCases, ToleranceToZero) {
     for (int i = 0; i < 3000; ++i)
         rays.push_back({randomInCell(rng), randomUnit(rng)});
     for (float de : {0.f, FLT_MIN, 1e-40f, -1.f, kNaN, kInf}) {
-        const DistanceLookupConfig c = configFor(boxProbe(), LookupMethod::Bisection, de);
+        const DistanceLookupConfig c = configFor(boxProbe(), DistanceMethod::Bisection, de);
         EXPECT_GT(c.params.tolerance, 0.f);
         EXPECT_TRUE(std::isfinite(c.params.tolerance));
         EXPECT_LE(c.params.maxSteps, 40) << "N is capped so d_e -> 0 cannot loop for long";
         char name[64];
         std::snprintf(name, sizeof name, "d_e -> 0 (d_e = %g)", double(de));
         checkCase(name, boxProbe(), rays, boxIdeal(boxProbe()),
-                  {{LookupMethod::Bisection, 0.2},
-                   {LookupMethod::Secant, 0.2},
-                   {LookupMethod::Layered, 0.2}},
+                  {{DistanceMethod::Bisection, 0.2},
+                   {DistanceMethod::Secant, 0.2},
+                   {DistanceMethod::Layered, 0.2}},
                   de);
     }
 }
@@ -330,17 +333,17 @@ TEST(DistanceHardCases, RangeSmallerThanTheScene) {
     std::vector<Ray> rays;
     for (int i = 0; i < 3000; ++i)
         rays.push_back({randomInCell(rng), randomUnit(rng)});
-    const Reference exact = [](LookupMethod, glm::vec3 x, glm::vec3 d) {
+    const Reference exact = [](DistanceMethod, glm::vec3 x, glm::vec3 d) {
         return room().trace(x, d);
     };
     for (float D : {0.5f, 0.05f, 1e-6f}) {
         char name[64];
         std::snprintf(name, sizeof name, "D smaller than scene (D = %g)", double(D));
         checkCase(name, boxProbe(), rays, exact,
-                  {{LookupMethod::Envmap, 1.39},
-                   {LookupMethod::Bisection, 1.39},
-                   {LookupMethod::Secant, 1.39},
-                   {LookupMethod::Layered, 1.39}},
+                  {{DistanceMethod::Envmap, 1.39},
+                   {DistanceMethod::Bisection, 1.39},
+                   {DistanceMethod::Secant, 1.39},
+                   {DistanceMethod::Layered, 1.39}},
                   0.01f, D);
     }
 }
@@ -352,7 +355,7 @@ TEST(DistanceHardCases, RangeFarLargerThanTheScene) {
     std::vector<Ray> rays;
     for (int i = 0; i < 1000; ++i)
         rays.push_back({randomInCell(rng), randomUnit(rng)});
-    const Reference exact = [](LookupMethod, glm::vec3 x, glm::vec3 d) {
+    const Reference exact = [](DistanceMethod, glm::vec3 x, glm::vec3 d) {
         return room().trace(x, d);
     };
     // Up to 1e4 (10x d_inf) the 40 steps still reach the wall; from ~1e7 on, x is lost in
@@ -362,9 +365,9 @@ TEST(DistanceHardCases, RangeFarLargerThanTheScene) {
         char name[64];
         std::snprintf(name, sizeof name, "D far larger than scene (D=%g)", double(D));
         checkCase(name, boxProbe(), rays, exact,
-                  {{LookupMethod::Bisection, bound},
-                   {LookupMethod::Secant, bound},
-                   {LookupMethod::Layered, bound}},
+                  {{DistanceMethod::Bisection, bound},
+                   {DistanceMethod::Secant, bound},
+                   {DistanceMethod::Layered, bound}},
                   0.01f, D);
     }
 }
@@ -380,12 +383,12 @@ TEST(DistanceHardCases, ReflectorOnTheCellBoundary) {
         for (int i = 0; i < 40; ++i)
             rays.push_back({kCell * t, randomUnit(rng)});
     checkCase("reflector on the cell boundary", boxProbe(), rays, boxIdeal(boxProbe()),
-              {{LookupMethod::Envmap, 0.02},
-               {LookupMethod::BoxProj, 0.02},
-               {LookupMethod::Bisection, 0.2},
-               {LookupMethod::Secant, 0.2},
-               {LookupMethod::AvgDist, 0.02},
-               {LookupMethod::Layered, 0.2}});
+              {{DistanceMethod::Envmap, 0.02},
+               {DistanceMethod::BoxProj, 0.02},
+               {DistanceMethod::Bisection, 0.2},
+               {DistanceMethod::Secant, 0.2},
+               {DistanceMethod::AvgDist, 0.02},
+               {DistanceMethod::Layered, 0.2}});
 }
 
 // ---------------------------------------------------------------------------------------
@@ -422,7 +425,7 @@ TEST(DistanceHardCases, ZeroAndNanNormals) {
                 "zero/NaN/inf normals", worstDir);
     EXPECT_LT(worstDir, 1e-5);
     // Through the shader: the reflected direction it used and the radiance.
-    for (LookupMethod m : {LookupMethod::Bisection, LookupMethod::BoxProj}) {
+    for (DistanceMethod m : {DistanceMethod::Bisection, DistanceMethod::BoxProj}) {
         const DistanceLookupConfig cfg = configFor(boxProbe(), m);
         CpuDistanceProbe twin(boxProbe(), cfg);
         const auto out = gpuLookup().run(boxProbe(), cfg, gr, 1);
@@ -446,9 +449,9 @@ TEST(DistanceHardCases, ZeroAndNanNormals) {
     // give a finite colour that the probe holds.
     std::vector<GpuRay> nanAll(
         64, GpuRay{glm::vec3(0.1f), glm::vec3(0.f, 0.f, -1.f), glm::vec3(kNaN), glm::vec3(kNaN)});
-    for (LookupMethod m : kAllMethods) {
+    for (DistanceMethod m : kAllMethods) {
         const DistanceProbeAsset a =
-            m == LookupMethod::Layered ? withObjectLayer(boxProbe(), "bisection") : boxProbe();
+            m == DistanceMethod::Layered ? withObjectLayer(boxProbe(), "bisection") : boxProbe();
         const DistanceLookupConfig cfg = configFor(a, m);
         CpuDistanceProbe twin(a, cfg);
         int f = 0;
@@ -489,7 +492,7 @@ TEST(DistanceHardCases, HugeWorldCoordinates) {
             gr.push_back({world, eye, g, g});
         }
         const double bound = far <= 1e5 ? 0.1 : 1.0;
-        for (LookupMethod m : {LookupMethod::BoxProj, LookupMethod::Bisection}) {
+        for (DistanceMethod m : {DistanceMethod::BoxProj, DistanceMethod::Bisection}) {
             const DistanceLookupConfig cfg = configFor(boxProbe(), m);
             CpuDistanceProbe twin(boxProbe(), cfg);
             Worst cpu, gpu;
@@ -531,11 +534,11 @@ TEST(DistanceHardCases, HalfFloatDistanceStorage) {
     std::vector<Ray> rays;
     for (int i = 0; i < 20000; ++i)
         rays.push_back({randomInCell(rng), randomUnit(rng)});
-    const Reference exact = [](LookupMethod, glm::vec3 x, glm::vec3 d) {
+    const Reference exact = [](DistanceMethod, glm::vec3 x, glm::vec3 d) {
         return room().trace(x, d);
     };
     for (float de : {0.01f, 0.001f})
-        for (LookupMethod m : {LookupMethod::Bisection, LookupMethod::Secant}) {
+        for (DistanceMethod m : {DistanceMethod::Bisection, DistanceMethod::Secant}) {
             Worst w[2];
             for (int k = 0; k < 2; ++k) {
                 const DistanceProbeAsset& a = k == 0 ? boxProbe() : half;
@@ -558,5 +561,5 @@ TEST(DistanceHardCases, HalfFloatDistanceStorage) {
     // The shader on half data (as an RGBA16F texture would hold it).
     std::vector<Ray> few(rays.begin(), rays.begin() + 3000);
     checkCase("half-float distances", half, few, boxIdeal(half),
-              {{LookupMethod::Bisection, 0.2}, {LookupMethod::Secant, 0.2}});
+              {{DistanceMethod::Bisection, 0.2}, {DistanceMethod::Secant, 0.2}});
 }

@@ -60,13 +60,14 @@ TEST(DistanceSweep, TenMillionRandomRaysPerMethod) {
     // point along the wall by up to d_e / cos; envmap, boxproj and avgdist only filter
     // (worst at face edges, where clamp-to-edge bilinear cannot blend across faces).
     // Measured at 10^7 rays: 0.019 / 0.019 / 0.062 / 0.060 / 0.019 / 0.062.
-    const std::map<LookupMethod, double> bound = {
-        {LookupMethod::Envmap, 0.03}, {LookupMethod::BoxProj, 0.03}, {LookupMethod::Bisection, 0.1},
-        {LookupMethod::Secant, 0.1},  {LookupMethod::AvgDist, 0.03}, {LookupMethod::Layered, 0.1}};
+    const std::map<DistanceMethod, double> bound = {
+        {DistanceMethod::Envmap, 0.03},   {DistanceMethod::BoxProj, 0.03},
+        {DistanceMethod::Bisection, 0.1}, {DistanceMethod::Secant, 0.1},
+        {DistanceMethod::AvgDist, 0.03},  {DistanceMethod::Layered, 0.1}};
     const float avg = box.layers[0].avgDistance;
     double total = 0.0;
-    for (LookupMethod m : kAllMethods) {
-        const DistanceProbeAsset& a = m == LookupMethod::Layered ? boxLayered : box;
+    for (DistanceMethod m : kAllMethods) {
+        const DistanceProbeAsset& a = m == DistanceMethod::Layered ? boxLayered : box;
         const DistanceLookupConfig cfg = configFor(a, m);
         const auto t0 = std::chrono::steady_clock::now();
         const Tally t = tbb::parallel_reduce(

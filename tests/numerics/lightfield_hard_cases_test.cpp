@@ -4,8 +4,8 @@
 // field holds a distant environment (colour a function of direction only), for which the
 // lookup with disparity 0 is exact from anywhere in the cell up to 8-bit sRGB quantisation
 // and bilinear filtering: the reference is the colour function at the ray's direction.
-#include "components/reflection_probe/lightfield_asset.h"
-#include "components/reflection_probe/lightfield_probe_cpu.h"
+#include "components/reflection_probe/lightfield/lightfield_asset.h"
+#include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "engine/image/image_io.h"
 
 #include <glm/glm.hpp>

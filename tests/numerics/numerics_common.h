@@ -3,7 +3,7 @@
 // the reference ("ideal") answer of every lookup method, and a GLSL harness that runs the
 // real shared lookup (shaders/distance_lookup.glsl.h) over a list of rays on the GPU, so each
 // hard case drives both the C++ twin and the shader through exactly the same inputs.
-#include "components/reflection_probe/distance_probe_cpu.h"
+#include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "components/reflection_probe/reflection_probe_system.h"
 #include "engine/gpu/context.h"
 #include "engine/gpu/gl_objects.h"
@@ -157,19 +157,19 @@ inline DistanceProbeAsset withObjectLayer(DistanceProbeAsset a, const char* meth
     return a;
 }
 
-inline const char* methodName(LookupMethod m) {
+inline const char* methodName(DistanceMethod m) {
     return toString(m);
 }
 
-inline constexpr LookupMethod kAllMethods[] = {LookupMethod::Envmap,    LookupMethod::BoxProj,
-                                               LookupMethod::Bisection, LookupMethod::Secant,
-                                               LookupMethod::AvgDist,   LookupMethod::Layered};
+inline constexpr DistanceMethod kAllMethods[] = {
+    DistanceMethod::Envmap, DistanceMethod::BoxProj, DistanceMethod::Bisection,
+    DistanceMethod::Secant, DistanceMethod::AvgDist, DistanceMethod::Layered};
 
-inline DistanceLookupConfig configFor(const DistanceProbeAsset& a, LookupMethod m, float de = 0.01f,
-                                      float range = 0.f) {
-    ReflectionProbe p;
+inline DistanceLookupConfig configFor(const DistanceProbeAsset& a, DistanceMethod m,
+                                      float de = 0.01f, float range = 0.f) {
+    DistanceProbe p;
     p.method = m;
-    p.layerMethod = LookupMethod::Bisection;
+    p.layerMethod = DistanceMethod::Bisection;
     p.errorTolerance = de;
     p.range = range;
     return makeLookupConfig(p, a);
@@ -179,12 +179,12 @@ inline DistanceLookupConfig configFor(const DistanceProbeAsset& a, LookupMethod 
 // centred at the origin: envmap and avgdist look the room up from the centre along a
 // direction (l-hat, or x + d-bar l-hat); box projection, bisection, secant and layered
 // find the true reflection.
-inline glm::vec3 idealBox(const AnalyticBox& box, LookupMethod m, float avgDistance, glm::vec3 x,
+inline glm::vec3 idealBox(const AnalyticBox& box, DistanceMethod m, float avgDistance, glm::vec3 x,
                           glm::vec3 d) {
     switch (m) {
-    case LookupMethod::Envmap:
+    case DistanceMethod::Envmap:
         return box.trace(glm::vec3(0.f), d);
-    case LookupMethod::AvgDist:
+    case DistanceMethod::AvgDist:
         return box.trace(glm::vec3(0.f), glm::normalize(x + avgDistance * d));
     default:
         return box.trace(x, d);
@@ -320,13 +320,10 @@ private:
         auto it = programs_.find(features);
         if (it != programs_.end()) return it->second;
         auto bit = [&](std::uint32_t b) { return (features & b) ? "1" : "0"; };
-        const std::vector<std::string> defines = {
-            std::string("HAS_ENVMAP=") + bit(kFeatureEnvmap),
-            std::string("HAS_BOXPROJ=") + bit(kFeatureBoxProj),
-            std::string("HAS_BISECTION=") + bit(kFeatureBisection),
-            std::string("HAS_SECANT=") + bit(kFeatureSecant),
-            std::string("HAS_AVGDIST=") + bit(kFeatureAvgDist),
-            std::string("HAS_LAYERS=") + bit(kFeatureLayers)};
+        std::vector<std::string> defines; // from the method table, as the store builds them
+        for (const DistanceMethodInfo& row : kDistanceMethods)
+            if (row.define) defines.push_back(std::string(row.define) + "=" + bit(row.feature));
+        defines.push_back(std::string("HAS_LAYERS=") + bit(kFeatureLayers));
         return programs_
             .emplace(features,
                      gpu::buildProgram(gpu::ShaderSource::text("numerics.vert", kVert),
@@ -346,8 +343,8 @@ void main() {
 #include "engine/scene/shading.glsl.h"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
 
-#include "components/reflection_probe/shaders/distance_lookup_types.glsl.h"
-#include "components/reflection_probe/shaders/distance_probe_gpu.glsl"
+#include "components/reflection_probe/distance/shaders/distance_lookup_types.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_probe_gpu.glsl"
 
 uniform sampler2D uX;
 uniform sampler2D uA;
@@ -361,7 +358,7 @@ bool gSky = false;
 
 vec3 fetchSky(vec3 dir) { gSky = true; return vec3(0.0); }
 
-#include "components/reflection_probe/shaders/distance_lookup.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_lookup.glsl.h"
 
 void main() {
     ivec2 px = ivec2(gl_FragCoord.xy);

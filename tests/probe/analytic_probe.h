@@ -2,7 +2,7 @@
 // Closed-form distance probes for tests: the environment is an axis-aligned box (probe-local)
 // whose surface radiance is a smooth function of position, so the exact reflection of any
 // ray is known without a renderer.
-#include "components/reflection_probe/distance_probe_asset.h"
+#include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "engine/math/cube_face.h"
 
 #include <algorithm>

@@ -12,9 +12,9 @@ using specula::test::RoomProbe;
 
 namespace {
 
-const LookupMethod kMethods[] = {LookupMethod::Envmap,    LookupMethod::BoxProj,
-                                 LookupMethod::Bisection, LookupMethod::Secant,
-                                 LookupMethod::AvgDist,   LookupMethod::Layered};
+const DistanceMethod kMethods[] = {DistanceMethod::Envmap,    DistanceMethod::BoxProj,
+                                   DistanceMethod::Bisection, DistanceMethod::Secant,
+                                   DistanceMethod::AvgDist,   DistanceMethod::Layered};
 
 double psnrOf(const Image& a, const Image& b, const Image& mask) {
     return compareImages(a, b, &mask).psnr;
@@ -30,8 +30,8 @@ TEST_F(RoomProbe, ShaderMatchesCpuTwinPerPixel) {
     // moves the bilinear sample by a fraction of a texel, hence the looser sky bound.
     const CameraView cam = scene_->camera(kWidth, kHeight);
     const Image mask = test::erodedMask(scene_->groundTruth(cam, true).mirrorMask);
-    for (LookupMethod m : kMethods) {
-        scene_->setProbe(probeFor(m));
+    for (DistanceMethod m : kMethods) {
+        useProbe(probeFor(m));
         const test::TwinAgreement t = test::compareWithTwin(*renderer_, *scene_, cam, mask);
         ASSERT_GT(t.layerPx, 500) << "the camera must see the reflectors";
         std::printf("%-9s twin vs GLSL: %ld layer px, %.3f%% within 2e-3, mean %.2e, worst %.4f; "
@@ -53,7 +53,7 @@ TEST_F(RoomProbe, RectificationBeatsEnvmapAndBoxProjAgainstGroundTruth) {
     const Image mask = test::erodedMask(envOnly.mirrorMask);
     double psnr[6] = {};
     for (int i = 0; i < 6; ++i) {
-        scene_->setProbe(probeFor(kMethods[i]));
+        useProbe(probeFor(kMethods[i]));
         const Image img = renderer_->render(cam);
         psnr[i] = psnrOf(img, envOnly.color, mask);
         if (const char* out = std::getenv("SPECULA_TEST_OUT")) {
@@ -76,7 +76,7 @@ TEST_F(RoomProbe, LayersShowOcclusionAndParallaxLikeTheGroundTruth) {
     // over the walls behind them. The layered lookup must follow the ground truth at both,
     // and its change between the two must be the ground truth's change.
     const CameraView cam = scene_->camera(kWidth, kHeight);
-    scene_->setProbe(probeFor(LookupMethod::Layered));
+    useProbe(probeFor(DistanceMethod::Layered));
     const glm::vec3 offsets[2] = {glm::vec3(-0.35f, 0.f, 0.2f), glm::vec3(0.35f, 0.f, -0.2f)};
     Image probeImg[2], truth[2], mask[2];
     for (int i = 0; i < 2; ++i) {
@@ -85,9 +85,9 @@ TEST_F(RoomProbe, LayersShowOcclusionAndParallaxLikeTheGroundTruth) {
         truth[i] = gt.color;
         mask[i] = test::erodedMask(gt.mirrorMask);
         probeImg[i] = renderer_->render(cam);
-        scene_->setProbe(probeFor(LookupMethod::Envmap));
+        useProbe(probeFor(DistanceMethod::Envmap));
         const Image env = renderer_->render(cam);
-        scene_->setProbe(probeFor(LookupMethod::Layered));
+        useProbe(probeFor(DistanceMethod::Layered));
         const double layered = psnrOf(probeImg[i], truth[i], mask[i]);
         const double envmap = psnrOf(env, truth[i], mask[i]);
         std::printf("offset %d: layered %.2f dB, envmap %.2f dB\n", i, layered, envmap);

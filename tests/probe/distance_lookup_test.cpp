@@ -1,6 +1,6 @@
 // The distance-cubemap lookups (CPU twin of the shader) against closed-form geometry.
 #include "analytic_probe.h"
-#include "components/reflection_probe/distance_probe_cpu.h"
+#include "components/reflection_probe/distance/distance_probe_cpu.h"
 
 #include <gtest/gtest.h>
 
@@ -18,9 +18,9 @@ struct Errors {
 
 // RMSE of the probe's radiance against the exact box reflection over random reflector points
 // within 0.7 m of the centre and random directions (fixed seed).
-Errors measure(const DistanceProbeAsset& a, LookupMethod method, float de, int rays = 20000,
+Errors measure(const DistanceProbeAsset& a, DistanceMethod method, float de, int rays = 20000,
                float toleranceOverride = -1.f) {
-    ReflectionProbe probe;
+    DistanceProbe probe;
     probe.method = method;
     probe.errorTolerance = de;
     DistanceLookupConfig cfg = makeLookupConfig(probe, a);
@@ -66,9 +66,9 @@ DistanceProbeAsset* DistanceLookup::asset_ = nullptr;
 TEST_F(DistanceLookup, RectificationBeatsEnvmapAndBoxProjOnAClosedFormRoom) {
     // The box projection is exact for a box room, so it is the strong baseline here; the
     // per-pixel search must match it, and both must beat the direction-only lookup widely.
-    const Errors env = measure(*asset_, LookupMethod::Envmap, 0.01f);
-    const Errors box = measure(*asset_, LookupMethod::BoxProj, 0.01f);
-    const Errors bis = measure(*asset_, LookupMethod::Bisection, 0.01f);
+    const Errors env = measure(*asset_, DistanceMethod::Envmap, 0.01f);
+    const Errors box = measure(*asset_, DistanceMethod::BoxProj, 0.01f);
+    const Errors bis = measure(*asset_, DistanceMethod::Bisection, 0.01f);
     RecordProperty("psnr_envmap", std::to_string(psnr(env.rmse)));
     RecordProperty("psnr_bisection", std::to_string(psnr(bis.rmse)));
     std::printf(
@@ -82,7 +82,7 @@ TEST_F(DistanceLookup, RectificationBeatsEnvmapAndBoxProjOnAClosedFormRoom) {
 TEST_F(DistanceLookup, ErrorFallsAsToleranceFalls) {
     double previous = 1e9;
     for (float de : {0.1f, 0.03f, 0.01f, 0.003f}) {
-        const Errors e = measure(*asset_, LookupMethod::Bisection, de);
+        const Errors e = measure(*asset_, DistanceMethod::Bisection, de);
         std::printf("d_e = %.3f: RMSE %.5f, %.2f fetches/ray\n", de, e.rmse, e.meanFetches);
         // "Within noise": the texture resolution floors the error, so allow 5 % of slack.
         EXPECT_LT(e.rmse, previous * 1.05) << "d_e = " << de;
@@ -92,21 +92,21 @@ TEST_F(DistanceLookup, ErrorFallsAsToleranceFalls) {
 
 TEST_F(DistanceLookup, FetchCountIsNWhenConditionOneNeverFires) {
     for (float de : {0.1f, 0.01f, 0.001f}) {
-        ReflectionProbe probe;
+        DistanceProbe probe;
         probe.errorTolerance = de;
         const DistanceLookupConfig cfg = makeLookupConfig(probe, *asset_);
         const int n = int(std::ceil(std::log2(2.0 * asset_->range / de)));
         EXPECT_EQ(cfg.params.maxSteps, n);
         // Tolerance 0: condition 1 cannot fire, so every ray spends exactly N distance
         // fetches plus one radiance fetch (every ray hits the closed box).
-        const Errors e = measure(*asset_, LookupMethod::Bisection, de, 2000, 0.f);
+        const Errors e = measure(*asset_, DistanceMethod::Bisection, de, 2000, 0.f);
         EXPECT_DOUBLE_EQ(e.meanFetches, double(n + 1)) << "d_e = " << de;
     }
 }
 
 TEST_F(DistanceLookup, SecantReachesBisectionErrorWithFewerFetches) {
-    const Errors bis = measure(*asset_, LookupMethod::Bisection, 0.01f);
-    const Errors sec = measure(*asset_, LookupMethod::Secant, 0.01f);
+    const Errors bis = measure(*asset_, DistanceMethod::Bisection, 0.01f);
+    const Errors sec = measure(*asset_, DistanceMethod::Secant, 0.01f);
     std::printf("d_e = 0.01: bisection RMSE %.5f with %.2f fetches, secant RMSE %.5f with %.2f\n",
                 bis.rmse, bis.meanFetches, sec.rmse, sec.meanFetches);
     EXPECT_LE(sec.rmse, bis.rmse * 1.05);
@@ -121,15 +121,15 @@ TEST_F(DistanceLookup, AverageDistanceIsExactAtThatDistance) {
         for (std::size_t i = 3; i < face.pixels.size(); i += 4)
             face.pixels[i] = 3.f;
     a.layers[0].avgDistance = 3.f;
-    ReflectionProbe probe;
-    probe.method = LookupMethod::AvgDist;
+    DistanceProbe probe;
+    probe.method = DistanceMethod::AvgDist;
     CpuDistanceProbe twin(a, makeLookupConfig(probe, a));
     int fetches = 0;
     const glm::vec3 d = glm::normalize(glm::vec3(0.3f, 0.2f, -0.9f));
     const glm::vec3 got = twin.radiance(glm::vec3(0.f), d, fetches);
     int f2 = 0;
-    ReflectionProbe envProbe;
-    envProbe.method = LookupMethod::Envmap;
+    DistanceProbe envProbe;
+    envProbe.method = DistanceMethod::Envmap;
     CpuDistanceProbe env(a, makeLookupConfig(envProbe, a));
     EXPECT_NEAR(glm::length(got - env.radiance(glm::vec3(0.f), d, f2)), 0.f, 1e-6f)
         << "at the centre the corrected vector is parallel to the ray";
@@ -148,8 +148,9 @@ TEST_F(DistanceLookup, MissesFallToTheSky) {
     a.sky = Image(8, 4, 4);
     for (float& v : a.sky.pixels)
         v = 0.25f;
-    for (LookupMethod m : {LookupMethod::Bisection, LookupMethod::Secant, LookupMethod::AvgDist}) {
-        ReflectionProbe probe;
+    for (DistanceMethod m :
+         {DistanceMethod::Bisection, DistanceMethod::Secant, DistanceMethod::AvgDist}) {
+        DistanceProbe probe;
         probe.method = m;
         CpuDistanceProbe twin(a, makeLookupConfig(probe, a));
         int fetches = 0;
@@ -159,6 +160,6 @@ TEST_F(DistanceLookup, MissesFallToTheSky) {
         // Every distance fetch sees d_inf, so no method can stop early: N distance fetches
         // (one for the average distance) and one sky fetch.
         const int n = makeLookupConfig(probe, a).params.maxSteps;
-        EXPECT_EQ(fetches, m == LookupMethod::AvgDist ? 2 : n + 1) << toString(m);
+        EXPECT_EQ(fetches, m == DistanceMethod::AvgDist ? 2 : n + 1) << toString(m);
     }
 }

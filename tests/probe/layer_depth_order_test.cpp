@@ -4,7 +4,7 @@
 // lookup must show the pillar, as the closed-form trace does. (Letting the first layer with
 // a hit win, as for nested shells, shows the floor: that was Specula's bug on truck_room.)
 #include "analytic_probe.h"
-#include "components/reflection_probe/distance_probe_cpu.h"
+#include "components/reflection_probe/distance/distance_probe_cpu.h"
 
 #include <gtest/gtest.h>
 
@@ -77,9 +77,9 @@ DistanceProbeAsset floorAndPillar(int n) {
 
 TEST(LayerDepthOrder, NearestHitAlongTheRayWinsOverTheFirstLayer) {
     const DistanceProbeAsset asset = floorAndPillar(256);
-    ReflectionProbe probe;
-    probe.method = LookupMethod::Layered;
-    probe.layerMethod = LookupMethod::Bisection;
+    DistanceProbe probe;
+    probe.method = DistanceMethod::Layered;
+    probe.layerMethod = DistanceMethod::Bisection;
     probe.errorTolerance = 0.01f;
     const CpuDistanceProbe twin(asset, makeLookupConfig(probe, asset));
 

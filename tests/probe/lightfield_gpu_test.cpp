@@ -3,7 +3,8 @@
 // projection baselines. Default size NUM = 8, RES = 64 keeps every bake under a second.
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/lightfield_bake.h"
-#include "components/reflection_probe/lightfield_probe_cpu.h"
+#include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
+#include "components/reflection_probe/lightfield/lightfield_store.h"
 #include "engine/core/error.h"
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"
@@ -68,24 +69,31 @@ protected:
         }
         return dir + "/manifest.json";
     }
-    static ReflectionProbe lightFieldProbe(const std::string& manifest, float disparity = -1.f) {
-        ReflectionProbe p;
-        p.flavour = ProbeFlavour::LightFieldSlab;
-        p.method = LookupMethod::LightField;
-        p.asset = manifest;
+    // A probe choice: the asset and its flavour's settings.
+    template <typename Settings> struct Probe {
+        std::string asset;
+        Settings settings;
+    };
+    static Probe<LightFieldProbe> lightFieldProbe(const std::string& manifest,
+                                                  float disparity = -1.f) {
+        LightFieldProbe p;
         p.disparity = disparity;
-        return p;
+        return {manifest, p};
     }
-    static ReflectionProbe distanceProbe(LookupMethod m) {
-        ReflectionProbe p;
-        p.asset = dir_ + "/distance/manifest.json";
+    static Probe<DistanceProbe> distanceProbe(DistanceMethod m) {
+        DistanceProbe p;
         p.method = m;
-        return p;
+        return {dir_ + "/distance/manifest.json", p};
     }
+    template <typename Settings> static void use(const Probe<Settings>& p) {
+        scene_->setProbe(p.asset, p.settings);
+    }
+    static const LightFieldStore& store() { return *renderer_->probes().store<LightFieldStore>(); }
     // PSNR of the reflector pixels against the environment-only ground truth.
-    static double psnr(const ReflectionProbe& probe, const GroundTruthImage& truth,
+    template <typename Settings>
+    static double psnr(const Probe<Settings>& probe, const GroundTruthImage& truth,
                        const Image& mask, const CameraView& cam) {
-        scene_->setProbe(probe);
+        use(probe);
         const Image img = renderer_->render(cam);
         if (const char* out = std::getenv("SPECULA_TEST_OUT")) {
             static int n = 0;
@@ -116,11 +124,11 @@ TEST_F(LightFieldRoom, ShaderMatchesCpuTwinPerPixel) {
     const CameraView cam = scene_->camera(kWidth, kHeight);
     const Image mask = test::erodedMask(scene_->groundTruth(cam, true).mirrorMask);
     for (LightFieldCompression c : {LightFieldCompression::None, LightFieldCompression::BC1}) {
-        scene_->setProbe(lightFieldProbe(lightField(8, 64, c)));
+        use(lightFieldProbe(lightField(8, 64, c)));
         const Image colour = renderer_->render(cam, 0);
         const Image pos = renderer_->render(cam, 1);
         const Image dir = renderer_->render(cam, 2);
-        const LightFieldAsset* asset = renderer_->probes().lightFieldAsset(scene_->probeEntity());
+        const LightFieldAsset* asset = store().asset(scene_->probeEntity());
         ASSERT_NE(asset, nullptr);
         const CpuLightFieldProbe twin(*asset);
         long n = 0, close = 0;
@@ -148,8 +156,8 @@ TEST_F(LightFieldRoom, BeatsEnvmapAndBoxProjAndImprovesWithNumResAndFocus) {
     const CameraView cam = scene_->camera(kWidth, kHeight);
     const GroundTruthImage truth = scene_->groundTruth(cam, true);
     const Image mask = test::erodedMask(truth.mirrorMask);
-    const double envmap = psnr(distanceProbe(LookupMethod::Envmap), truth, mask, cam);
-    const double boxproj = psnr(distanceProbe(LookupMethod::BoxProj), truth, mask, cam);
+    const double envmap = psnr(distanceProbe(DistanceMethod::Envmap), truth, mask, cam);
+    const double boxproj = psnr(distanceProbe(DistanceMethod::BoxProj), truth, mask, cam);
     const double lf = psnr(lightFieldProbe(lightField(8, 64)), truth, mask, cam);
     const double lfZero = psnr(lightFieldProbe(lightField(8, 64), 0.f), truth, mask, cam);
     const double lf4 = psnr(lightFieldProbe(lightField(4, 64)), truth, mask, cam);
@@ -183,7 +191,7 @@ TEST_F(LightFieldRoom, ParallaxFollowsTheGroundTruthAtThreePositions) {
         const GroundTruthImage truth = scene_->groundTruth(cam, true);
         const Image mask = test::erodedMask(truth.mirrorMask);
         const double lf = psnr(lightFieldProbe(lightField(16, 64)), truth, mask, cam);
-        const double envmap = psnr(distanceProbe(LookupMethod::Envmap), truth, mask, cam);
+        const double envmap = psnr(distanceProbe(DistanceMethod::Envmap), truth, mask, cam);
         std::printf("offset %.2f,%.2f,%.2f: light field %.2f dB, envmap %.2f dB\n", off.x, off.y,
                     off.z, lf, envmap);
         EXPECT_GT(lf, envmap + 5.0);
@@ -197,7 +205,7 @@ TEST_F(LightFieldRoom, ReflectorLeavingTheCellIsReported) {
     // The room's cell holds both reflectors as authored; moved 0.5 m along +X the torus
     // (reaching 0.69 m from the centre) leaves it, the sphere does not.
     scene_->setReflectorOffset(glm::vec3(0.f));
-    scene_->setProbe(lightFieldProbe(lightField(4, 16)));
+    use(lightFieldProbe(lightField(4, 16)));
     renderer_->render(cam);
     EXPECT_FALSE(renderer_->stats().reflectorLeftCell);
     EXPECT_EQ(renderer_->stats().reflectorsOutsideCell, 0u);
@@ -213,21 +221,21 @@ TEST_F(LightFieldRoom, ReflectorLeavingTheCellIsReported) {
 TEST_F(LightFieldRoom, RuntimeDisparityChangesWithoutRebuilding) {
     const CameraView cam = scene_->camera(kWidth, kHeight);
     const std::string m = lightField(8, 64);
-    scene_->setProbe(lightFieldProbe(m));
+    use(lightFieldProbe(m));
     renderer_->render(cam);
     const ecs::Entity probe = scene_->probeEntity();
-    const LightFieldAsset* before = renderer_->probes().lightFieldAsset(probe);
+    const LightFieldAsset* before = store().asset(probe);
     ASSERT_NE(before, nullptr);
     for (int k = 0; k < 6; ++k)
-        EXPECT_EQ(renderer_->probes().lightFieldDisparities(probe)[std::size_t(k)],
+        EXPECT_EQ(store().disparities(probe)[std::size_t(k)],
                   before->slabs[std::size_t(k)].disparity);
-    scene_->setProbe(lightFieldProbe(m, 3.5f));
+    use(lightFieldProbe(m, 3.5f));
     renderer_->render(cam);
-    EXPECT_EQ(renderer_->probes().lightFieldAsset(probe), before) << "no re-read, no re-upload";
-    EXPECT_EQ(renderer_->probes().lightFieldDisparities(probe)[0], 3.5f);
-    scene_->setProbe(lightFieldProbe(m, std::nanf("")));
+    EXPECT_EQ(store().asset(probe), before) << "no re-read, no re-upload";
+    EXPECT_EQ(store().disparities(probe)[0], 3.5f);
+    use(lightFieldProbe(m, std::nanf("")));
     renderer_->render(cam);
-    EXPECT_EQ(renderer_->probes().lightFieldDisparities(probe)[0], before->slabs[0].disparity);
+    EXPECT_EQ(store().disparities(probe)[0], before->slabs[0].disparity);
 }
 
 TEST_F(LightFieldRoom, BackgroundFromEyeRaysInsideTheCell) {
@@ -239,11 +247,11 @@ TEST_F(LightFieldRoom, BackgroundFromEyeRaysInsideTheCell) {
         CameraView::lookAt(eye, eye + glm::vec3(0.f, -0.1f, -1.f), glm::vec3(0, 1, 0),
                            glm::radians(60.f), kWidth, kHeight);
     const Image raster = renderer_->renderEnvironment(cam);
-    ReflectionProbe p = lightFieldProbe(lightField(16, 64));
-    p.lightFieldBackground = true;
-    scene_->setProbe(p);
+    auto p = lightFieldProbe(lightField(16, 64));
+    p.settings.background = true;
+    use(p);
     const Image img = renderer_->render(cam);
-    EXPECT_TRUE(renderer_->stats().lightFieldBackgroundDrawn);
+    EXPECT_TRUE(renderer_->stats().backgroundDrawn);
     const GroundTruthImage truth = scene_->groundTruth(cam, true);
     Image envMask(kWidth, kHeight, 1);
     for (int y = 0; y < kHeight; ++y)
@@ -292,9 +300,9 @@ TEST_F(LightFieldRoom, MeasurementTable) {
     const GroundTruthImage truth = scene_->groundTruth(cam, true);
     const Image mask = test::erodedMask(truth.mirrorMask);
     std::printf("envmap %.2f dB, boxproj %.2f dB, bisection %.2f dB\n",
-                psnr(distanceProbe(LookupMethod::Envmap), truth, mask, cam),
-                psnr(distanceProbe(LookupMethod::BoxProj), truth, mask, cam),
-                psnr(distanceProbe(LookupMethod::Bisection), truth, mask, cam));
+                psnr(distanceProbe(DistanceMethod::Envmap), truth, mask, cam),
+                psnr(distanceProbe(DistanceMethod::BoxProj), truth, mask, cam),
+                psnr(distanceProbe(DistanceMethod::Bisection), truth, mask, cam));
     for (int num : {8, 16, 32})
         for (int res : {64, 128})
             for (LightFieldCompression c :

@@ -1,8 +1,8 @@
 // The light-field-slab lookup (CPU twin of the shader) on its own: slab coverage for hard
 // rays, and exactness against synthetic light fields whose every sample is known in closed
 // form. No GL, no Embree.
-#include "components/reflection_probe/lightfield_asset.h"
-#include "components/reflection_probe/lightfield_probe_cpu.h"
+#include "components/reflection_probe/lightfield/lightfield_asset.h"
+#include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "engine/core/error.h"
 #include "engine/image/image_io.h"
 #include "engine/math/cube_face.h"

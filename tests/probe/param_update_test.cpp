@@ -38,34 +38,33 @@ TEST_F(RoomProbe, ParameterEditsRewriteTheBlockAndOnlyAnAssetUploadsTextures) {
     const ProbeFrameStats& stats = renderer_->probes().stats();
 
     // First sync of the asset, layered (every cube layer on the GPU): one upload set.
-    ReflectionProbe probe = probeFor(LookupMethod::Layered);
-    probe.asset = copyManifest;
+    DistanceProbe probe = probeFor(DistanceMethod::Layered);
     std::size_t uploads = stats.textureUploads;
-    scene_->setProbe(probe);
+    useProbe(probe, copyManifest);
     Image previous = test::compareWithTwin(*renderer_, *scene_, cam, mask).colour;
     EXPECT_EQ(stats.textureUploads, uploads + 1) << "a new asset uploads its textures once";
     uploads = stats.textureUploads;
 
     struct Edit {
         const char* what;
-        void (*apply)(ReflectionProbe&);
+        void (*apply)(DistanceProbe&);
     };
     // d_e and D are edited under bisection, whose N = ceil(log2(2D / d_e)) they set; the
     // layered loop searches only short spans inside layer boxes and hardly feels them.
     const Edit edits[] = {
-        {"method -> bisection", [](ReflectionProbe& p) { p.method = LookupMethod::Bisection; }},
-        {"d_e 0.01 -> 0.15", [](ReflectionProbe& p) { p.errorTolerance = 0.15f; }},
-        {"D -> 1.5 m", [](ReflectionProbe& p) { p.range = 1.5f; }},
-        {"method -> layered", [](ReflectionProbe& p) { p.method = LookupMethod::Layered; }},
+        {"method -> bisection", [](DistanceProbe& p) { p.method = DistanceMethod::Bisection; }},
+        {"d_e 0.01 -> 0.15", [](DistanceProbe& p) { p.errorTolerance = 0.15f; }},
+        {"D -> 1.5 m", [](DistanceProbe& p) { p.range = 1.5f; }},
+        {"method -> layered", [](DistanceProbe& p) { p.method = DistanceMethod::Layered; }},
         {"layer method -> avgdist",
-         [](ReflectionProbe& p) { p.layerMethod = LookupMethod::AvgDist; }},
-        {"method -> secant", [](ReflectionProbe& p) { p.method = LookupMethod::Secant; }},
-        {"method -> envmap", [](ReflectionProbe& p) { p.method = LookupMethod::Envmap; }},
+         [](DistanceProbe& p) { p.layerMethod = DistanceMethod::AvgDist; }},
+        {"method -> secant", [](DistanceProbe& p) { p.method = DistanceMethod::Secant; }},
+        {"method -> envmap", [](DistanceProbe& p) { p.method = DistanceMethod::Envmap; }},
     };
     for (const Edit& edit : edits) {
         edit.apply(probe);
         const std::size_t blocks = stats.parameterUploads;
-        scene_->setProbe(probe);
+        useProbe(probe, copyManifest);
         const test::TwinAgreement t = test::compareWithTwin(*renderer_, *scene_, cam, mask);
         const long changed = changedPixels(previous, t.colour, mask);
         std::printf("%-24s texture uploads +%zu, blocks +%zu, %ld px changed, twin %.3f%%\n",
@@ -87,8 +86,7 @@ TEST_F(RoomProbe, ParameterEditsRewriteTheBlockAndOnlyAnAssetUploadsTextures) {
     EXPECT_EQ(stats.parameterUploads, blocks);
 
     // Another asset (the original path) uploads again.
-    probe.asset = probeFor(LookupMethod::Envmap).asset;
-    scene_->setProbe(probe);
+    useProbe(probe, manifest());
     renderer_->render(cam);
     EXPECT_EQ(stats.textureUploads, uploads + 1) << "an asset change uploads textures";
     std::filesystem::remove_all(copy);
@@ -99,19 +97,19 @@ TEST_F(RoomProbe, GrowingFromTheCompositeToEveryLayerUploadsOnce) {
     // object layers (one upload), and back to a single layer keeps them (none).
     const CameraView cam = scene_->camera(kWidth, kHeight);
     const ProbeFrameStats& stats = renderer_->probes().stats();
-    ReflectionProbe probe = probeFor(LookupMethod::Bisection);
-    probe.asset = dir_ + "/./manifest.json"; // another path: a fresh asset for the system
-    scene_->setProbe(probe);
+    DistanceProbe probe = probeFor(DistanceMethod::Bisection);
+    const std::string fresh = dir_ + "/./manifest.json"; // another path: a fresh asset
+    useProbe(probe, fresh);
     renderer_->render(cam);
     const std::size_t uploads = stats.textureUploads;
     const std::size_t compositeBytes = stats.probeGpuBytes;
-    probe.method = LookupMethod::Layered;
-    scene_->setProbe(probe);
+    probe.method = DistanceMethod::Layered;
+    useProbe(probe, fresh);
     renderer_->render(cam);
     EXPECT_EQ(stats.textureUploads, uploads + 1);
     EXPECT_GT(stats.probeGpuBytes, compositeBytes) << "the object layers are on the GPU now";
-    probe.method = LookupMethod::Secant;
-    scene_->setProbe(probe);
+    probe.method = DistanceMethod::Secant;
+    useProbe(probe, fresh);
     renderer_->render(cam);
     EXPECT_EQ(stats.textureUploads, uploads + 1);
 }

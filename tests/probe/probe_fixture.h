@@ -1,6 +1,8 @@
 #pragma once
 // The default room with its distance probe baked once per test binary (face resolution 128
 // keeps the bake under a few seconds), a headless GL context, and a frame renderer.
+#include "components/reflection_probe/distance/distance_probe.h"
+#include "components/reflection_probe/distance/distance_store.h"
 #include "engine/gpu/context.h"
 #include "sandbox/lib/frame_renderer.h"
 #include "sandbox/lib/probe_source.h"
@@ -38,12 +40,16 @@ protected:
         std::filesystem::remove_all(dir_);
     }
 
-    static ReflectionProbe probeFor(LookupMethod m, float de = 0.01f) {
-        ReflectionProbe p;
-        p.asset = dir_ + "/manifest.json";
+    static std::string manifest() { return dir_ + "/manifest.json"; }
+    static DistanceProbe probeFor(DistanceMethod m, float de = 0.01f) {
+        DistanceProbe p;
         p.method = m;
         p.errorTolerance = de;
         return p;
+    }
+    // Points the scene's probe at `asset` (the cooked room by default) with these settings.
+    static void useProbe(const DistanceProbe& p, const std::string& asset = manifest()) {
+        scene_->setProbe(asset, p);
     }
 
     static gpu::GlContext* context_;

@@ -3,7 +3,7 @@
 // colour and the twin's inputs (probe-local position, reflected direction, read back as
 // float32), the twin runs on exactly those inputs with the configuration the system holds
 // now, and the two are compared on the mirror pixels of `mask`.
-#include "components/reflection_probe/distance_probe_cpu.h"
+#include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "sandbox/lib/frame_renderer.h"
 #include "sandbox/lib/reflection_scene.h"
 
@@ -31,7 +31,8 @@ inline TwinAgreement compareWithTwin(FrameRenderer& renderer, const ReflectionSc
     const Image pos = renderer.render(cam, 1);
     const Image dir = renderer.render(cam, 2);
     const ecs::Entity probe = scene.probeEntity();
-    const CpuDistanceProbe twin(*renderer.probes().asset(probe), *renderer.probes().config(probe));
+    const DistanceStore& store = *renderer.probes().store<DistanceStore>();
+    const CpuDistanceProbe twin(*store.asset(probe), *store.config(probe));
     for (int y = 0; y < mask.height; ++y)
         for (int x = 0; x < mask.width; ++x) {
             if (mask.at(x, y)[0] < 0.5f) continue;

@@ -90,12 +90,12 @@ TEST(ProbeSetup, AttachProbeComponentsGivesEveryReflectorMeshAReflectorOfTheNewP
     ProbeScene scene(kRoom, "");
     ASSERT_FALSE(scene.markup.reflectors.empty());
     ReflectionProbe p;
-    p.errorTolerance = 0.02f;
+    p.asset = "probe/manifest.json";
     const ecs::Entity first = attachProbeComponents(scene.registry, scene.markup, p);
     const ecs::Entity second = attachProbeComponents(scene.registry, scene.markup, p, first);
     EXPECT_FALSE(scene.registry.valid(first)); // replaced, not left behind
     ASSERT_TRUE(scene.registry.valid(second));
-    EXPECT_EQ(scene.registry.get<ReflectionProbe>(second).errorTolerance, 0.02f);
+    EXPECT_EQ(scene.registry.get<ReflectionProbe>(second).asset, "probe/manifest.json");
     std::size_t meshes = 0;
     for (const ReflectorMarkup& r : scene.markup.reflectors)
         for (ecs::Entity e : r.meshes) {

@@ -3,7 +3,7 @@
 // (shaders/lightfield_lookup.glsl.h) compiled as C++ over the cooked atlas, with bilinear
 // fetches that read what the GPU reads (sRGB texels decoded to linear before filtering, BC1
 // decoded first, clamped to the layer). Tests hold the shader to it pixel by pixel.
-#include "components/reflection_probe/lightfield_asset.h"
+#include "components/reflection_probe/lightfield/lightfield_asset.h"
 
 #include <array>
 #include <memory>

@@ -2,7 +2,6 @@
 
 #include "components/reflection_probe/probe_folder.h"
 
-#include "components/reflection_probe/distance_probe_asset.h" // checksums, kProbeFormatVersion
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
 #include "engine/core/regular_file.h"
@@ -63,9 +62,6 @@ void validateLightFieldSize(int cameras, int res, float cellSize, LightFieldComp
 
 namespace {
 
-json vec3Json(glm::vec3 v) {
-    return json::array({v.x, v.y, v.z});
-}
 // JSON has no infinity: +inf depths are written as null.
 json depthJson(float d) {
     return std::isinf(d) ? json(nullptr) : json(d);
@@ -187,12 +183,12 @@ void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
 }
 
 LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
-    return parseLightFieldProbe(readManifestText(manifestPath), manifestPath);
+    return readLightFieldProbe(ParsedManifest::load(manifestPath).view());
 }
 
-LightFieldAsset parseLightFieldProbe(const std::string& manifestText,
-                                     const std::string& manifestPath) {
-    const json m = parseManifestJson(manifestText, manifestPath);
+LightFieldAsset readLightFieldProbe(const ProbeManifest& manifest) {
+    const std::string& manifestPath = manifest.path;
+    const json& m = manifest.json;
     const ManifestFields r{manifestPath};
     const fs::path dir = fs::path(manifestPath).parent_path();
     if (const std::string f = r.probeFlavour(m, kProbeFormatVersion); f != "lightfield")

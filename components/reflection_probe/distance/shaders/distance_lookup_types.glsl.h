@@ -3,7 +3,7 @@
 #ifndef SPECULA_DISTANCE_LOOKUP_TYPES_GLSL_H
 #define SPECULA_DISTANCE_LOOKUP_TYPES_GLSL_H
 
-#include "components/reflection_probe/shaders/distance_params.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_params.glsl.h"
 
 SHARED_CONST int kMethodEnvmap = 0;
 SHARED_CONST int kMethodBoxProj = 1;

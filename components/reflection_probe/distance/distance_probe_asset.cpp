@@ -23,22 +23,6 @@ namespace specula {
 
 namespace {
 
-// FNV-1a 64-bit, fed in pieces.
-struct Fnv1a64 {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    void add(const unsigned char* p, std::size_t n) {
-        for (std::size_t i = 0; i < n; ++i) {
-            h ^= p[i];
-            h *= 0x100000001b3ull;
-        }
-    }
-    std::string text() const {
-        char hex[32];
-        std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-        return std::string("fnv1a64:") + hex;
-    }
-};
-
 // Largest file a probe layer of face resolution n can be: an N x 6N float RGBA EXR is 96 N^2
 // bytes of pixels; the rest (header, offset tables, chunk headers) is far below the margin.
 std::uint64_t maxLayerFileBytes(int n) {
@@ -47,21 +31,6 @@ std::uint64_t maxLayerFileBytes(int n) {
 constexpr std::uint64_t kMaxSkyFileBytes = 4ull << 30;
 
 } // namespace
-
-std::string fileChecksum(const std::string& path, std::uint64_t maxBytes) {
-    RegularFile file(path, maxBytes);
-    Fnv1a64 h;
-    std::vector<unsigned char> buf(1 << 16);
-    while (const std::size_t got = file.read(buf.data(), buf.size()))
-        h.add(buf.data(), got);
-    return h.text();
-}
-
-std::string bytesChecksum(const void* data, std::size_t size) {
-    Fnv1a64 h;
-    h.add(static_cast<const unsigned char*>(data), size);
-    return h.text();
-}
 
 double cubeTexelSolidAngle(int x, int y, int n) {
     // The integral of dA cos / r^2 over the texel: signed sum of the corner function
@@ -74,10 +43,6 @@ double cubeTexelSolidAngle(int x, int y, int n) {
 }
 
 namespace {
-
-json vec3Json(glm::vec3 v) {
-    return json::array({v.x, v.y, v.z});
-}
 
 Image stackFaces(const std::array<Image, 6>& faces) {
     const int n = faces[0].width;
@@ -334,18 +299,19 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
 }
 
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {
-    return parseDistanceProbe(readManifestText(manifestPath), manifestPath);
+    return readDistanceProbe(ParsedManifest::load(manifestPath).view());
 }
 
-DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
-                                      const std::string& manifestPath) {
-    const json m = parseManifestJson(manifestText, manifestPath);
+DistanceProbeAsset readDistanceProbe(const ProbeManifest& manifest) {
+    const std::string& manifestPath = manifest.path;
+    const json& m = manifest.json;
     const ManifestFields r{manifestPath};
     const fs::path dir = fs::path(manifestPath).parent_path();
     if (r.probeFlavour(m, kProbeFormatVersion) != "distance")
         throw Error(manifestPath, "flavour", "expected \"distance\"");
 
     DistanceProbeAsset a;
+    a.manifestPath = manifestPath;
     a.centre = r.vec3(m, "centre", "", kMaxCoordinate);
     a.range = float(r.number(m, "range_D", "", 1e-6, 1e7));
     a.dInf = float(r.number(m, "d_inf", "", 1e-6, 1e9));
@@ -384,8 +350,7 @@ DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
         }));
         // The manifest's face_res is the size the header must declare, checked before the
         // pixels are allocated (a forged header could otherwise ask for gigabytes).
-        const Image stacked =
-            readFloatExr(file, {.width = a.faceRes, .height = 6 * a.faceRes});
+        const Image stacked = readFloatExr(file, {.width = a.faceRes, .height = 6 * a.faceRes});
         if (stacked.width != a.faceRes || stacked.height != 6 * a.faceRes || stacked.channels < 4)
             throw Error(file, "size",
                         "expected " + std::to_string(a.faceRes) + " x " +

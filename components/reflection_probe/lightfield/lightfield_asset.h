@@ -18,6 +18,7 @@
 //   paper's 32 x 128 is a 4096^2 x 6 array: 384 MiB uncompressed, 48 MiB BC1.
 // On disk: manifest.json plus one raw file per slab holding exactly the bytes uploaded
 // (rows top to bottom: RGB8 texels, or BC1 blocks in block-row order), with checksums.
+#include "components/reflection_probe/manifest_fields.h"
 #include "engine/image/bc1.h" // slab texels may be BC1 blocks: encodeBC1, decodeBC1
 
 #include <array>
@@ -103,9 +104,8 @@ void writeLightFieldProbe(const LightFieldAsset& asset, const std::string& dir,
 // and the field.
 LightFieldAsset readLightFieldProbe(const std::string& manifestPath);
 
-// readLightFieldProbe on manifest text already in memory (the fuzzer's entry point):
-// `manifestPath` names the manifest in errors and locates the slab files beside it.
-LightFieldAsset parseLightFieldProbe(const std::string& manifestText,
-                                     const std::string& manifestPath);
+// readLightFieldProbe on a manifest already parsed (the system reads each manifest once;
+// the fuzzer parses text in memory): its path names it in errors and locates the slabs.
+LightFieldAsset readLightFieldProbe(const ProbeManifest& manifest);
 
 } // namespace specula

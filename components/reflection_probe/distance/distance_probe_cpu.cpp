@@ -7,7 +7,7 @@
 
 namespace specula {
 namespace glsl {
-#include "components/reflection_probe/shaders/distance_lookup_types.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_lookup_types.glsl.h"
 
 // The fetches a twin reads through: what the GPU reads (bilinear radiance, nearest
 // distance, clamped to the face edge).
@@ -55,14 +55,14 @@ struct TwinFetches {
 
 #define HAS_LAYERS 0
 struct TwinSingle : TwinFetches {
-#include "components/reflection_probe/shaders/distance_lookup.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_lookup.glsl.h"
 };
 #undef HAS_LAYERS
 #undef SPECULA_DISTANCE_LOOKUP_GLSL_H
 
 #define HAS_LAYERS 1
 struct TwinLayered : TwinFetches {
-#include "components/reflection_probe/shaders/distance_lookup.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_lookup.glsl.h"
 };
 #undef HAS_LAYERS
 

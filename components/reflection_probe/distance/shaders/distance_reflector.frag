@@ -6,8 +6,8 @@
 #include "engine/scene/shading.glsl.h"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
 
-#include "components/reflection_probe/shaders/distance_lookup_types.glsl.h"
-#include "components/reflection_probe/shaders/distance_probe_gpu.glsl"
+#include "components/reflection_probe/distance/shaders/distance_lookup_types.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_probe_gpu.glsl"
 
 uniform sampler2D uSky;
 uniform int uHasSky;
@@ -22,7 +22,7 @@ vec3 fetchSky(vec3 dir) {
     return uHasSky != 0 ? textureLod(uSky, equirectUv(dir), 0.0).rgb : vec3(0.0);
 }
 
-#include "components/reflection_probe/shaders/distance_lookup.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_lookup.glsl.h"
 
 void main() {
     // Probe-local space: the lookup never sees world coordinates.

@@ -19,7 +19,7 @@
 #ifndef SPECULA_DISTANCE_LOOKUP_GLSL_H
 #define SPECULA_DISTANCE_LOOKUP_GLSL_H
 
-#include "components/reflection_probe/shaders/distance_lookup_types.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_lookup_types.glsl.h"
 
 bool isInfiniteDistance(float d, float dInf) {
     return d >= 0.5f * dInf;

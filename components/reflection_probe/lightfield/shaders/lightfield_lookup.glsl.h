@@ -2,7 +2,7 @@
 // Yang, McMillan 2005 (DESIGN §5). The C++ copy is the CPU twin the tests hold the shader to.
 //
 // Positions are cell-local (origin at the cell centre). The atlas layout is described in
-// components/reflection_probe/lightfield_asset.h. The includer provides:
+// components/reflection_probe/lightfield/lightfield_asset.h. The includer provides:
 //   vec3  fetchAtlas(int slab, vec2 texel)   bilinear RGB of layer `slab` at atlas texel
 //                                            coordinates (texel centres at i + 0.5)
 //   float slabDisparity(int slab)            focal-plane disparity, pixels per camera step

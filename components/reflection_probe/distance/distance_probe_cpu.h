@@ -3,7 +3,7 @@
 // (shaders/distance_lookup.glsl.h), compiled as C++ over the cooked images, with texture
 // fetches that read what the GPU reads (bilinear radiance, nearest distance, clamp to the
 // face edge). Tests hold the shader to it pixel by pixel.
-#include "components/reflection_probe/distance_lookup_config.h"
+#include "components/reflection_probe/distance/distance_lookup_config.h"
 
 #include <memory>
 

@@ -30,7 +30,7 @@ vec3 fetchAtlas(int slab, vec2 texel) {
 
 float slabDisparity(int slab) { return uDisparity[slab]; }
 
-#include "components/reflection_probe/shaders/lightfield_lookup.glsl.h"
+#include "components/reflection_probe/lightfield/shaders/lightfield_lookup.glsl.h"
 
 void main() {
     LightFieldParams prm;

@@ -3,6 +3,7 @@
 // layer is a float EXR of N x 6N pixels, the six faces stacked top to bottom in OpenGL order
 // (+X -X +Y -Y +Z -Z, each face's row 0 first), RGB radiance and A the Euclidean distance
 // from the probe centre (d_inf where the layer sees nothing).
+#include "components/reflection_probe/manifest_fields.h"
 #include "engine/image/image.h"
 
 #include <array>
@@ -14,8 +15,6 @@
 #include <glm/vec3.hpp>
 
 namespace specula {
-
-inline constexpr int kProbeFormatVersion = 1;
 
 // Largest radiance a cooked probe may hold (layers and sky). 65504 is the largest half
 // float: HDR panoramas are commonly stored as half EXR, so no real sky is brighter, and
@@ -39,6 +38,7 @@ struct DistanceProbeLayer {
 };
 
 struct DistanceProbeAsset {
+    std::string manifestPath; // where it was read from (names it in errors); empty if cooked
     glm::vec3 centre{0.f};
     float range = 0.f; // D
     float dInf = 0.f;
@@ -51,12 +51,6 @@ struct DistanceProbeAsset {
 
     int objectLayerCount() const { return int(layers.size()) - 1; }
 };
-
-// FNV-1a 64-bit of a file's bytes as "fnv1a64:<16 hex digits>". Only a regular file of at
-// most maxBytes is read (never a FIFO, device or directory). Throws Error naming the file.
-std::string fileChecksum(const std::string& path, std::uint64_t maxBytes = 16ull << 30);
-// The same checksum of bytes in memory.
-std::string bytesChecksum(const void* data, std::size_t size);
 
 // Solid angle (steradians) of texel (x, y) of an n x n cube face.
 double cubeTexelSolidAngle(int x, int y, int n);
@@ -86,9 +80,8 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
 // writeDistanceProbe runs the same content checks before writing.
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath);
 
-// readDistanceProbe on manifest text already in memory (the fuzzer's entry point):
-// `manifestPath` names the manifest in errors and locates the images beside it.
-DistanceProbeAsset parseDistanceProbe(const std::string& manifestText,
-                                      const std::string& manifestPath);
+// readDistanceProbe on a manifest already parsed (the system reads each manifest once; the
+// fuzzer parses text in memory): its path names it in errors and locates the images.
+DistanceProbeAsset readDistanceProbe(const ProbeManifest& manifest);
 
 } // namespace specula

@@ -48,7 +48,7 @@ struct LightFieldFetches {
 // The shared lookup is included inside a struct so its calls to fetchAtlas and
 // slabDisparity bind to the members above.
 struct LightFieldTwin : LightFieldFetches {
-#include "components/reflection_probe/shaders/lightfield_lookup.glsl.h"
+#include "components/reflection_probe/lightfield/shaders/lightfield_lookup.glsl.h"
 };
 
 } // namespace glsl

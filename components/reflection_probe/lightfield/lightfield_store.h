@@ -1,0 +1,67 @@
+#pragma once
+// The GPU side of light-field-slab probes: the six slab atlases as one texture array, the
+// per-slab disparities as uniforms, the environment drawn from the slabs on request, and a
+// warning when a reflector leaves the cell the light field is exact in.
+#include "components/reflection_probe/flavour_store_base.h"
+#include "components/reflection_probe/lightfield/lightfield_asset.h"
+#include "components/reflection_probe/lightfield/lightfield_probe.h"
+#include "components/reflection_probe/shader_variants.h"
+#include "engine/gpu/gl_objects.h"
+
+#include <array>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace specula {
+
+struct LightFieldProbeGpu {
+    std::string manifestPath;
+    std::shared_ptr<const LightFieldAsset> asset;
+    gpu::Texture atlas;
+};
+
+struct LightFieldVariant {
+    bool fresnel = false;
+    bool background = false; // the full-screen environment pass
+    int output = 0;
+
+    auto operator<=>(const LightFieldVariant&) const = default;
+    // The background pass and the twin-input outputs write no reflector colour: no Fresnel.
+    LightFieldVariant filter() const;
+    std::string name() const;
+    gpu::Program build() const;
+};
+
+class LightFieldStore final : public FlavourStoreBase<LightFieldProbe, LightFieldProbeGpu> {
+public:
+    std::string_view flavour() const override { return "lightfield"; }
+    std::string_view settingsName() const override { return "LightFieldProbe"; }
+
+    // The cooked asset of a synced probe (null if none) and the disparities its shader uses
+    // now (the settings' override when set, else the cooked per-slab values).
+    const LightFieldAsset* asset(ecs::Entity probe) const;
+    std::array<float, 6> disparities(ecs::Entity probe) const;
+
+    void drawBackground(const ProbeDrawContext& ctx) override;
+
+private:
+    LightFieldProbeGpu loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) override;
+    void applySettings(LightFieldProbeGpu&, const LightFieldProbe&, ProbeFrameStats&) override {
+        // disparity and background are uniforms and a pass set at draw time: nothing to do
+    }
+    std::size_t gpuBytesOf(const LightFieldProbeGpu& probe) const override;
+    void drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector, const Reflector& r,
+                       const LightFieldProbeGpu& probe, const LightFieldProbe& settings) override;
+
+    void bind(gpu::Program& prog, const LightFieldProbeGpu& p, const LightFieldProbe& s) const;
+    void checkCell(const ProbeDrawContext& ctx, ecs::Entity reflector, const LightFieldProbeGpu& p);
+
+    std::unordered_map<std::string, std::weak_ptr<const LightFieldAsset>> assetCache_;
+    std::unordered_set<ecs::Entity> warnedOutside_; // reflectors already logged as outside
+    gpu::VertexArray emptyVao_;                     // the background pass draws no attributes
+    ShaderVariants<LightFieldVariant> variants_;
+};
+
+} // namespace specula

@@ -1,0 +1,28 @@
+#pragma once
+// Compiled shader variants of one flavour, keyed by a typed variant (Filament's Variant
+// idea): a small ordered struct whose filter() drops what the variant cannot use, so two
+// requests that differ only in irrelevant bits share one program. A Variant provides
+//   Variant filter() const;                          canonical form
+//   std::string name() const;                        for stats and logs
+//   gpu::Program build() const;                      sources + defines
+// and operator<=>. Built on first use, kept for the system's lifetime.
+#include "engine/gpu/shader.h"
+
+#include <map>
+
+namespace specula {
+
+template <typename Variant> class ShaderVariants {
+public:
+    gpu::Program& get(const Variant& requested) {
+        const Variant v = requested.filter();
+        auto it = programs_.find(v);
+        if (it == programs_.end()) it = programs_.emplace(v, v.build()).first;
+        return it->second;
+    }
+
+private:
+    std::map<Variant, gpu::Program> programs_;
+};
+
+} // namespace specula
