@@ -57,8 +57,8 @@ auto bakeShared(const CookOptions& o, const std::string& label, BakeOptions& b, 
     return asset;
 }
 
-void cookDistance(ProbeScene& scene, const CookOptions& o, const DistanceCookSettings& s,
-                  CookResult& result, std::ostream* log) {
+void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSettings& s,
+              CookResult& result, std::ostream* log) {
     const auto start = Clock::now();
     DistanceBakeOptions b;
     b.centre = o.probeCentre ? *o.probeCentre
@@ -84,8 +84,8 @@ void cookDistance(ProbeScene& scene, const CookOptions& o, const DistanceCookSet
     result.asset = std::move(asset);
 }
 
-void cookLightField(ProbeScene& scene, const CookOptions& o, const LightFieldCookSettings& s,
-                    CookResult& result, std::ostream* log) {
+void cookWith(ProbeScene& scene, const CookOptions& o, const LightFieldCookSettings& s,
+              CookResult& result, std::ostream* log) {
     const auto start = Clock::now();
     LightFieldBakeOptions b;
     b.cellCentre = s.cellCentre    ? *s.cellCentre
@@ -110,15 +110,8 @@ void cookLightField(ProbeScene& scene, const CookOptions& o, const LightFieldCoo
 
 CookResult cookPrepared(ProbeScene& scene, const CookOptions& o, std::ostream* log) {
     CookResult result;
-    std::visit(
-        [&](const auto& settings) {
-            using Settings = std::decay_t<decltype(settings)>;
-            if constexpr (std::is_same_v<Settings, DistanceCookSettings>)
-                cookDistance(scene, o, settings, result, log);
-            else
-                cookLightField(scene, o, settings, result, log);
-        },
-        o.flavour);
+    // One cookWith overload per flavour's settings: a flavour adds its overload, no branch.
+    std::visit([&](const auto& settings) { cookWith(scene, o, settings, result, log); }, o.flavour);
     result.manifest = (std::filesystem::path(o.out) / "manifest.json").string();
     return result;
 }

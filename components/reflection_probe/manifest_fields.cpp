@@ -170,4 +170,10 @@ std::string ManifestFields::probeFlavour(const json& m, int version) const {
     return string(m, "flavour", "");
 }
 
+void ManifestFields::expectFlavour(const json& m, std::string_view flavour) const {
+    if (const std::string f = probeFlavour(m, kProbeFormatVersion); f != flavour)
+        throw Error(file, "flavour",
+                    "expected \"" + std::string(flavour) + "\", got \"" + f + "\"");
+}
+
 } // namespace specula

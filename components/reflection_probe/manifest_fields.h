@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
@@ -88,6 +89,9 @@ struct ManifestFields {
     // The "flavour" of a Specula probe manifest ("format": "specula-probe") of format
     // `version`; a manifest of another format or version is refused naming that field.
     std::string probeFlavour(const nlohmann::json& manifest, int version) const;
+    // probeFlavour of this build's version, which must be `flavour` (every flavour's reader
+    // opens with it, so all refuse a foreign manifest with the same message).
+    void expectFlavour(const nlohmann::json& manifest, std::string_view flavour) const;
     // Runs `read` on a file the manifest names; an Error it throws (the file is missing, a
     // FIFO, a directory, a symlink loop...) is re-thrown naming the manifest and the field
     // as well.

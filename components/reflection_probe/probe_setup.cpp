@@ -7,7 +7,10 @@
 #include "engine/scene/components.h"
 #include "engine/scene/transform_system.h"
 
+#include <cmath>
 #include <filesystem>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace specula {
 
@@ -28,6 +31,56 @@ ecs::Entity attachProbeComponents(ecs::Registry& registry, const SceneMarkup& ma
         for (ecs::Entity mesh : r.meshes)
             registry.emplace<Reflector>(mesh, Reflector{e, r.f0});
     return e;
+}
+
+CameraView orbitCameraView(glm::vec3 centre, int width, int height, float angle, float distance,
+                           float heightAbove) {
+    const glm::vec3 eye =
+        centre + glm::vec3(distance * std::sin(angle), heightAbove, distance * std::cos(angle));
+    return CameraView::lookAt(eye, centre, glm::vec3(0, 1, 0), glm::radians(50.f), width, height);
+}
+
+CameraView sceneCameraView(const ProbeScene& scene, int width, int height) {
+    for (ecs::Entity e : scene.loaded.entities) {
+        const Camera* cam = scene.registry.find<Camera>(e);
+        const Transform* t = scene.registry.find<Transform>(e);
+        if (!cam || !t) continue;
+        CameraView v;
+        // The camera looks down its local -Z; the view matrix is the inverse of its world.
+        v.view = glm::inverse(t->world);
+        v.proj = glm::perspective(cam->yfov, float(width) / float(height), cam->znear, cam->zfar);
+        v.width = width;
+        v.height = height;
+        return v;
+    }
+    return orbitCameraView(markupProbeCentre(scene.registry, scene.markup, scene.loaded), width,
+                           height, 0.f, 3.5f, 0.6f);
+}
+
+ReflectorRoots::ReflectorRoots(const ProbeScene& scene) {
+    for (const ReflectorMarkup& r : scene.markup.reflectors)
+        for (ecs::Entity e : scene.loaded.entities)
+            if (const Name* n = scene.registry.find<Name>(e); n && n->value == r.node)
+                if (const Transform* t = scene.registry.find<Transform>(e))
+                    roots_.emplace_back(e, t->translation);
+}
+
+void ReflectorRoots::setOffset(ecs::Registry& registry, glm::vec3 offset) {
+    offset_ = offset;
+    for (const auto& [e, authored] : roots_)
+        registry.get<Transform>(e).translation = authored + offset;
+    updateWorldTransforms(registry);
+}
+
+GroundTruthImage traceGroundTruth(ProbeScene& scene, const CameraView& camera,
+                                  bool environmentOnly) {
+    TraceOptions o;
+    o.environmentOnly = environmentOnly;
+    o.mirrors = scene.markup.mirrorEntities;
+    o.sky = scene.sky.empty() ? nullptr : &scene.sky;
+    // Probes reflect at most once; the full ground truth follows a few bounces.
+    o.maxBounces = environmentOnly ? 1 : 4;
+    return GroundTruthTracer(scene.registry, std::move(o)).render(camera);
 }
 
 CookedProbeFacts readCookedProbeFacts(const std::string& manifestPath) {

@@ -45,4 +45,9 @@ std::string formatPsnr(double psnr, int decimals = 2);
 // linear RGB, ready for writeImage.
 Image errorHeatmap(const Image& a, const Image& b, const Image* mask, float maxError);
 
+// The pixels of a 1-channel mask (channel 0 > 0.5) whose 3x3 neighbourhood lies inside the
+// image and is all mask: two renderers may disagree on which silhouette pixels an object
+// covers, never on its interior.
+Image erodedMask(const Image& mask);
+
 } // namespace specula

@@ -120,20 +120,4 @@ glm::vec3 walkOffset(WalkPath path, float t, float amplitude) {
     return glm::vec3(0.f);
 }
 
-Image erodedMask(const Image& mask) {
-    Image out(mask.width, mask.height, 1);
-    for (int y = 0; y < mask.height; ++y)
-        for (int x = 0; x < mask.width; ++x) {
-            bool all = true;
-            for (int dy = -1; dy <= 1 && all; ++dy)
-                for (int dx = -1; dx <= 1 && all; ++dx) {
-                    const int xx = x + dx, yy = y + dy;
-                    all = xx >= 0 && yy >= 0 && xx < mask.width && yy < mask.height &&
-                          mask.at(xx, yy)[0] > 0.5f;
-                }
-            out.at(x, y)[0] = all ? 1.f : 0.f;
-        }
-    return out;
-}
-
 } // namespace specula

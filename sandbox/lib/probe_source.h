@@ -1,7 +1,7 @@
 #pragma once
 // What walk and bench start from: a scene (.gltf/.glb, baked here into a probe) or a cooked
 // manifest (its scene found through the manifest's "source"). Plus the small helpers both
-// subcommands share: the reflector path inside the cell and the reflector-pixel mask.
+// subcommands share: the reflector path inside the cell.
 #include "assetcooker/lib/cook.h"
 #include "engine/image/image.h"
 #include "sandbox/lib/reflection_scene.h"
@@ -49,9 +49,5 @@ enum class WalkPath { Orbit, Line, Figure8 };
 bool parseWalkPath(const std::string& s, WalkPath& out);
 const char* toString(WalkPath p);
 glm::vec3 walkOffset(WalkPath path, float t, float amplitude);
-
-// Mirror pixels whose 3x3 neighbourhood is all mirror: the rasteriser and the tracer may
-// disagree on which silhouette pixels a reflector covers, never on its interior.
-Image erodedMask(const Image& mask);
 
 } // namespace specula

@@ -54,19 +54,14 @@ public:
     }
     ecs::Entity probeEntity() const { return probe_; }
     // Edits the probe in place when it holds settings of this flavour (the system sees an
-    // edit); otherwise attaches a new one.
+    // edit); otherwise attaches a new one (setProbeComponents).
     template <typename Settings> void setProbe(const std::string& asset, const Settings& settings) {
-        if (probe_.isNull() || !scene_.registry.has<Settings>(probe_)) {
-            attachProbe(asset, settings);
-            return;
-        }
-        scene_.registry.get<ReflectionProbe>(probe_).asset = asset;
-        scene_.registry.get<Settings>(probe_) = settings;
+        probe_ = setProbeComponents(scene_.registry, scene_.markup, probe_, asset, settings);
     }
 
     // Moves every reflector node to its authored position + offset (world space).
     void setReflectorOffset(glm::vec3 offset);
-    glm::vec3 reflectorOffset() const { return offset_; }
+    glm::vec3 reflectorOffset() const { return reflectors_.offset(); }
     // World position of the first reflector node (authored + offset); the probe centre when
     // the scene has no reflector.
     glm::vec3 reflectorPosition() const;
@@ -80,8 +75,7 @@ public:
 private:
     ProbeScene scene_;
     ecs::Entity probe_ = ecs::kNullEntity;
-    glm::vec3 offset_{0.f};
-    std::vector<std::pair<ecs::Entity, glm::vec3>> reflectorRoots_; // entity, authored position
+    ReflectorRoots reflectors_;
 };
 
 } // namespace specula

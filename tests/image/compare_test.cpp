@@ -190,5 +190,25 @@ TEST(ErrorHeatmap, RampAndMask) {
     EXPECT_FLOAT_EQ(h.at(2, 0)[1], h.at(2, 0)[2]);
 }
 
+TEST(ErodedMask, KeepsTheInteriorOnly) {
+    // A 4x3 block in a 6x5 mask: only its two middle pixels have a full 3x3 neighbourhood.
+    Image mask(6, 5, 1);
+    for (int y = 1; y <= 3; ++y)
+        for (int x = 1; x <= 4; ++x)
+            mask.at(x, y)[0] = 1.f;
+    const Image e = erodedMask(mask);
+    ASSERT_EQ(e.channels, 1);
+    for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 6; ++x)
+            EXPECT_EQ(e.at(x, y)[0], y == 2 && (x == 2 || x == 3) ? 1.f : 0.f) << x << "," << y;
+    // The image border counts as outside: an all-mask image keeps its inner pixels only.
+    Image full(3, 3, 1);
+    for (float& v : full.pixels)
+        v = 1.f;
+    const Image f = erodedMask(full);
+    EXPECT_EQ(f.at(1, 1)[0], 1.f);
+    EXPECT_EQ(f.at(0, 1)[0], 0.f);
+}
+
 } // namespace
 } // namespace specula

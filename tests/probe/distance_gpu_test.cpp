@@ -29,7 +29,7 @@ TEST_F(RoomProbe, ShaderMatchesCpuTwinPerPixel) {
     // evaluate with approximations (llvmpipe ~1e-5 rad); on the high-frequency panorama that
     // moves the bilinear sample by a fraction of a texel, hence the looser sky bound.
     const CameraView cam = scene_->camera(kWidth, kHeight);
-    const Image mask = test::erodedMask(scene_->groundTruth(cam, true).mirrorMask);
+    const Image mask = erodedMask(scene_->groundTruth(cam, true).mirrorMask);
     for (DistanceMethod m : kMethods) {
         useProbe(probeFor(m));
         const test::TwinAgreement t = test::compareWithTwin(*renderer_, *scene_, cam, mask);
@@ -50,7 +50,7 @@ TEST_F(RoomProbe, RectificationBeatsEnvmapAndBoxProjAgainstGroundTruth) {
     const CameraView cam = scene_->camera(kWidth, kHeight);
     const GroundTruthImage envOnly = scene_->groundTruth(cam, true);
     const GroundTruthImage full = scene_->groundTruth(cam, false);
-    const Image mask = test::erodedMask(envOnly.mirrorMask);
+    const Image mask = erodedMask(envOnly.mirrorMask);
     double psnr[6] = {};
     for (int i = 0; i < 6; ++i) {
         useProbe(probeFor(kMethods[i]));
@@ -83,7 +83,7 @@ TEST_F(RoomProbe, LayersShowOcclusionAndParallaxLikeTheGroundTruth) {
         scene_->setReflectorOffset(offsets[i]);
         const GroundTruthImage gt = scene_->groundTruth(cam, true);
         truth[i] = gt.color;
-        mask[i] = test::erodedMask(gt.mirrorMask);
+        mask[i] = erodedMask(gt.mirrorMask);
         probeImg[i] = renderer_->render(cam);
         useProbe(probeFor(DistanceMethod::Envmap));
         const Image env = renderer_->render(cam);

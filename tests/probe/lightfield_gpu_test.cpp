@@ -3,15 +3,14 @@
 // projection baselines. Default size NUM = 8, RES = 64 keeps every bake under a second.
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/lightfield_bake.h"
+#include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "components/reflection_probe/lightfield/lightfield_store.h"
 #include "engine/core/error.h"
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"
 #include "engine/image/image_io.h"
-#include "probe_fixture.h"
-#include "sandbox/lib/frame_renderer.h"
-#include "sandbox/lib/reflection_scene.h"
+#include "support/probe_room.h"
 
 #include <gtest/gtest.h>
 
@@ -21,6 +20,8 @@
 #include <fstream>
 
 using namespace specula;
+using test::ProbeRoom;
+using test::RoomRenderer;
 
 namespace {
 
@@ -30,7 +31,7 @@ protected:
 
     static void SetUpTestSuite() {
         context_ = gpu::GlContext::createHeadless().release();
-        scene_ = new ReflectionScene(defaultScenePath(), defaultSkyPath());
+        scene_ = new ProbeRoom(test::kRoomScene, test::kRoomSky);
         dir_ = (std::filesystem::temp_directory_path() /
                 ("specula-lf-test-" + std::to_string(::getpid())))
                    .string();
@@ -41,7 +42,7 @@ protected:
         o.reflectorReach = scene_->reflectorReach();
         writeDistanceProbe(bakeDistanceProbe(scene_->registry(), scene_->markup(), o),
                            dir_ + "/distance", scene_->path());
-        renderer_ = new FrameRenderer(*scene_, kWidth, kHeight);
+        renderer_ = new RoomRenderer(*scene_, kWidth, kHeight);
     }
     static void TearDownTestSuite() {
         delete renderer_;
@@ -105,14 +106,14 @@ protected:
     }
 
     static gpu::GlContext* context_;
-    static ReflectionScene* scene_;
-    static FrameRenderer* renderer_;
+    static ProbeRoom* scene_;
+    static RoomRenderer* renderer_;
     static std::string dir_;
 };
 
 gpu::GlContext* LightFieldRoom::context_ = nullptr;
-ReflectionScene* LightFieldRoom::scene_ = nullptr;
-FrameRenderer* LightFieldRoom::renderer_ = nullptr;
+ProbeRoom* LightFieldRoom::scene_ = nullptr;
+RoomRenderer* LightFieldRoom::renderer_ = nullptr;
 std::string LightFieldRoom::dir_;
 
 } // namespace
@@ -122,7 +123,7 @@ TEST_F(LightFieldRoom, ShaderMatchesCpuTwinPerPixel) {
     // read back as float32) over the same texels. Differences left: the GPU's 8-bit bilinear
     // weights and its BC1 palette rounding. Bounds: 99 % of pixels within 4e-3, mean 1e-3.
     const CameraView cam = scene_->camera(kWidth, kHeight);
-    const Image mask = test::erodedMask(scene_->groundTruth(cam, true).mirrorMask);
+    const Image mask = erodedMask(scene_->groundTruth(cam, true).mirrorMask);
     for (LightFieldCompression c : {LightFieldCompression::None, LightFieldCompression::BC1}) {
         use(lightFieldProbe(lightField(8, 64, c)));
         const Image colour = renderer_->render(cam, 0);
@@ -155,7 +156,7 @@ TEST_F(LightFieldRoom, ShaderMatchesCpuTwinPerPixel) {
 TEST_F(LightFieldRoom, BeatsEnvmapAndBoxProjAndImprovesWithNumResAndFocus) {
     const CameraView cam = scene_->camera(kWidth, kHeight);
     const GroundTruthImage truth = scene_->groundTruth(cam, true);
-    const Image mask = test::erodedMask(truth.mirrorMask);
+    const Image mask = erodedMask(truth.mirrorMask);
     const double envmap = psnr(distanceProbe(DistanceMethod::Envmap), truth, mask, cam);
     const double boxproj = psnr(distanceProbe(DistanceMethod::BoxProj), truth, mask, cam);
     const double lf = psnr(lightFieldProbe(lightField(8, 64)), truth, mask, cam);
@@ -189,7 +190,7 @@ TEST_F(LightFieldRoom, ParallaxFollowsTheGroundTruthAtThreePositions) {
     for (const glm::vec3& off : offsets) {
         scene_->setReflectorOffset(off);
         const GroundTruthImage truth = scene_->groundTruth(cam, true);
-        const Image mask = test::erodedMask(truth.mirrorMask);
+        const Image mask = erodedMask(truth.mirrorMask);
         const double lf = psnr(lightFieldProbe(lightField(16, 64)), truth, mask, cam);
         const double envmap = psnr(distanceProbe(DistanceMethod::Envmap), truth, mask, cam);
         std::printf("offset %.2f,%.2f,%.2f: light field %.2f dB, envmap %.2f dB\n", off.x, off.y,
@@ -298,7 +299,7 @@ TEST_F(LightFieldRoom, MeasurementTable) {
     if (!std::getenv("SPECULA_LF_MEASURE")) GTEST_SKIP() << "set SPECULA_LF_MEASURE=1";
     const CameraView cam = scene_->camera(kWidth, kHeight);
     const GroundTruthImage truth = scene_->groundTruth(cam, true);
-    const Image mask = test::erodedMask(truth.mirrorMask);
+    const Image mask = erodedMask(truth.mirrorMask);
     std::printf("envmap %.2f dB, boxproj %.2f dB, bisection %.2f dB\n",
                 psnr(distanceProbe(DistanceMethod::Envmap), truth, mask, cam),
                 psnr(distanceProbe(DistanceMethod::BoxProj), truth, mask, cam),

@@ -34,7 +34,7 @@ TEST_F(RoomProbe, ParameterEditsRewriteTheBlockAndOnlyAnAssetUploadsTextures) {
     const std::string copyManifest = (copy / "manifest.json").string();
 
     const CameraView cam = scene_->camera(kWidth, kHeight);
-    const Image mask = test::erodedMask(scene_->groundTruth(cam, true).mirrorMask);
+    const Image mask = erodedMask(scene_->groundTruth(cam, true).mirrorMask);
     const ProbeFrameStats& stats = renderer_->probes().stats();
 
     // First sync of the asset, layered (every cube layer on the GPU): one upload set.

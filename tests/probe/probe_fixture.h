@@ -1,12 +1,13 @@
 #pragma once
 // The default room with its distance probe baked once per test binary (face resolution 128
 // keeps the bake under a few seconds), a headless GL context, and a frame renderer.
+// Components, engine and the cooking API only: no sandbox code.
+#include "assetcooker/lib/cook.h"
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/distance/distance_store.h"
 #include "engine/gpu/context.h"
-#include "sandbox/lib/frame_renderer.h"
-#include "sandbox/lib/probe_source.h"
-#include "sandbox/lib/reflection_scene.h"
+#include "engine/image/compare.h"
+#include "support/probe_room.h"
 
 #include <gtest/gtest.h>
 
@@ -21,7 +22,7 @@ protected:
 
     static void SetUpTestSuite() {
         context_ = gpu::GlContext::createHeadless().release();
-        scene_ = new ReflectionScene(defaultScenePath(), defaultSkyPath());
+        scene_ = new ProbeRoom(kRoomScene, kRoomSky);
         dir_ = (std::filesystem::temp_directory_path() /
                 ("specula-probe-test-" + std::to_string(::getpid())))
                    .string();
@@ -30,8 +31,12 @@ protected:
         DistanceCookSettings s;
         s.faceRes = faceRes ? std::atoi(faceRes) : 128;
         s.planned = s.recordPlan = false;
-        cookSceneInto(*scene_, dir_, s, false, nullptr);
-        renderer_ = new FrameRenderer(*scene_, kWidth, kHeight);
+        CookOptions o;
+        o.out = dir_;
+        o.flavour = s;
+        o.progress = false;
+        cookProbe(scene_->probeScene(), o, nullptr);
+        renderer_ = new RoomRenderer(*scene_, kWidth, kHeight);
     }
     static void TearDownTestSuite() {
         delete renderer_;
@@ -53,18 +58,14 @@ protected:
     }
 
     static gpu::GlContext* context_;
-    static ReflectionScene* scene_;
-    static FrameRenderer* renderer_;
+    static ProbeRoom* scene_;
+    static RoomRenderer* renderer_;
     static std::string dir_;
 };
 
 inline gpu::GlContext* RoomProbe::context_ = nullptr;
-inline ReflectionScene* RoomProbe::scene_ = nullptr;
-inline FrameRenderer* RoomProbe::renderer_ = nullptr;
+inline ProbeRoom* RoomProbe::scene_ = nullptr;
+inline RoomRenderer* RoomProbe::renderer_ = nullptr;
 inline std::string RoomProbe::dir_;
-
-// Mirror pixels away from the silhouette: the sandbox's own mask (rasteriser and tracer may
-// disagree on which pixels a silhouette covers, never on the interior).
-using specula::erodedMask;
 
 } // namespace specula::test

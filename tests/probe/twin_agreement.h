@@ -4,8 +4,8 @@
 // float32), the twin runs on exactly those inputs with the configuration the system holds
 // now, and the two are compared on the mirror pixels of `mask`.
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
-#include "sandbox/lib/frame_renderer.h"
-#include "sandbox/lib/reflection_scene.h"
+#include "components/reflection_probe/distance/distance_store.h"
+#include "support/probe_room.h"
 
 #include <algorithm>
 
@@ -24,7 +24,7 @@ struct TwinAgreement {
     double mean() const { return layerPx ? sum / double(layerPx) : 0.0; }
 };
 
-inline TwinAgreement compareWithTwin(FrameRenderer& renderer, const ReflectionScene& scene,
+inline TwinAgreement compareWithTwin(RoomRenderer& renderer, const ProbeRoom& scene,
                                      const CameraView& cam, const Image& mask) {
     TwinAgreement a;
     a.colour = renderer.render(cam, 0);

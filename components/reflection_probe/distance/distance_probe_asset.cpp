@@ -303,12 +303,11 @@ DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {
 }
 
 DistanceProbeAsset readDistanceProbe(const ProbeManifest& manifest) {
+    const ManifestFields r{manifest.path};
+    r.expectFlavour(manifest.json, "distance");
     const std::string& manifestPath = manifest.path;
     const json& m = manifest.json;
-    const ManifestFields r{manifestPath};
     const fs::path dir = fs::path(manifestPath).parent_path();
-    if (r.probeFlavour(m, kProbeFormatVersion) != "distance")
-        throw Error(manifestPath, "flavour", "expected \"distance\"");
 
     DistanceProbeAsset a;
     a.manifestPath = manifestPath;

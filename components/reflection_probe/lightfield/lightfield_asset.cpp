@@ -187,12 +187,11 @@ LightFieldAsset readLightFieldProbe(const std::string& manifestPath) {
 }
 
 LightFieldAsset readLightFieldProbe(const ProbeManifest& manifest) {
+    const ManifestFields r{manifest.path};
+    r.expectFlavour(manifest.json, "lightfield");
     const std::string& manifestPath = manifest.path;
     const json& m = manifest.json;
-    const ManifestFields r{manifestPath};
     const fs::path dir = fs::path(manifestPath).parent_path();
-    if (const std::string f = r.probeFlavour(m, kProbeFormatVersion); f != "lightfield")
-        throw Error(manifestPath, "flavour", "expected \"lightfield\", got \"" + f + "\"");
 
     LightFieldAsset a;
     const json& cell = r.member(m, "cell", "");

@@ -1,0 +1,163 @@
+#include "pem_infer.h"
+
+#include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "engine/core/error.h"
+#include "engine/core/glsl_host.h"
+#include "engine/math/cube_face.h"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+namespace specula {
+
+namespace {
+
+bool finite(glm::vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+void validate(const PemSamples& samples, const PemInferOptions& o) {
+    if (samples.empty()) throw Error("", "samples", "expected at least one sample, got none");
+    for (std::size_t s = 0; s < samples.size(); ++s) {
+        const PemSample& p = samples[s];
+        const std::string which = "sample " + std::to_string(s);
+        if (!finite(p.x) || !finite(p.l))
+            throw Error("", "samples", which + ": expected a finite ray (x, l)");
+        // The box lookup measures distance along l: a non-unit l would scale the hit.
+        if (!(std::abs(glm::length(p.l) - 1.f) < 1e-3f))
+            throw Error("", "samples", which + ": expected a unit direction l");
+        if (!finite(p.target)) throw Error("", "samples", which + ": expected a finite target");
+    }
+    if (o.faceRes < 1 || o.faceRes > 1024)
+        throw Error("", "face_res", "expected 1 to 1024, got " + std::to_string(o.faceRes));
+    if (!finite(o.boxMin) || !finite(o.boxMax) || !(o.boxMin.x < o.boxMax.x) ||
+        !(o.boxMin.y < o.boxMax.y) || !(o.boxMin.z < o.boxMax.z))
+        throw Error("", "box", "expected finite bounds with min < max on every axis");
+    if (!(o.regularisation >= 0.f) || !std::isfinite(o.regularisation))
+        throw Error("", "regularisation", "expected a finite lambda >= 0");
+    if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance))
+        throw Error("", "tolerance", "expected a finite tolerance > 0");
+    if (o.maxIterations < 1) throw Error("", "max_iterations", "expected at least 1");
+    if (o.warmStart) {
+        bool ok = o.warmStart->size() == std::size_t(PemMap::texelCount(o.faceRes));
+        for (std::size_t t = 0; ok && t < o.warmStart->size(); ++t)
+            ok = finite((*o.warmStart)[t]);
+        if (!ok) throw Error("", "warm_start", "expected 6 * face_res^2 finite texels");
+    }
+}
+
+// Clamp to what a cooked probe may hold; NaN (never expected from finite input) reads 0.
+float toRange(double v) {
+    return v > 0.0 ? float(std::min(v, double(kMaxRadiance))) : 0.f;
+}
+
+} // namespace
+
+std::vector<std::pair<int, int>> pemNeighbourPairs(int faceRes) {
+    const int n = faceRes;
+    auto index = [n](int face, int i, int j) { return (face * n + j) * n + i; };
+    std::vector<std::pair<int, int>> pairs;
+    pairs.reserve(std::size_t(12 * n * n + 12 * n));
+    const int steps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    for (int face = 0; face < 6; ++face)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const int a = index(face, i, j);
+                for (const auto& st : steps) {
+                    const int i2 = i + st[0], j2 = j + st[1];
+                    if (i2 >= 0 && i2 < n && j2 >= 0 && j2 < n) {
+                        if (st[0] + st[1] > 0) pairs.emplace_back(a, index(face, i2, j2));
+                        continue;
+                    }
+                    // One texel step past the edge, on the face's plane extended, folds onto
+                    // the adjacent face's edge row at the same texel along the edge: that
+                    // point's coordinates are those of a texel centre scaled by N / (N + 1),
+                    // which stays inside the texel, so the floor below is exact.
+                    const glm::vec2 uv((float(i2) + 0.5f) / float(n),
+                                       (float(j2) + 0.5f) / float(n));
+                    const glm::vec3 f = glsl::cubeFaceUv(glsl::cubeFaceDirection(face, uv));
+                    const int b = index(int(f.z), std::min(int(f.x * float(n)), n - 1),
+                                        std::min(int(f.y * float(n)), n - 1));
+                    pairs.emplace_back(std::min(a, b), std::max(a, b));
+                }
+            }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    return pairs;
+}
+
+PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
+    validate(samples, o);
+    const auto start = std::chrono::steady_clock::now();
+
+    PemInference r;
+    PemMap& map = r.map;
+    map.faceRes = o.faceRes;
+    map.boxMin = o.boxMin;
+    map.boxMax = o.boxMax;
+    const int texels = PemMap::texelCount(o.faceRes);
+    const PemLookupCpu lookup(map); // weights need the geometry only
+
+    // Rows 0 .. S-1: one per sample, the lookup's weights. Then one row per neighbour pair.
+    using Triplet = Eigen::Triplet<double>;
+    std::vector<Triplet> entries;
+    std::vector<char> seen(std::size_t(texels), 0);
+    PemWeights w;
+    const int sampleRows = int(samples.size());
+    for (int s = 0; s < sampleRows; ++s) {
+        lookup.weights(samples[std::size_t(s)].x, samples[std::size_t(s)].l, w);
+        for (const auto& [t, weight] : w) {
+            entries.emplace_back(s, t, double(weight));
+            seen[std::size_t(t)] = 1;
+        }
+    }
+    r.unseenTexels = int(std::count(seen.begin(), seen.end(), char(0)));
+    int rows = sampleRows;
+    if (o.regularisation > 0.f) {
+        const double lambda = o.regularisation;
+        for (const auto& [a, b] : pemNeighbourPairs(o.faceRes)) {
+            entries.emplace_back(rows, a, lambda);
+            entries.emplace_back(rows, b, -lambda);
+            ++rows;
+        }
+    }
+    Eigen::SparseMatrix<double> A(rows, texels);
+    A.setFromTriplets(entries.begin(), entries.end());
+
+    // The matrix is the same for R, G and B: one preconditioner, three right-hand sides.
+    Eigen::LeastSquaresConjugateGradient<Eigen::SparseMatrix<double>> solver;
+    solver.setTolerance(o.tolerance);
+    solver.setMaxIterations(o.maxIterations);
+    solver.compute(A);
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(rows), guess = Eigen::VectorXd::Zero(texels);
+    map.texels.assign(std::size_t(texels), glm::vec3(0.f));
+    for (int c = 0; c < 3; ++c) {
+        for (int s = 0; s < sampleRows; ++s)
+            b[s] = samples[std::size_t(s)].target[c];
+        if (o.warmStart)
+            for (int t = 0; t < texels; ++t)
+                guess[t] = (*o.warmStart)[std::size_t(t)][c];
+        const Eigen::VectorXd x = solver.solveWithGuess(b, guess);
+        r.iterations[std::size_t(c)] = int(solver.iterations());
+        r.solverError = std::max(r.solverError, double(solver.error()));
+        for (int t = 0; t < texels; ++t)
+            map.texels[std::size_t(t)][c] = toRange(x[t]);
+    }
+
+    // The residual of what will be displayed: the clamped map through the lookup itself.
+    double sum = 0;
+    for (const PemSample& p : samples) {
+        const glm::dvec3 d = glm::dvec3(lookup.radiance(p.x, p.l)) - glm::dvec3(p.target);
+        sum += glm::dot(d, d);
+    }
+    r.residualRms = std::sqrt(sum / (3.0 * double(samples.size())));
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return r;
+}
+
+} // namespace specula

@@ -1,0 +1,60 @@
+#pragma once
+// Inference of one parameterized environment map (Hakura, Snyder, Lengyel 2001, §4 "EM
+// Inference"; DESIGN §5b): rendering is linear in the texels, so the map is the least-squares
+// best match to the ray-traced radiance of the reflector's pixels as the lookup applies it.
+// The rendering matrix A comes from PemLookupCpu::weights, the same code the shader runs;
+// regularisation rows lambda * (t_a - t_b) over every pair of neighbouring texels (across
+// cube edges too) fill the texels no sample sees from their neighbours and keep the rest
+// from ringing. One solve per parameter sample; the samples come from Embree later.
+#include "components/reflection_probe/pem/pem_lookup_cpu.h"
+
+#include <array>
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace specula {
+
+// One reflector pixel at one parameter sample: probe-local reflector point x (inside the
+// map's box), unit reflected direction l, and the radiance the ray tracer saw along it.
+struct PemSample {
+    glm::vec3 x{0.f};
+    glm::vec3 l{0.f, 0.f, 1.f};
+    glm::vec3 target{0.f};
+};
+using PemSamples = std::vector<PemSample>;
+
+struct PemInferOptions {
+    int faceRes = 32;                    // 1 .. 1024
+    glm::vec3 boxMin{-1.f}, boxMax{1.f}; // the map's box geometry, probe-local, min < max
+    // lambda: weight of a neighbour-difference row against a sample row (whose weights sum
+    // to 1). Small, so texels the samples pin follow the data (doubling it moves them by
+    // 0.003 RMS in tests/pem), yet every unseen texel becomes the mean of its neighbours.
+    // 0 leaves unseen texels at the starting guess.
+    float regularisation = 0.02f;
+    double tolerance = 1e-6;  // relative normal-equation residual |A^T r| / |A^T b|, per channel
+    int maxIterations = 2000; // per channel
+    // Start from this map's texels (e.g. the neighbouring parameter sample's); null: black.
+    const std::vector<glm::vec3>* warmStart = nullptr;
+};
+
+struct PemInference {
+    PemMap map;                      // clamped to [0, kMaxRadiance]
+    double residualRms = 0;          // over the samples and RGB, of the clamped map as looked up
+    std::array<int, 3> iterations{}; // conjugate-gradient iterations per channel
+    double solverError = 0;          // largest relative error estimate the solver reported
+    double seconds = 0;              // building A, solving, measuring the residual
+    int unseenTexels = 0;            // texels no sample reads with a weight above zero
+};
+
+// Throws Error naming the field: "samples" (none; a non-finite x, l or target; l not unit),
+// "face_res", "box", "regularisation", "tolerance", "max_iterations", "warm_start".
+PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o);
+
+// Every unordered pair of texels that share a texel edge, within a face or across a cube
+// edge (texel indices as PemMap), each pair once with first < second: 12 N^2 pairs, every
+// texel in exactly four.
+std::vector<std::pair<int, int>> pemNeighbourPairs(int faceRes);
+
+} // namespace specula
