@@ -4,10 +4,12 @@
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 namespace specula::cook {
 
@@ -25,8 +27,12 @@ constexpr const char* kBakeDescription =
     "\n"
     "lightfield (Yu et al. 2005): six slabs around a cubic cell of side L, camera planes on the\n"
     "cell faces extended to 3L, NUM x NUM cameras of RES x RES pixels (90 degree field of view)\n"
-    "each; raw atlases (see lightfield_asset.h) and the focal-plane disparity per slab. The\n"
-    "options of one flavour are refused with the other.\n"
+    "each; raw atlases (see lightfield_asset.h) and the focal-plane disparity per slab.\n"
+    "\n"
+    "pem (Hakura et al. 2001): one box-geometry cube map of R x R x 6 per viewpoint, N viewpoints\n"
+    "t = k/N on the walk's camera orbit, each inferred by least squares from the ray-traced\n"
+    "reflections (self- and inter-reflections included) of S x S rays per reflector pixel; one\n"
+    "float EXR per viewpoint. The options of one flavour are refused with another.\n"
     "\n"
     "A level's bake options can live in a file beside the scene: --config FILE (TOML or INI)\n"
     "with a [bake] section, e.g. face-res = 128; flags on the command line win.\n";
@@ -44,15 +50,19 @@ constexpr const char* kBakeFooter =
 struct BakeArgs {
     std::string scene, out, flavour = "distance";
     std::optional<std::string> probe, sky;
+    // distance and pem
+    std::optional<int> faceRes; // distance: 256, pem: 32
     // distance
-    int faceRes = 256;
     std::string layers = "plan";
     // lightfield
     std::optional<float> cellSize;
     std::optional<std::string> cellCentre;
     int cameras = 8, imageRes = 64;
     std::string compress = "none";
-    // The options that belong to one flavour, with its name.
+    // pem
+    int samples = 8, supersample = 2;
+    std::string parameter = "viewpoint", path = "orbit";
+    // The options that belong to some flavours only, with their names ("distance|pem").
     std::vector<std::pair<const CLI::Option*, std::string>> flavourOnly;
 };
 
@@ -93,9 +103,17 @@ CookOptions cookOptions(const BakeArgs& a) {
         s.compression =
             a.compress == "bc1" ? LightFieldCompression::BC1 : LightFieldCompression::None;
         o.flavour = s;
+    } else if (a.flavour == "pem") {
+        PemCookSettings s;
+        s.samples = a.samples;
+        s.faceRes = a.faceRes.value_or(s.faceRes);
+        s.supersample = a.supersample;
+        s.parameter = a.parameter;
+        s.path = a.path;
+        o.flavour = s;
     } else {
         DistanceCookSettings s;
-        s.faceRes = a.faceRes;
+        s.faceRes = a.faceRes.value_or(s.faceRes);
         s.planned = a.layers == "plan";
         o.flavour = s;
     }
@@ -133,8 +151,8 @@ void printDistanceSummary(const BakeArgs& a, const CookResult& r, double seconds
                           std::ostream& out) {
     const auto& asset = std::get<DistanceProbeAsset>(r.asset);
     out << "baked " << asset.layers.size() << " layers (" << asset.objectLayerCount()
-        << " objects + composite) at " << a.faceRes << "^2 x 6 in " << seconds << " s -> " << a.out
-        << "/manifest.json\n";
+        << " objects + composite) at " << asset.faceRes << "^2 x 6 in " << seconds << " s -> "
+        << a.out << "/manifest.json\n";
     for (std::size_t i = 0; i < asset.layers.size(); ++i) {
         const DistanceProbeLayer& L = asset.layers[i];
         out << "  layer " << i << " " << L.name << ": d-bar " << L.avgDistance << " m, "
@@ -142,12 +160,34 @@ void printDistanceSummary(const BakeArgs& a, const CookResult& r, double seconds
     }
 }
 
-// A flag of one flavour given with the other is refused, not ignored.
+void printPemSummary(const BakeArgs& a, const CookResult& r, double seconds, std::ostream& out) {
+    const auto& asset = std::get<PemAsset>(r.asset);
+    const glm::vec3 box = asset.boxMax - asset.boxMin;
+    out << "baked " << asset.samples.size() << " parameterized environment maps ("
+        << asset.parameterKind << " along " << asset.path << ") at " << asset.faceRes
+        << "^2 x 6, box " << box.x << " x " << box.y << " x " << box.z << " m, bake "
+        << r.bakeSeconds << " s, total " << seconds << " s -> " << a.out << "/manifest.json\n";
+}
+
+// A flag of other flavours is refused, not ignored.
 void refuseOtherFlavoursOptions(const BakeArgs& a) {
-    for (const auto& [option, flavour] : a.flavourOnly)
-        if (option->count() > 0 && flavour != a.flavour)
-            throw UsageError(option->get_name(), "applies to --flavour " + flavour +
+    for (const auto& [option, flavours] : a.flavourOnly) {
+        std::string names = flavours;
+        std::replace(names.begin(), names.end(), '|', ' ');
+        std::istringstream words(names);
+        bool mine = false;
+        for (std::string w; words >> w;)
+            mine = mine || w == a.flavour;
+        if (option->count() > 0 && !mine)
+            throw UsageError(option->get_name(), "applies to --flavour " + flavours +
                                                      " only, not to --flavour " + a.flavour);
+    }
+    // Only the viewpoint along the orbit is cooked so far.
+    if (a.parameter != "viewpoint")
+        throw UsageError("--parameter",
+                         "'" + a.parameter + "' is not implemented yet (only viewpoint is)");
+    if (a.path != "orbit")
+        throw UsageError("--path", "'" + a.path + "' is not implemented yet (only orbit is)");
 }
 
 int runBake(const BakeArgs& a, std::ostream& out) {
@@ -164,6 +204,8 @@ int runBake(const BakeArgs& a, std::ostream& out) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (lightField)
         printLightFieldSummary(a, r, seconds, out);
+    else if (a.flavour == "pem")
+        printPemSummary(a, r, seconds, out);
     else
         printDistanceSummary(a, r, seconds, out);
     return cli::kExitOk;
@@ -193,18 +235,23 @@ void addBakeCommand(cli::ToolCli& tool) {
         ->required()
         ->check(cli::nonEmpty("a folder"));
     sub->add_option("--flavour", a->flavour, "probe flavour")
-        ->check(CLI::IsMember({"distance", "lightfield"}));
+        ->check(CLI::IsMember({"distance", "lightfield", "pem"}));
     sub->add_option("--probe", a->probe, "probe centre in world space (overrides the markup)")
         ->check(cli::vec3Text());
     sub->add_option("--sky", a->sky,
                     "equirectangular panorama for the distant environment (default: black)");
 
     auto only = [&](CLI::Option* o, const char* flavour) {
-        o->group(std::string(flavour) + " options");
+        std::string group = flavour;
+        std::replace(group.begin(), group.end(), '|', '/');
+        o->group(group + " options");
         a->flavourOnly.emplace_back(o, flavour);
         return o;
     };
-    only(sub->add_option("--face-res", a->faceRes, "cube face resolution"), "distance")
+    only(sub->add_option("--face-res", a->faceRes,
+                         "cube face resolution (distance: default 256; pem: default 32, at most "
+                         "1024)"),
+         "distance|pem")
         ->check(CLI::Range(1, 4096));
     only(sub->add_option("--layers", a->layers,
                          "plan: the layers and methods of the effect plan (specula-cook plan); "
@@ -229,6 +276,21 @@ void addBakeCommand(cli::ToolCli& tool) {
                          "none: sRGB RGB8; bc1: DXT1 (bc7 is not supported: no BC7 encoder)"),
          "lightfield")
         ->check(CLI::IsMember({"none", "bc1"}));
+    only(sub->add_option("--samples", a->samples,
+                         "parameter samples: one inferred map per viewpoint t = k/N (default 8)"),
+         "pem")
+        ->check(CLI::Range(1, kMaxPemSamples));
+    only(sub->add_option("--supersample", a->supersample,
+                         "S x S rays per reflector pixel (default 2)"),
+         "pem")
+        ->check(CLI::Range(1, 16));
+    only(sub->add_option("--parameter", a->parameter,
+                         "what the maps vary with: viewpoint (reflector: not implemented yet)"),
+         "pem");
+    only(sub->add_option("--path", a->path,
+                         "the path the parameter runs along: orbit (the walk's camera orbit; "
+                         "others not implemented yet)"),
+         "pem");
 
     // Library code names the fields it read; these are the flags that set them.
     tool.mapField("face_res", "--face-res");
@@ -237,6 +299,8 @@ void addBakeCommand(cli::ToolCli& tool) {
     tool.mapField("cell.size", "--cell-size");
     tool.mapField("cameras", "--cameras");
     tool.mapField("image_res", "--image-res");
+    tool.mapField("samples", "--samples");
+    tool.mapField("supersample", "--supersample");
 }
 
 } // namespace specula::cook

@@ -108,6 +108,19 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const LightFieldCookSetti
     result.asset = std::move(asset);
 }
 
+void cookWith(ProbeScene& scene, const CookOptions& o, const PemCookSettings& s, CookResult& result,
+              std::ostream* log) {
+    validatePemCookSettings(s, scene.path); // before the progress bar: nothing to show
+    const auto start = Clock::now();
+    PemCookHooks b;
+    b.centre = o.probeCentre;
+    PemAsset asset =
+        bakeShared(o, "inferring PEMs", b, result, log, [&] { return cookPemAsset(scene, s, b); });
+    result.bakeSeconds = secondsSince(start);
+    writePemProbe(asset, o.out, scene.path);
+    result.asset = std::move(asset);
+}
+
 CookResult cookPrepared(ProbeScene& scene, const CookOptions& o, std::ostream* log) {
     CookResult result;
     // One cookWith overload per flavour's settings: a flavour adds its overload, no branch.

@@ -5,6 +5,7 @@
 // a cancel requested (cancelRequested) before the commit leaves it as it was and throws
 // Cancelled naming it.
 #include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/pem_samples.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/probe_setup.h"
@@ -36,7 +37,8 @@ struct LightFieldCookSettings {
 };
 
 // The flavour is the settings' type: one flavour's settings cannot reach the other.
-using CookFlavour = std::variant<DistanceCookSettings, LightFieldCookSettings>;
+// Parameterized environment maps: PemCookSettings (pem_samples.h).
+using CookFlavour = std::variant<DistanceCookSettings, LightFieldCookSettings, PemCookSettings>;
 
 struct CookOptions {
     std::string scene;                    // .gltf/.glb; opened by cookProbe(options, log)
@@ -51,7 +53,7 @@ struct CookResult {
     std::string manifest;   // out/manifest.json
     double bakeSeconds = 0; // planning and tracing; without opening the scene and writing
     std::vector<std::string> warnings; // the probe placement's (also written to the log)
-    std::variant<DistanceProbeAsset, LightFieldAsset> asset; // as written
+    std::variant<DistanceProbeAsset, LightFieldAsset, PemAsset> asset; // as written
     // Light field: the cell baked and the reflectors reaching outside it.
     glm::vec3 cellCentre{0.f};
     float cellSize = 0.f;

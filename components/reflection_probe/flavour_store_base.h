@@ -5,9 +5,28 @@
 // -> parameters) and drawReflector; edits are found by comparing settings here.
 #include "components/reflection_probe/probe_flavour.h"
 
+#include <memory>
+#include <string>
 #include <unordered_map>
 
 namespace specula {
+
+// The CPU copy of cooked assets, by manifest path: probes that share an asset share one copy,
+// read once while any probe holds it. Each store keeps one for its flavour's asset type.
+template <typename Asset> class SharedAssets {
+public:
+    // The asset of `manifestPath`, from `read()` when no probe holds it now.
+    template <typename Read>
+    std::shared_ptr<const Asset> get(const std::string& manifestPath, Read read) {
+        std::weak_ptr<const Asset>& cached = cache_[manifestPath];
+        std::shared_ptr<const Asset> asset = cached.lock();
+        if (!asset) cached = asset = std::make_shared<const Asset>(read());
+        return asset;
+    }
+
+private:
+    std::unordered_map<std::string, std::weak_ptr<const Asset>> cache_;
+};
 
 template <typename Settings, typename Probe> class FlavourStoreBase : public ProbeFlavourStore {
 public:

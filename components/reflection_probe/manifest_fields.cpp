@@ -55,6 +55,13 @@ json vec3Json(glm::vec3 v) {
     return json::array({v.x, v.y, v.z});
 }
 
+json probeManifestHeader(std::string_view flavour, const std::string& sourceScene) {
+    return json{{"format", "specula-probe"},
+                {"version", kProbeFormatVersion},
+                {"flavour", std::string(flavour)},
+                {"source", sourceScene}};
+}
+
 std::string readManifestText(const std::string& path) {
     return readRegularFile(path, kMaxManifestBytes);
 }
@@ -144,6 +151,17 @@ std::string ManifestFields::fileInFolder(const json& obj, const std::string& pat
         name.find('/') != std::string::npos)
         throw Error(file, path + "file", "expected a plain file name inside the probe folder");
     return (dir / name).string();
+}
+
+ManifestFields::CheckedFile ManifestFields::checkedFile(const json& obj, const std::string& path,
+                                                        const fs::path& dir,
+                                                        std::uint64_t maxBytes) const {
+    CheckedFile f;
+    f.path = fileInFolder(obj, path, dir);
+    f.name = string(obj, "file", path);
+    f.checksum =
+        checksum(obj, path, namedFile(path, [&] { return fileChecksum(f.path, maxBytes); }));
+    return f;
 }
 
 std::string ManifestFields::checksum(const json& obj, const std::string& path,

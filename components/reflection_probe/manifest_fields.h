@@ -37,6 +37,10 @@ std::string bytesChecksum(const void* data, std::size_t size);
 // A vec3 as the JSON array a manifest stores.
 nlohmann::json vec3Json(glm::vec3 v);
 
+// The members every cooked manifest opens with: "format": "specula-probe", "version":
+// kProbeFormatVersion, "flavour" and "source" (the scene it was baked from).
+nlohmann::json probeManifestHeader(std::string_view flavour, const std::string& sourceScene);
+
 // The manifest text at `path`, read as a regular file of at most kMaxManifestBytes.
 std::string readManifestText(const std::string& path);
 
@@ -83,6 +87,16 @@ struct ManifestFields {
     // The file named at path + "file": a plain name inside `dir`. Returns dir / name.
     std::string fileInFolder(const nlohmann::json& obj, const std::string& path,
                              const std::filesystem::path& dir) const;
+    // The file named at path + "file" (fileInFolder) with its bytes (at most maxBytes, a
+    // regular file) checked against path + "checksum"; a file that cannot be read is an
+    // error naming path + "file" (namedFile).
+    struct CheckedFile {
+        std::string path;     // dir / name
+        std::string name;     // as the manifest names it
+        std::string checksum; // as the manifest stores it (and the file has)
+    };
+    CheckedFile checkedFile(const nlohmann::json& obj, const std::string& path,
+                            const std::filesystem::path& dir, std::uint64_t maxBytes) const;
     // Compares the checksum stored at path + "checksum" with `actual`; returns the stored one.
     std::string checksum(const nlohmann::json& obj, const std::string& path,
                          const std::string& actual) const;

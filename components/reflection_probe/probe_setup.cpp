@@ -7,9 +7,11 @@
 #include "engine/scene/components.h"
 #include "engine/scene/transform_system.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace specula {
@@ -57,6 +59,19 @@ CameraView sceneCameraView(const ProbeScene& scene, int width, int height) {
                            height, 0.f, 3.5f, 0.6f);
 }
 
+CameraOrbit sceneCameraOrbit(const ProbeScene& scene) {
+    const glm::vec3 c = markupProbeCentre(scene.registry, scene.markup, scene.loaded);
+    const glm::vec3 e = sceneCameraView(scene, 64, 48).eye() - c;
+    return {std::atan2(e.x, e.z), std::max(0.5f, std::hypot(e.x, e.z)), e.y};
+}
+
+CameraView walkOrbitCameraView(const ProbeScene& scene, int width, int height, float t) {
+    const CameraOrbit o = sceneCameraOrbit(scene);
+    return orbitCameraView(markupProbeCentre(scene.registry, scene.markup, scene.loaded), width,
+                           height, o.angle + 0.4f * std::sin(glm::two_pi<float>() * t), o.distance,
+                           o.height);
+}
+
 ReflectorRoots::ReflectorRoots(const ProbeScene& scene) {
     for (const ReflectorMarkup& r : scene.markup.reflectors)
         for (ecs::Entity e : scene.loaded.entities)
@@ -72,15 +87,20 @@ void ReflectorRoots::setOffset(ecs::Registry& registry, glm::vec3 offset) {
     updateWorldTransforms(registry);
 }
 
-GroundTruthImage traceGroundTruth(ProbeScene& scene, const CameraView& camera,
-                                  bool environmentOnly) {
+TraceOptions groundTruthOptions(const ProbeScene& scene, bool environmentOnly) {
     TraceOptions o;
     o.environmentOnly = environmentOnly;
     o.mirrors = scene.markup.mirrorEntities;
     o.sky = scene.sky.empty() ? nullptr : &scene.sky;
     // Probes reflect at most once; the full ground truth follows a few bounces.
     o.maxBounces = environmentOnly ? 1 : 4;
-    return GroundTruthTracer(scene.registry, std::move(o)).render(camera);
+    return o;
+}
+
+GroundTruthImage traceGroundTruth(ProbeScene& scene, const CameraView& camera,
+                                  bool environmentOnly) {
+    return GroundTruthTracer(scene.registry, groundTruthOptions(scene, environmentOnly))
+        .render(camera);
 }
 
 CookedProbeFacts readCookedProbeFacts(const std::string& manifestPath) {

@@ -64,6 +64,16 @@ CameraView orbitCameraView(glm::vec3 centre, int width, int height, float angleR
                            float distance, float heightAbove);
 CameraView sceneCameraView(const ProbeScene& scene, int width, int height);
 
+// The walk's camera orbit about the probe centre: the scene camera's (sceneCameraView) angle
+// about +Y (0: from +Z), horizontal distance (at least 0.5 m) and height above the centre.
+struct CameraOrbit {
+    float angle = 0.f, distance = 3.5f, height = 0.6f;
+};
+CameraOrbit sceneCameraOrbit(const ProbeScene& scene);
+// The camera of walk frame t in [0, 1) (specula-sandbox walk, the PEM viewpoint parameter):
+// the scene camera's orbit swung by 0.4 sin(2 pi t) radians (+-23 degrees) about its angle.
+CameraView walkOrbitCameraView(const ProbeScene& scene, int width, int height, float t);
+
 // The reflector nodes of the markup (found by name) with their authored translations, to
 // move them all by one world-space offset (the translation is the parent's space, which is
 // world space for root nodes: the reflectors of our scenes).
@@ -86,6 +96,8 @@ private:
 // represents); else up to four bounces.
 GroundTruthImage traceGroundTruth(ProbeScene& scene, const CameraView& camera,
                                   bool environmentOnly);
+// The tracer options traceGroundTruth uses (the markup's mirrors, the sky, the bounces).
+TraceOptions groundTruthOptions(const ProbeScene& scene, bool environmentOnly);
 
 // What a loader needs of a cooked probe before loading it, from one read of its manifest:
 // the flavour that picks the loader, the scene it was baked from and the sky file. The

@@ -3,6 +3,7 @@
 #include "components/reflection_probe/distance/distance_store.h"
 #include "components/reflection_probe/lightfield/lightfield_store.h"
 #include "components/reflection_probe/manifest_fields.h"
+#include "components/reflection_probe/pem/pem_store.h"
 #include "engine/core/error.h"
 
 #include <algorithm>
@@ -17,6 +18,7 @@ void ProbeFrameStats::drew(const std::string& variantName) {
 ReflectionProbeSystem::ReflectionProbeSystem() : timer_(std::make_unique<gpu::GpuTimer>()) {
     addFlavour(std::make_unique<DistanceStore>());
     addFlavour(std::make_unique<LightFieldStore>());
+    addFlavour(std::make_unique<PemStore>());
 }
 
 ReflectionProbeSystem::~ReflectionProbeSystem() = default;

@@ -21,7 +21,8 @@ namespace specula {
 
 class ReflectionProbeSystem {
 public:
-    // Needs a current GL 4.5 context; registers the built-in flavours (distance, light field).
+    // Needs a current GL 4.5 context; registers the built-in flavours (distance, light field,
+    // parameterized environment maps).
     ReflectionProbeSystem();
     ~ReflectionProbeSystem();
 

@@ -11,6 +11,7 @@
 #include "engine/image/contact_sheet.h"
 #include "engine/image/image_io.h"
 #include "sandbox/lib/accuracy_plot.h"
+#include "sandbox/lib/bench_internal.h"
 #include "sandbox/lib/bench_methods.h"
 #include "sandbox/lib/frame_renderer.h"
 #include "sandbox/lib/lightfield_hook.h"
@@ -192,6 +193,25 @@ void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePa
 
 } // namespace
 
+Image measureProbeRow(FrameRenderer& fr, const CameraView& cam, const BenchTruth& truth,
+                      BenchFrameBudget budget, BenchRow& row) {
+    row.msMedian = timeReflectorPass(fr, cam, budget.minFrames, budget.maxFrames, row.frames);
+    Image img = fr.render(cam);
+    const ImageStats env = compareImages(img, truth.env.color, &truth.mask);
+    const ImageStats full = compareImages(img, truth.full.color, &truth.mask);
+    row.psnr = env.psnr, row.rmse = env.rmse;
+    row.psnrFull = full.psnr, row.rmseFull = full.rmse;
+    row.gpuBytes = fr.stats().probeGpuBytes;
+    return img;
+}
+
+void logBenchRow(std::ostream& log, const BenchRow& row) {
+    log << "  " << row.scene << " " << row.method << " " << row.params << ": "
+        << num(row.msMedian, "%.3f") << " ms (x" << num(row.ratioToEnvmap, "%.2f") << "), PSNR "
+        << formatPsnr(row.psnr) << " dB, " << num(row.fetchesPerPixel, "%.2f") << " fetches/px\n"
+        << std::flush;
+}
+
 BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
     BenchReport report;
     report.width = opt.width ? opt.width : opt.quick ? 160 : 1024;
@@ -256,6 +276,8 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
         if (maskCheck.pixels == 0)
             throw Error(scenePath, "camera", "the camera sees no reflector pixel");
 
+        const BenchTruth truth{envTruth, fullTruth, mask};
+        const BenchFrameBudget budget{minFrames, maxFrames};
         FrameRenderer fr(scene, report.width, report.height);
         report.timer = fr.timerSource();
         double envmapMs = std::numeric_limits<double>::quiet_NaN();
@@ -296,13 +318,7 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
                         << e.what() << ")\n";
                     continue;
                 }
-                row.msMedian = timeReflectorPass(fr, cam, minFrames, maxFrames, row.frames);
-                const Image img = fr.render(cam);
-                const ImageStats env = compareImages(img, envTruth.color, &mask);
-                const ImageStats full = compareImages(img, fullTruth.color, &mask);
-                row.psnr = env.psnr, row.rmse = env.rmse;
-                row.psnrFull = full.psnr, row.rmseFull = full.rmse;
-                row.gpuBytes = fr.stats().probeGpuBytes;
+                const Image img = measureProbeRow(fr, cam, truth, budget, row);
                 row.bakeSeconds = lf ? lf->seconds : v.planned ? planBakeSeconds : bakeSeconds;
                 row.fetchesPerPixel = lf ? lf->fetchesPerPixel : countFetches(fr, scene, cam, mask);
                 const std::string key = v.method + " " + v.params;
@@ -310,15 +326,13 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
                 if (v.method == "envmap") envmapMs = row.msMedian;
             }
             row.ratioToEnvmap = row.msMedian / envmapMs;
-            log << "  " << name << " " << row.method << " " << row.params << ": "
-                << num(row.msMedian, "%.3f") << " ms (x" << num(row.ratioToEnvmap, "%.2f")
-                << "), PSNR " << formatPsnr(row.psnr) << " dB, " << num(row.fetchesPerPixel, "%.2f")
-                << " fetches/px\n"
-                << std::flush;
+            logBenchRow(log, row);
             if (v.kind != VariantKind::GroundTruth)
                 panel.points.push_back({row.method, row.params, row.ratioToEnvmap, row.psnr});
             report.rows.push_back(row);
         }
+        appendPemRows(scene, fr, name, opt.outDir, report.width, report.height, budget, envmapMs,
+                      report, panel, log);
         panels.push_back(panel);
 
         // Strip: ground truth | envmap | boxproj | distance cubemap (layered, d_e 0.01) | light

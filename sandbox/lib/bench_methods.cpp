@@ -1,6 +1,7 @@
 #include "bench_methods.h"
 
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
+#include "components/reflection_probe/pem/pem_probe.h"
 
 #include <cstdio>
 
@@ -11,6 +12,8 @@ std::vector<MethodLabel> sandboxMethods() {
     for (const DistanceMethodInfo& row : kDistanceMethods)
         labels.push_back(row.label);
     labels.push_back(kLightFieldMethod);
+    for (const PemMethodInfo& row : kPemMethods)
+        labels.push_back(row.label);
     return labels;
 }
 

@@ -35,7 +35,8 @@ struct BenchSweep {
 std::vector<MethodVariant> benchVariants(const BenchSweep& sweep);
 
 // Every method the sandbox offers, from the flavours' method tables: the distance rows in
-// table order, then the light field. Names walk's --method, the plot's colours and legend.
+// table order, then the light field, then the PEM rows. Names walk's --method, the plot's colours
+// and legend.
 std::vector<MethodLabel> sandboxMethods();
 
 // The plot and the tables name a sweep by its method: rows of one method form a line.

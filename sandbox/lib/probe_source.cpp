@@ -29,11 +29,19 @@ CookResult cookSceneInto(ReflectionScene& scene, const std::string& dir, const C
     return cookProbe(scene.probeScene(), o, log);
 }
 
+PemCookSettings sandboxPemSettings(int faceRes) {
+    PemCookSettings s;
+    s.samples = 8;
+    s.faceRes = faceRes;
+    s.supersample = 2;
+    return s;
+}
+
 ProbeSource resolveProbeSource(const std::string& input,
                                const std::optional<std::string>& sceneOverride,
                                const std::optional<std::string>& skyOverride,
                                const std::string& bakeDir, int faceRes, bool showProgress,
-                               bool lightField, std::ostream* log) {
+                               SourceBake bake, std::ostream* log) {
     std::error_code ec; // a symlink loop or unreadable parent is an error naming the input
     if (!fs::exists(input, ec))
         throw Error(input, "", ec ? "cannot open: " + ec.message() : "no such file");
@@ -45,6 +53,7 @@ ProbeSource resolveProbeSource(const std::string& input,
         const CookedProbeFacts facts = readCookedProbeFacts(input);
         src.manifest = input;
         src.lightField = facts.flavour == "lightfield";
+        src.pem = facts.flavour == "pem";
         if (sceneOverride) {
             src.scenePath = *sceneOverride;
         } else {
@@ -58,9 +67,9 @@ ProbeSource resolveProbeSource(const std::string& input,
         }
         if (!fs::exists(src.scenePath))
             throw Error(input, "source", "scene '" + src.scenePath + "' not found (give --scene)");
-        src.skyPath = skyOverride      ? *skyOverride
-                      : src.lightField ? defaultSkyPath()
-                                       : facts.skyFile;
+        src.skyPath = skyOverride                                            ? *skyOverride
+                      : src.lightField || (src.pem && facts.skyFile.empty()) ? defaultSkyPath()
+                                                                             : facts.skyFile;
         return src;
     }
     if (ext != ".gltf" && ext != ".glb")
@@ -70,10 +79,14 @@ ProbeSource resolveProbeSource(const std::string& input,
     ReflectionScene scene(src.scenePath, src.skyPath);
     if (scene.markup().reflectors.empty())
         throw Error(input, "specula_reflector", "the scene has no reflector node");
-    if (lightField) {
+    if (bake == SourceBake::LightField) {
         const LightFieldBake b = bakeLightField(scene, bakeDir, 16, 32, showProgress, log);
         src.bakeSeconds = b.seconds;
         src.lightField = true;
+    } else if (bake == SourceBake::Pem) {
+        src.bakeSeconds =
+            cookSceneInto(scene, bakeDir, sandboxPemSettings(), showProgress, log).bakeSeconds;
+        src.pem = true;
     } else {
         src.bakeSeconds = bakeDistanceProbeInto(scene, bakeDir, faceRes, showProgress, false, log);
     }

@@ -20,18 +20,26 @@ struct ProbeSource {
     double bakeSeconds = 0; // 0 when a cooked manifest was given
     bool baked = false;
     bool lightField = false; // the manifest is a light-field probe
+    bool pem = false;        // the manifest is a parameterized environment map
 };
+
+// What resolveProbeSource bakes from a scene.
+enum class SourceBake { Distance, LightField, Pem };
 
 // `input`: a scene or a manifest.json. `sceneOverride`: the scene to use with a manifest
 // (else its "source", relative to the working directory or to the manifest's folder).
-// A scene is baked with Embree into `bakeDir` (replaced): a distance probe with `faceRes`, or
-// with `lightField` a light field (16 cameras of 32^2 pixels a slab). Throws Error naming the
-// file on bad input. `log`: the bake's warnings (null: dropped).
+// A scene is baked with Embree into `bakeDir` (replaced): a distance probe with `faceRes`, a
+// light field (16 cameras of 32^2 pixels a slab) or a PEM (sandboxPemSettings()). Throws
+// Error naming the file on bad input. `log`: the bake's warnings (null: dropped).
 ProbeSource resolveProbeSource(const std::string& input,
                                const std::optional<std::string>& sceneOverride,
                                const std::optional<std::string>& skyOverride,
                                const std::string& bakeDir, int faceRes, bool showProgress,
-                               bool lightField = false, std::ostream* log = nullptr);
+                               SourceBake bake = SourceBake::Distance, std::ostream* log = nullptr);
+
+// The PEM the sandbox bakes: 8 viewpoints t = k/8 on the walk's camera orbit, 2x2 rays a
+// pixel; walk bakes 32^2 faces, the bench 64^2 (about 1.5 s on the room).
+PemCookSettings sandboxPemSettings(int faceRes = 32);
 
 // Bakes the distance probe of a loaded scene into `dir` through the cooking API (cookProbe);
 // returns the seconds it took. planned: the layers and methods of the effect plan (else one

@@ -25,6 +25,7 @@ public:
     const std::string& path() const { return scene_.path; }
     // The opened scene itself, for the cooking API (cookProbe) to bake from.
     ProbeScene& probeScene() { return scene_; }
+    const ProbeScene& probeScene() const { return scene_; }
 
     // The probe position: the first `specula_probe` node, else the centre of the
     // reflectors' bounds, else the scene's centre.

@@ -46,7 +46,9 @@ constexpr const char* kBenchDescription =
     "as a stable median needs), its ratio to envmap in the same run, RMSE and PSNR against the "
     "Embree ground truth\n"
     "on reflector pixels (environment-only and full), texture fetches per pixel (CPU twin),\n"
-    "probe GPU memory and bake time. The ground truth itself is a row.\n"
+    "probe GPU memory and bake time. The ground truth itself is a row. The PEM rows (one\n"
+    "PEM a scene: 8 viewpoints, 64^2 faces) are drawn from the walk orbit's camera at a sample\n"
+    "(t=on) and half-way between two (t=off), each against the ground truth of that camera.\n"
     "\n"
     "Writes DIR/bench.csv, DIR/bench.md (machine and renderer named), DIR/accuracy_vs_time.png\n"
     "(PSNR against time, one line per method, Pareto front ringed) and DIR/strip_<scene>.png\n"
@@ -147,8 +149,9 @@ void addWalkCommand(cli::ToolCli& tool) {
         methods.push_back(m.name);
         methodHelp += std::string("\n  ") + m.name + ": " + m.help;
     }
-    methodHelp += "\n(lightfield bakes a light field from a scene; a light-field manifest "
-                  "always draws with it)";
+    methodHelp += "\n(lightfield and pem bake their flavour's probe from a scene, pem with its "
+                  "parameter following the walk's camera; a light-field or pem manifest always "
+                  "draws with its flavour)";
     sub->add_option("--method", o.method, methodHelp)->check(CLI::IsMember(methods));
     sub->add_option("--de", o.tolerance, "rectification tolerance d_e in metres")
         ->check(cli::finiteRange(1e-5, 10.0));

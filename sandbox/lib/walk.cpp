@@ -23,11 +23,10 @@ namespace fs = std::filesystem;
 namespace specula {
 
 void walkCameraOrbit(const ReflectionScene& scene, float& angle, float& distance, float& height) {
-    const CameraView base = scene.camera(64, 48);
-    const glm::vec3 c = scene.probeCentre(), e = base.eye() - c;
-    angle = std::atan2(e.x, e.z);
-    distance = std::max(0.5f, std::hypot(e.x, e.z));
-    height = e.y;
+    const CameraOrbit o = sceneCameraOrbit(scene.probeScene());
+    angle = o.angle;
+    distance = o.distance;
+    height = o.height;
 }
 
 CameraView walkCamera(const ReflectionScene& scene, int width, int height, float angle,
@@ -36,14 +35,28 @@ CameraView walkCamera(const ReflectionScene& scene, int width, int height, float
 }
 
 CameraView walkCamera(const ReflectionScene& scene, int width, int height, float t) {
-    float angle, distance, h;
-    walkCameraOrbit(scene, angle, distance, h);
-    return walkCamera(scene, width, height, angle + 0.4f * std::sin(glm::two_pi<float>() * t),
-                      distance, h);
+    return walkOrbitCameraView(scene.probeScene(), width, height, t);
+}
+
+SourceBake walkSourceBake(const WalkOptions& o) {
+    if (o.method == kLightFieldMethod.name) return SourceBake::LightField;
+    for (const PemMethodInfo& row : kPemMethods)
+        if (o.method == row.label.name) return SourceBake::Pem;
+    return SourceBake::Distance;
+}
+
+void setWalkParameter(ReflectionScene& scene, float t) {
+    if (PemProbe* p = scene.registry().find<PemProbe>(scene.probeEntity())) p->parameter = t;
 }
 
 ecs::Entity attachWalkProbe(ReflectionScene& scene, const ProbeSource& src, const WalkOptions& o) {
     if (src.lightField) return scene.attachProbe(src.manifest, LightFieldProbe{});
+    if (src.pem) {
+        PemProbe probe;
+        for (const PemMethodInfo& row : kPemMethods)
+            if (o.method == row.label.name) probe.nearest = row.nearest;
+        return scene.attachProbe(src.manifest, probe);
+    }
     const DistanceMethodInfo* row = findDistanceMethod(o.method);
     if (!row)
         throw Error(src.manifest, "flavour",
@@ -61,7 +74,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     fs::create_directories(o.outDir);
     const ProbeSource src =
         resolveProbeSource(o.input, o.scene, o.sky, (fs::path(o.outDir) / "probe").string(),
-                           o.faceRes, o.progress, o.method == kLightFieldMethod.name, &out);
+                           o.faceRes, o.progress, walkSourceBake(o), &out);
     if (src.baked) out << "baked " << src.manifest << " in " << src.bakeSeconds << " s\n";
     auto context = gpu::GlContext::createHeadless();
     ReflectionScene scene(src.scenePath, src.skyPath);
@@ -84,6 +97,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
         for (int i = 0; i < o.frames; ++i) {
             const float t = float(i) / float(o.frames);
             scene.setReflectorOffset(walkOffset(o.path, t, scene.walkAmplitude()));
+            setWalkParameter(scene, t);
             const float angle = angle0 + 0.4f * std::sin(glm::two_pi<float>() * t);
             const CameraView cam = walkCamera(scene, o.width, o.height, angle, dist, h);
             const Image img = fr.render(cam);
@@ -114,7 +128,12 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     writeImage(
         (fs::path(o.outDir) / "contact_sheet.png").string(),
         contactSheet(sheet, labels, std::min<int>(6, int(sheet.size())), std::min(o.width, 256)));
-    out << "wrote " << o.frames << " frames (" << o.method << ", " << toString(o.path)
+    // A light-field or PEM manifest draws with its flavour whatever --method says.
+    const std::string drawn = src.lightField ? kLightFieldMethod.name
+                              : src.pem && walkSourceBake(o) != SourceBake::Pem
+                                  ? kPemMethods[0].label.name
+                                  : o.method;
+    out << "wrote " << o.frames << " frames (" << drawn << ", " << toString(o.path)
         << " path), contact_sheet.png and frames.csv to " << o.outDir << '\n';
     return 0;
 }

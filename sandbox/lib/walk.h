@@ -5,6 +5,7 @@
 // walkthrough (GLFW + Dear ImGui).
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
+#include "components/reflection_probe/pem/pem_probe.h"
 #include "components/reflection_probe/reflection_probe.h"
 #include "sandbox/lib/probe_source.h"
 
@@ -36,12 +37,18 @@ CameraView walkCamera(const ReflectionScene& scene, int width, int height, float
                       float distance, float height_);
 void walkCameraOrbit(const ReflectionScene& scene, float& angle, float& distance, float& height);
 
+// What a scene given to walk is baked into for the options' method.
+SourceBake walkSourceBake(const WalkOptions& options);
+
 // Attaches the walk's probe to `scene`: the light-field flavour when src is a light field,
-// else the distance flavour with the options' method and d_e (each object layer with the
-// cooked plan's method). Throws Error naming the manifest when the method is not of its
-// flavour.
+// the PEM flavour (pem-nearest: PemProbe::nearest) when src is a PEM, else the distance flavour
+// with the options' method and d_e (each object layer with the cooked plan's method). Throws Error
+// naming the manifest when the method is not of its flavour.
 ecs::Entity attachWalkProbe(ReflectionScene& scene, const ProbeSource& src,
                             const WalkOptions& options);
+// The walk frame t in [0, 1) for the probe's flavour: a PEM's parameter follows t (its
+// samples are the viewpoints of walkCamera(t)); other flavours have nothing to set.
+void setWalkParameter(ReflectionScene& scene, float t);
 
 // Returns the exit status; throws Error on bad input.
 int runWalkHeadless(const WalkOptions& options, std::ostream& out);

@@ -99,6 +99,15 @@ void lightFieldPanel(LightFieldProbe& p) {
     ImGui::Checkbox("background from light field", &p.background);
 }
 
+// The PEM flavour's panel: where on the cooked parameter axis the frame is (the path sets it
+// while playing) and whether the nearest sample alone is drawn.
+void pemPanel(PemProbe& p) {
+    for (const PemMethodInfo& row : kPemMethods)
+        if (row.nearest == p.nearest) ImGui::Text("method %s", row.label.name);
+    ImGui::SliderFloat("parameter (viewpoint t)", &p.parameter, 0.f, 1.f, "%.3f");
+    ImGui::Checkbox("nearest sample", &p.nearest);
+}
+
 // Shows the panel of the probe's flavour; true when its settings changed (written back).
 template <typename Settings, typename Panel>
 bool settingsPanel(ecs::Registry& registry, ecs::Entity probe, Panel panel) {
@@ -124,9 +133,8 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             fs::remove_all(dir, ec);
         }
     } cleanup{bakeDir};
-    const ProbeSource src =
-        resolveProbeSource(o.input, o.scene, o.sky, bakeDir.string(), o.faceRes, o.progress,
-                           o.method == kLightFieldMethod.name, &out);
+    const ProbeSource src = resolveProbeSource(o.input, o.scene, o.sky, bakeDir.string(), o.faceRes,
+                                               o.progress, walkSourceBake(o), &out);
     auto context = gpu::GlContext::createWindow(o.width, o.height, "specula-sandbox walk");
     GLFWwindow* window = context->window();
     glfwSwapInterval(0);
@@ -192,16 +200,23 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             if (playing) {
                 t = std::fmod(t + 1.f / 120.f, 1.f);
                 offset = walkOffset(o.path, t, scene.walkAmplitude());
+                if (src.pem) { // the PEM's parameter is the viewpoint: the camera follows t
+                    setWalkParameter(scene, t);
+                    walkCameraOrbit(scene, angle, distance, height);
+                    angle += 0.4f * std::sin(glm::two_pi<float>() * t);
+                }
                 changed = true;
             }
 
             // The panel.
             ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
             ImGui::Begin("Specula");
-            const bool edited = settingsPanel<DistanceProbe>(scene.registry(), scene.probeEntity(),
-                                                             distancePanel) ||
-                                settingsPanel<LightFieldProbe>(
-                                    scene.registry(), scene.probeEntity(), lightFieldPanel);
+            const bool edited =
+                settingsPanel<DistanceProbe>(scene.registry(), scene.probeEntity(),
+                                             distancePanel) ||
+                settingsPanel<LightFieldProbe>(scene.registry(), scene.probeEntity(),
+                                               lightFieldPanel) ||
+                settingsPanel<PemProbe>(scene.registry(), scene.probeEntity(), pemPanel);
             ImGui::Checkbox("play path", &playing);
             ImGui::SameLine();
             ImGui::Checkbox("error", &showError);

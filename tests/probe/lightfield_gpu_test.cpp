@@ -11,6 +11,7 @@
 #include "engine/image/compare.h"
 #include "engine/image/image_io.h"
 #include "support/probe_room.h"
+#include "twin_agreement.h"
 
 #include <gtest/gtest.h>
 
@@ -132,24 +133,14 @@ TEST_F(LightFieldRoom, ShaderMatchesCpuTwinPerPixel) {
         const LightFieldAsset* asset = store().asset(scene_->probeEntity());
         ASSERT_NE(asset, nullptr);
         const CpuLightFieldProbe twin(*asset);
-        long n = 0, close = 0;
-        double sum = 0, worst = 0;
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x) {
-                if (mask.at(x, y)[0] < 0.5f) continue;
-                const glm::vec3 cpu =
-                    twin.radiance(glm::vec3(pos.rgba(x, y)), glm::vec3(dir.rgba(x, y)));
-                const double err = glm::length(cpu - glm::vec3(colour.rgba(x, y)));
-                ++n;
-                sum += err;
-                worst = std::max(worst, err);
-                if (err < 4e-3) ++close;
-            }
-        ASSERT_GT(n, 500) << "the camera must see the reflectors";
+        const test::PixelAgreement px = test::agreeByPixel(
+            colour, pos, dir, mask, [&](glm::vec3 x, glm::vec3 l) { return twin.radiance(x, l); },
+            4e-3);
+        ASSERT_GT(px.n, 500) << "the camera must see the reflectors";
         std::printf("%s: twin vs GLSL over %ld px: %.3f%% within 4e-3, mean %.2e, worst %.4f\n",
-                    toString(c), n, 100.0 * double(close) / double(n), sum / double(n), worst);
-        EXPECT_GT(double(close) / double(n), 0.99) << toString(c);
-        EXPECT_LT(sum / double(n), 1e-3) << toString(c);
+                    toString(c), px.n, 100.0 * px.share(), px.mean(), px.worst);
+        EXPECT_GT(px.share(), 0.99) << toString(c);
+        EXPECT_LT(px.mean(), 1e-3) << toString(c);
     }
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// Holds the distance-probe shader to its CPU twin over one frame: the shader renders
+// Holds a probe shader to its CPU twin pixel by pixel. agreeByPixel: any flavour, on
+// frames already rendered. compareWithTwin (distance): the shader renders
 // colour and the twin's inputs (probe-local position, reflected direction, read back as
 // float32), the twin runs on exactly those inputs with the configuration the system holds
 // now, and the two are compared on the mirror pixels of `mask`.
@@ -23,6 +24,37 @@ struct TwinAgreement {
     double share() const { return layerPx ? double(close) / double(layerPx) : 0.0; }
     double mean() const { return layerPx ? sum / double(layerPx) : 0.0; }
 };
+
+// Any flavour's shader colour against radiance(x, l) of its twin, run on the shader's own
+// inputs (OUTPUT 1 and 2 frames), over the pixels of `mask`.
+struct PixelAgreement {
+    long n = 0;     // mask pixels
+    long close = 0; // of those, within the tolerance
+    double sum = 0.0, worst = 0.0;
+    double colourSum = 0.0; // of the shader's mean RGB: that the frame is not black
+
+    double share() const { return n ? double(close) / double(n) : 0.0; }
+    double mean() const { return n ? sum / double(n) : 0.0; }
+};
+
+template <typename Radiance>
+PixelAgreement agreeByPixel(const Image& colour, const Image& pos, const Image& dir,
+                            const Image& mask, Radiance radiance, double tolerance) {
+    PixelAgreement a;
+    for (int y = 0; y < mask.height; ++y)
+        for (int x = 0; x < mask.width; ++x) {
+            if (mask.at(x, y)[0] < 0.5f) continue;
+            const glm::vec3 shader(colour.rgba(x, y));
+            const glm::vec3 cpu = radiance(glm::vec3(pos.rgba(x, y)), glm::vec3(dir.rgba(x, y)));
+            const double err = glm::length(cpu - shader);
+            ++a.n;
+            a.sum += err;
+            a.worst = std::max(a.worst, err);
+            a.colourSum += double(shader.r + shader.g + shader.b) / 3.0;
+            if (err < tolerance) ++a.close;
+        }
+    return a;
+}
 
 inline TwinAgreement compareWithTwin(RoomRenderer& renderer, const ProbeRoom& scene,
                                      const CameraView& cam, const Image& mask) {

@@ -61,6 +61,12 @@ TEST(BenchMethods, EnvmapFirstGroundTruthLastEveryToleranceSwept) {
     sweep.lightFields = {"num=8 res=16"};
     const auto withLf = benchVariants(sweep);
     EXPECT_EQ(withLf.size(), rows.size() + 1u);
+    // Every flavour's methods are offered (walk --method, the plot's colours): PEM last.
+    const auto methods = sandboxMethods();
+    ASSERT_GE(methods.size(), 3u);
+    EXPECT_STREQ(methods[methods.size() - 3].name, "lightfield");
+    EXPECT_STREQ(methods[methods.size() - 2].name, "pem");
+    EXPECT_STREQ(methods.back().name, "pem-nearest");
 }
 
 TEST(WalkPaths, StayInsideTheCell) {

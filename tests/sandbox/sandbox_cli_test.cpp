@@ -56,6 +56,12 @@ ToolRun tool(const std::string& args, const std::string& prefix = "") {
     return r;
 }
 
+// specula-sandbox walk on the default room, headless, writing into `out`.
+ToolRun headlessRoomWalk(const std::string& flags, const fs::path& out) {
+    return tool("walk " + quote(kRoom.string()) + " --headless " + flags + " --out " +
+                quote(out.string()));
+}
+
 // A fresh folder under the temp directory, removed with the object.
 struct TempDir {
     fs::path path;
@@ -172,10 +178,8 @@ TEST(SpeculaSandbox, BadInputExitsOneWithOneLineNamingTheFile) {
 TEST(SpeculaSandbox, HeadlessWalkWritesFramesSheetAndCsvThenReplaysItsManifest) {
     TempDir dir("walk");
     const fs::path out = dir.path / "walk";
-    const ToolRun r = tool("walk " + quote(kRoom.string()) +
-                           " --headless --frames 3 --size 96x72 --face-res 32 "
-                           "--path figure8 --compare --out " +
-                           quote(out.string()));
+    const ToolRun r =
+        headlessRoomWalk("--frames 3 --size 96x72 --face-res 32 --path figure8 --compare", out);
     ASSERT_EQ(r.status, 0) << r.err;
     for (int i = 0; i < 3; ++i) {
         char name[32];
@@ -216,6 +220,31 @@ TEST(SpeculaSandbox, HeadlessWalkWritesFramesSheetAndCsvThenReplaysItsManifest) 
     EXPECT_EQ(readCsv(again / "frames.csv").size(), 1u);
 }
 
+// The third flavour: walk bakes a PEM from the scene (8 viewpoints on the walk's camera
+// orbit) and sets its parameter to the frame's t; its manifest replays with the PEM.
+TEST(SpeculaSandbox, HeadlessPemWalkBakesAndFollowsTheOrbit) {
+    TempDir dir("pem-walk");
+    const fs::path out = dir.path / "walk";
+    const std::string flags = "--method pem --frames 2 --size 96x72 --path line --compare";
+    const ToolRun r = headlessRoomWalk(flags, out);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Table rows = readCsv(out / "frames.csv");
+    for (const char* frame : {"frame_0000.png", "frame_0001.png"})
+        EXPECT_TRUE(fs::exists(out / frame)) << frame;
+    ASSERT_EQ(rows.size(), 2u);
+    for (const auto& row : rows) {
+        const double psnr = num(row, "psnr");
+        std::printf("[pem walk] frame %s: PSNR env %.2f dB\n", row.at("frame").c_str(), psnr);
+        EXPECT_TRUE(std::isfinite(psnr) && psnr > 8.0) << psnr;
+    }
+    const ToolRun m =
+        tool("walk " + quote((out / "probe" / "manifest.json").string()) +
+             " --headless --frames 1 --size 96x72 --out " + quote((dir.path / "again").string()));
+    ASSERT_EQ(m.status, 0) << m.err;
+    EXPECT_NE(m.out.find("(pem,"), std::string::npos) << m.out; // not the default bisection
+    EXPECT_EQ(readCsv(dir.path / "again" / "frames.csv").size(), 1u);
+}
+
 TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
     TempDir dir("bench");
     const fs::path out = dir.path / "bench";
@@ -250,6 +279,18 @@ TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
             EXPECT_GT(fetches, 1.5) << method;
         }
     }
+    // The PEM rows: the walk orbit's camera at a sample (t=on) and half-way (t=off).
+    int pemRows = 0;
+    for (const auto& row : rows) {
+        if (row.at("method") != "pem") continue;
+        ++pemRows;
+        const double env = num(row, "psnr"), full = num(row, "psnr_full");
+        std::printf("[pem bench] %s %s: PSNR env %.2f dB, full %.2f dB, bake %.2f s\n",
+                    row.at("scene").c_str(), row.at("params").c_str(), env, full,
+                    num(row, "bake_s"));
+        EXPECT_TRUE(std::isfinite(full) && full > 5.0) << row.at("scene") << " " << full;
+    }
+    EXPECT_GE(pemRows, 2);          // at least the room's t=on and t=off
     EXPECT_EQ(perScene.size(), 3u); // room, truck_room, sky_only
     for (const auto& [scene, n] : perScene) {
         EXPECT_GE(n, 10) << scene;

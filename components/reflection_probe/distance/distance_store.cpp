@@ -76,12 +76,7 @@ gpu::Program DistanceVariant::build() const {
 
 DistanceProbeGpu DistanceStore::loadProbe(const ProbeManifest& manifest, ProbeFrameStats&) {
     DistanceProbeGpu g;
-    auto& cached = assetCache_[manifest.path];
-    g.asset = cached.lock();
-    if (!g.asset) {
-        g.asset = std::make_shared<const DistanceProbeAsset>(readDistanceProbe(manifest));
-        cached = g.asset;
-    }
+    g.asset = assets_.get(manifest.path, [&] { return readDistanceProbe(manifest); });
     if (!g.asset->sky.empty()) g.sky = uploadSky(*g.asset);
     return g;
 }

@@ -53,7 +53,7 @@ private:
 
     // Probes that share an asset share its CPU copy; the GPU copy is per probe since the
     // methods (and so the layers uploaded) may differ.
-    std::unordered_map<std::string, std::weak_ptr<const DistanceProbeAsset>> assetCache_;
+    SharedAssets<DistanceProbeAsset> assets_;
     ShaderVariants<DistanceVariant> variants_;
 };
 

@@ -83,12 +83,7 @@ LightFieldProbeGpu LightFieldStore::loadProbe(const ProbeManifest& manifest,
                                               ProbeFrameStats& stats) {
     LightFieldProbeGpu g;
     g.manifestPath = manifest.path;
-    auto& cached = assetCache_[manifest.path];
-    g.asset = cached.lock();
-    if (!g.asset) {
-        g.asset = std::make_shared<const LightFieldAsset>(readLightFieldProbe(manifest));
-        cached = g.asset;
-    }
+    g.asset = assets_.get(manifest.path, [&] { return readLightFieldProbe(manifest); });
     g.atlas = uploadAtlas(*g.asset, manifest.path);
     ++stats.textureUploads;
     return g;

@@ -58,7 +58,7 @@ private:
     void bind(gpu::Program& prog, const LightFieldProbeGpu& p, const LightFieldProbe& s) const;
     void checkCell(const ProbeDrawContext& ctx, ecs::Entity reflector, const LightFieldProbeGpu& p);
 
-    std::unordered_map<std::string, std::weak_ptr<const LightFieldAsset>> assetCache_;
+    SharedAssets<LightFieldAsset> assets_;
     std::unordered_set<ecs::Entity> warnedOutside_; // reflectors already logged as outside
     gpu::VertexArray emptyVao_;                     // the background pass draws no attributes
     ShaderVariants<LightFieldVariant> variants_;

@@ -1,0 +1,206 @@
+#include "pem_asset.h"
+
+#include "components/reflection_probe/distance/distance_probe_asset.h" // kMaxRadiance
+#include "components/reflection_probe/probe_folder.h"
+#include "engine/core/error.h"
+#include "engine/image/image_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace specula {
+
+namespace {
+
+constexpr int kMaxPemFaceRes = 4096;
+
+// An N x 6N float RGB EXR is 72 N^2 bytes of pixels; header and offset tables fit the margin.
+std::uint64_t maxSampleFileBytes(int n) {
+    return 100ull * std::uint64_t(n) * std::uint64_t(n) + (1ull << 20);
+}
+
+std::string sampleFileName(std::size_t k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "sample_%02zu.exr", k);
+    return name;
+}
+
+std::string samplePath(std::size_t k) {
+    return "samples[" + std::to_string(k) + "].";
+}
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+// The map's faces stacked top to bottom: texel (face, i, j) at pixel (i, face * N + j).
+Image stackMap(const PemMap& m) {
+    const int n = m.faceRes;
+    Image out(n, 6 * n, 3);
+    for (int t = 0; t < PemMap::texelCount(n); ++t)
+        for (int c = 0; c < 3; ++c)
+            out.pixels[std::size_t(t) * 3 + std::size_t(c)] = m.texels[std::size_t(t)][c];
+    return out;
+}
+
+PemMap unstackMap(const Image& img, const PemAsset& a) {
+    PemMap m{a.faceRes, a.boxMin, a.boxMax, {}};
+    m.texels.resize(std::size_t(PemMap::texelCount(a.faceRes)));
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            m.texels[std::size_t(y) * std::size_t(img.width) + std::size_t(x)] =
+                glm::vec3(img.rgba(x, y));
+    return m;
+}
+
+// Every texel's RGB finite in [0, kMaxRadiance]; the error names the face, texel and channel.
+void checkRadiance(const PemMap& m, const std::string& file, std::size_t k) {
+    static const char* faces[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+    const int n = m.faceRes;
+    for (int t = 0; t < PemMap::texelCount(n); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const float v = m.texels[std::size_t(t)][c];
+            if (v >= 0.f && v <= kMaxRadiance) continue; // false for NaN too
+            throw Error(file, "radiance",
+                        "sample " + std::to_string(k) + " face " + faces[t / (n * n)] + " texel (" +
+                            std::to_string(t % n) + ", " + std::to_string(t / n % n) +
+                            ") channel " + "RGB"[c] + " holds " + number(v) +
+                            "; expected a finite radiance in [0, " + number(kMaxRadiance) + "]");
+        }
+}
+
+// What the reader checks of the whole asset; the writer runs it first too. `files[k]` names
+// sample k's image.
+void checkAsset(const PemAsset& a, const std::string& manifest,
+                const std::vector<std::string>& files) {
+    for (int i = 0; i < 3; ++i)
+        if (!(std::fabs(a.centre[i]) <= kMaxCoordinate))
+            throw Error(manifest, "centre",
+                        "coordinate " + number(a.centre[i]) + " is beyond " +
+                            number(kMaxCoordinate) + " m (float precision)");
+    if (a.parameterKind != "viewpoint" && a.parameterKind != "reflector")
+        throw Error(manifest, "parameter_kind",
+                    "expected \"viewpoint\" or \"reflector\", got \"" + a.parameterKind + "\"");
+    if (a.path.empty() || a.path.size() > 64)
+        throw Error(manifest, "path", "expected the name of a walk path (1 to 64 characters)");
+    if (a.faceRes < 1 || a.faceRes > kMaxPemFaceRes)
+        throw Error(manifest, "face_res",
+                    "expected an integer in [1, " + std::to_string(kMaxPemFaceRes) + "], got " +
+                        std::to_string(a.faceRes));
+    for (int i = 0; i < 3; ++i)
+        if (!(a.boxMin[i] < a.boxMax[i]) || !std::isfinite(a.boxMax[i] - a.boxMin[i]))
+            throw Error(manifest, "box", "expected finite bounds with min < max on every axis");
+    if (a.samples.empty() || a.samples.size() > std::size_t(kMaxPemSamples))
+        throw Error(manifest, "samples",
+                    "expected 1 to " + std::to_string(kMaxPemSamples) + " sample maps, got " +
+                        std::to_string(a.samples.size()));
+    for (std::size_t k = 0; k < a.samples.size(); ++k) {
+        const PemSampleMap& s = a.samples[k];
+        if (!(s.parameter >= 0.f && s.parameter <= 1.f))
+            throw Error(manifest, samplePath(k) + "parameter",
+                        "expected a number in [0, 1], got " + number(s.parameter));
+        if (k > 0 && !(s.parameter > a.samples[k - 1].parameter))
+            throw Error(manifest, samplePath(k) + "parameter",
+                        "parameters must increase strictly: " + number(s.parameter) + " follows " +
+                            number(a.samples[k - 1].parameter));
+        if (s.map.faceRes != a.faceRes || s.map.boxMin != a.boxMin || s.map.boxMax != a.boxMax ||
+            s.map.texels.size() != std::size_t(PemMap::texelCount(a.faceRes)))
+            throw Error(manifest, samplePath(k) + "map",
+                        "expected " + std::to_string(PemMap::texelCount(a.faceRes)) +
+                            " texels of face resolution " + std::to_string(a.faceRes) +
+                            " over the asset's box");
+        checkRadiance(s.map, files[k], k);
+    }
+}
+
+} // namespace
+
+void writePemProbe(const PemAsset& asset, const std::string& dir, const std::string& sourceScene) {
+    std::vector<std::string> files;
+    for (std::size_t k = 0; k < asset.samples.size(); ++k)
+        files.push_back((fs::path(dir) / sampleFileName(k)).string());
+    checkAsset(asset, (fs::path(dir) / "manifest.json").string(), files);
+
+    writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
+        json samples = json::array();
+        for (std::size_t k = 0; k < asset.samples.size(); ++k) {
+            throwIfCancelled(dir); // a signal between files wins; nothing is committed
+            const std::string name = sampleFileName(k);
+            const std::string path = (tmp / name).string();
+            writeImage(path, stackMap(asset.samples[k].map));
+            samples.push_back({{"parameter", asset.samples[k].parameter},
+                               {"file", name},
+                               {"checksum", fileChecksum(path)}});
+        }
+        json manifest = probeManifestHeader("pem", sourceScene);
+        manifest.update(
+            {{"centre", vec3Json(asset.centre)},
+             {"parameter_kind", asset.parameterKind},
+             {"path", asset.path},
+             {"face_res", asset.faceRes},
+             {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
+             {"face_layout", "N x 6N EXR per sample, faces +X -X +Y -Y +Z -Z top to "
+                             "bottom, RGB radiance"},
+             {"samples", samples}});
+        return manifest;
+    });
+}
+
+PemAsset readPemProbe(const std::string& manifestPath) {
+    return readPemProbe(ParsedManifest::load(manifestPath).view());
+}
+
+PemAsset readPemProbe(const ProbeManifest& manifest) {
+    const ManifestFields r{manifest.path};
+    r.expectFlavour(manifest.json, "pem");
+    const json& m = manifest.json;
+    const fs::path dir = fs::path(manifest.path).parent_path();
+
+    PemAsset a;
+    a.manifestPath = manifest.path;
+    a.centre = r.vec3(m, "centre", "", kMaxCoordinate);
+    a.parameterKind = r.string(m, "parameter_kind", "");
+    a.path = r.string(m, "path", "");
+    a.faceRes = r.integer(m, "face_res", "", 1, kMaxPemFaceRes);
+    const json& box = r.member(m, "box", "");
+    a.boxMin = r.vec3(box, "min", "box.", FLT_MAX);
+    a.boxMax = r.vec3(box, "max", "box.", FLT_MAX);
+    const json& samples = r.member(m, "samples", "");
+    if (!samples.is_array() || samples.empty() || samples.size() > std::size_t(kMaxPemSamples))
+        throw Error(manifest.path, "samples",
+                    "expected an array of 1 to " + std::to_string(kMaxPemSamples) + " sample maps");
+    std::vector<std::string> files;
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        const std::string path = samplePath(k);
+        const json& j = samples[k];
+        PemSampleMap s;
+        s.parameter = float(r.number(j, "parameter", path, 0.0, 1.0));
+        const ManifestFields::CheckedFile file =
+            r.checkedFile(j, path, dir, maxSampleFileBytes(a.faceRes));
+        s.file = file.name;
+        s.checksum = file.checksum;
+        // The header must declare exactly N x 6N, checked before the pixels are allocated.
+        const Image img = r.namedFile(path, [&] {
+            return readFloatExr(file.path, {.width = a.faceRes, .height = 6 * a.faceRes});
+        });
+        if (img.channels < 3)
+            throw Error(file.path, "channels",
+                        "expected RGB, got " + std::to_string(img.channels) + " channel(s)");
+        s.map = unstackMap(img, a);
+        a.samples.push_back(std::move(s));
+        files.push_back(file.path);
+    }
+    checkAsset(a, manifest.path, files);
+    return a;
+}
+
+} // namespace specula

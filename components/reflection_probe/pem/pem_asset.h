@@ -1,0 +1,54 @@
+#pragma once
+// A cooked parameterized-environment-map probe (Hakura, Snyder, Lengyel 2001): one box-geometry
+// map per sample of a one-dimensional parameter (where the viewer or the reflector is along a
+// walk path), the maps inferred offline so that the lookup reproduces the ray-traced
+// reflection at that sample. At run time the two samples nearest the current parameter are
+// blended (pem_blend.h).
+//
+// On disk: manifest.json ("flavour": "pem") plus one float EXR per sample, N x 6N, faces
+// +X -X +Y -Y +Z -Z top to bottom (OpenGL face orientation, each face's row 0 first), RGB
+// linear radiance: texel (face, i, j) of the PemMap is pixel (i, face * N + j).
+#include "components/reflection_probe/manifest_fields.h"
+#include "components/reflection_probe/pem/pem_lookup_cpu.h"
+
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace specula {
+
+struct PemSampleMap {
+    float parameter = 0.f;      // where on the parameter axis this map was inferred, in [0, 1]
+    PemMap map;                 // faceRes and box equal to the asset's
+    std::string file, checksum; // set by the reader/writer
+};
+
+struct PemAsset {
+    std::string manifestPath; // where it was read from (errors); empty when cooked
+    glm::vec3 centre{0.f};    // world position of the maps' origin (the probe centre)
+    std::string parameterKind = "viewpoint"; // "viewpoint" | "reflector"
+    std::string path = "orbit";              // the walk path the parameter runs along
+    int faceRes = 0;
+    glm::vec3 boxMin{-1.f}, boxMax{1.f}; // probe-local map box
+    std::vector<PemSampleMap> samples;   // parameter strictly increasing
+};
+
+// Most samples a manifest may list (each is a full cube map).
+inline constexpr int kMaxPemSamples = 1024;
+
+// Writes DIR/manifest.json and sample_NN.exr through writeProbeFolder (atomic: DIR is replaced
+// by one rename or left as it was). The reader's checks run first, so a probe the reader would
+// refuse is never written; they throw Error naming DIR's manifest (or a sample's file) and the
+// field: "centre", "parameter_kind", "path", "face_res", "box", "samples",
+// "samples[k].parameter", "samples[k].map" (size or box unlike the asset's), "radiance".
+void writePemProbe(const PemAsset& asset, const std::string& dir, const std::string& sourceScene);
+
+// Reads and validates a manifest and its images: format, version and flavour, every field's
+// type and range, parameters in [0, 1] strictly increasing, each file a plain name inside the
+// folder with a matching checksum, each image a float EXR of exactly N x 6N whose RGB is
+// finite in [0, kMaxRadiance]. Errors name the file and the field.
+PemAsset readPemProbe(const ProbeManifest& manifest);
+PemAsset readPemProbe(const std::string& manifestPath);
+
+} // namespace specula

@@ -1,0 +1,37 @@
+#include "pem_probe_cpu.h"
+
+namespace specula {
+
+std::vector<float> pemSampleParameters(const PemAsset& asset) {
+    std::vector<float> out;
+    out.reserve(asset.samples.size());
+    for (const PemSampleMap& s : asset.samples)
+        out.push_back(s.parameter);
+    return out;
+}
+
+glsl::PemParams pemParams(const PemAsset& asset, const PemProbe& settings) {
+    const PemBlendWeights w =
+        pemBlend(pemSampleParameters(asset), settings.parameter, settings.nearest);
+    glsl::PemParams p{};
+    p.boxMin = asset.boxMin;
+    p.boxMax = asset.boxMax;
+    p.faceRes = asset.faceRes;
+    p.centre = asset.centre;
+    p.wb = w.wb;
+    p.layerA = 6 * w.a;
+    p.layerB = 6 * w.b;
+    return p;
+}
+
+glm::vec3 PemProbeCpu::radiance(glm::vec3 x, glm::vec3 l) const {
+    // As the shader: sample a's lookup, mixed with sample b's when b has any weight.
+    auto sample = [&](int layer) {
+        return PemLookupCpu(asset_->samples[std::size_t(layer / 6)].map).radiance(x, l);
+    };
+    glm::vec3 colour = sample(params_->layerA);
+    if (params_->wb > 0.f) colour = glm::mix(colour, sample(params_->layerB), params_->wb);
+    return colour;
+}
+
+} // namespace specula

@@ -1,0 +1,88 @@
+#include "pem_store.h"
+
+#include "engine/core/error.h"
+#include "engine/gpu/shader.h"
+
+#include <vector>
+
+namespace specula {
+
+namespace {
+
+std::size_t mapBytes(const PemAsset& a) {
+    return std::size_t(PemMap::texelCount(a.faceRes)) * a.samples.size() * 4 * sizeof(float);
+}
+
+// Every sample's six faces as array layers 6s .. 6s+5 of one RGBA32F array. Throws Error
+// naming the manifest when this GPU cannot hold that many layers.
+gpu::Texture uploadMaps(const PemAsset& a) {
+    GLint maxLayers = 0, maxSize = 0;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    const int n = a.faceRes, layers = 6 * int(a.samples.size());
+    if (layers > maxLayers || n > maxSize)
+        throw Error(a.manifestPath, "samples",
+                    std::to_string(a.samples.size()) + " maps of " + std::to_string(n) +
+                        "^2 x 6 exceed this GPU's limits (" + std::to_string(maxSize) + "^2, " +
+                        std::to_string(maxLayers) + " layers)");
+    gpu::Texture maps = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    const GLuint tex = maps.id();
+    glTextureStorage3D(tex, 1, GL_RGBA32F, n, n, layers);
+    std::vector<float> rgba(std::size_t(PemMap::texelCount(n)) * 4);
+    for (std::size_t s = 0; s < a.samples.size(); ++s) {
+        const std::vector<glm::vec3>& texels = a.samples[s].map.texels;
+        for (std::size_t t = 0; t < texels.size(); ++t)
+            for (int c = 0; c < 4; ++c)
+                rgba[t * 4 + std::size_t(c)] = c < 3 ? texels[t][c] : 1.f;
+        // Faces are contiguous N x N blocks in cube order: one upload of six layers.
+        glTextureSubImage3D(tex, 0, 0, 0, 6 * int(s), n, n, 6, GL_RGBA, GL_FLOAT, rgba.data());
+    }
+    // The shader reads with texelFetch at indices it clamps itself (pemFetchBilinear): no
+    // filtering, no wrapping; NEAREST keeps any sampling of the array exact too.
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return maps;
+}
+
+} // namespace
+
+gpu::Program PemVariant::build() const {
+    return gpu::buildProgram(
+        gpu::ShaderSource::file("components/reflection_probe/shaders/reflector.vert"),
+        gpu::ShaderSource::file("components/reflection_probe/pem/shaders/pem_reflector.frag"),
+        {std::string("HAS_FRESNEL=") + (fresnel ? "1" : "0"), "OUTPUT=" + std::to_string(output)});
+}
+
+PemProbeGpu PemStore::loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) {
+    PemProbeGpu g;
+    g.asset = assets_.get(manifest.path, [&] { return readPemProbe(manifest); });
+    g.maps = uploadMaps(*g.asset);
+    ++stats.textureUploads;
+    return g;
+}
+
+void PemStore::applySettings(PemProbeGpu& g, const PemProbe& settings, ProbeFrameStats& stats) {
+    g.params = pemParams(*g.asset, settings);
+    g.block.upload(g.params);
+    ++stats.parameterUploads;
+}
+
+std::size_t PemStore::gpuBytesOf(const PemProbeGpu& g) const {
+    return mapBytes(*g.asset) + sizeof(glsl::PemParams);
+}
+
+void PemStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector, const Reflector& r,
+                             const PemProbeGpu& g, const PemProbe&) {
+    const PemVariant v{r.fresnelF0 >= 0.f, ctx.output};
+    gpu::Program& prog = variants_.get(v);
+    ctx.stats.drew(v.filter().name());
+    prog.use();
+    SceneRenderer::setCameraUniforms(prog, ctx.camera);
+    glBindTextureUnit(1, g.maps.id());
+    prog.setUniform("uPemMaps", 1);
+    g.block.bind(glsl::kPemParamsBinding);
+    prog.setUniform("uF0", r.fresnelF0);
+    ctx.scene.drawEntity(reflector, prog);
+}
+
+} // namespace specula

@@ -1,0 +1,55 @@
+#pragma once
+// The GPU side of parameterized-environment-map probes: every sample map of the asset as one
+// RGBA32F texture array (six layers per sample, NEAREST: the lookup filters itself), and the
+// blend of the two samples nearest the parameter as one uniform block. A parameter edit
+// rewrites the block only; the maps are uploaded once per asset.
+#include "components/reflection_probe/flavour_store_base.h"
+#include "components/reflection_probe/pem/pem_probe_cpu.h"
+#include "components/reflection_probe/shader_variants.h"
+#include "engine/gpu/gl_objects.h"
+
+#include <memory>
+#include <string>
+#include <unordered_map>
+
+namespace specula {
+
+// A synced probe's state; probe(e) gives it, and with PemProbeCpu(*asset, params) the twin
+// of what the shader draws now.
+struct PemProbeGpu {
+    std::shared_ptr<const PemAsset> asset;
+    glsl::PemParams params{}; // what `block` holds
+    gpu::UniformBuffer<glsl::PemParams> block;
+    gpu::Texture maps;
+};
+
+struct PemVariant {
+    bool fresnel = false;
+    int output = 0;
+
+    auto operator<=>(const PemVariant&) const = default;
+    // The twin-input outputs (1, 2) write no colour, so Fresnel is irrelevant to them.
+    PemVariant filter() const { return {fresnel && output == 0, output}; }
+    std::string name() const { return fresnel ? "pem+fresnel" : "pem"; }
+    gpu::Program build() const;
+};
+
+class PemStore final : public FlavourStoreBase<PemProbe, PemProbeGpu> {
+public:
+    std::string_view flavour() const override { return "pem"; }
+    std::string_view settingsName() const override { return "PemProbe"; }
+
+private:
+    PemProbeGpu loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) override;
+    void applySettings(PemProbeGpu& probe, const PemProbe& settings,
+                       ProbeFrameStats& stats) override;
+    std::size_t gpuBytesOf(const PemProbeGpu& probe) const override;
+    void drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector, const Reflector& r,
+                       const PemProbeGpu& probe, const PemProbe& settings) override;
+
+    // Probes that share an asset share its CPU copy; each holds its own texture.
+    SharedAssets<PemAsset> assets_;
+    ShaderVariants<PemVariant> variants_;
+};
+
+} // namespace specula

@@ -1,0 +1,56 @@
+// Reflector pixels of a parameterized-environment-map probe: the box-geometry lookup
+// (pem_lookup.glsl.h) of the two samples the parameter block names, mixed by its weight.
+// Defines: HAS_FRESNEL (0/1), OUTPUT (0 colour, 1 probe-local position, 2 reflected
+// direction: inputs for the CPU twin).
+#include "engine/core/glsl_device.glsl"
+#include "engine/math/cube_face.glsl.h"
+#include "components/reflection_probe/shaders/reflector_common.glsl.h"
+#include "components/reflection_probe/pem/shaders/pem_params.glsl.h"
+
+layout(std140, binding = kPemParamsBinding) uniform PemParamsUniforms {
+    PemParams uPem;
+};
+// Sample s's faces are array layers 6s .. 6s+5; RGB radiance, NEAREST filtering: the lookup
+// does its own bilinear through fetchTexel, as the twin does.
+uniform sampler2DArray uPemMaps;
+uniform vec3 uEye;
+uniform float uF0;
+
+in vec3 vWorldPos;
+in vec3 vNormal;
+out vec4 fragColor;
+
+int gPemLayer = 0; // first array layer of the sample the next lookup reads
+
+vec3 fetchTexel(int face, int i, int j) {
+    return texelFetch(uPemMaps, ivec3(i, j, gPemLayer + face), 0).rgb;
+}
+
+#include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
+
+vec3 sampleRadiance(int layer, vec3 x, vec3 l) {
+    gPemLayer = layer;
+    return pemRadiance(x, l, uPem.boxMin, uPem.boxMax, uPem.faceRes);
+}
+
+void main() {
+    // Probe-local space: the lookup never sees world coordinates.
+    vec3 x = vWorldPos - uPem.centre;
+    vec3 v = normalize(vWorldPos - uEye);
+    vec3 geometric = normalize(cross(dFdx(vWorldPos), dFdy(vWorldPos)));
+    vec3 n = safeNormal(vNormal, geometric);
+    vec3 lhat = normalize(mirrorDirection(v, n));
+
+    vec3 colour = sampleRadiance(uPem.layerA, x, lhat);
+    if (uPem.wb > 0.0) colour = mix(colour, sampleRadiance(uPem.layerB, x, lhat), uPem.wb);
+#if HAS_FRESNEL
+    colour *= schlickFresnel(uF0, abs(dot(n, v)));
+#endif
+#if OUTPUT == 1
+    fragColor = vec4(x, 1.0);
+#elif OUTPUT == 2
+    fragColor = vec4(lhat, 1.0);
+#else
+    fragColor = vec4(colour, 1.0);
+#endif
+}

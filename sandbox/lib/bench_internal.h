@@ -1,0 +1,44 @@
+#pragma once
+// What the bench's parts share (bench.cpp, bench_pem.cpp): measuring one probe row against
+// the ground truth of its camera, and the row's progress line.
+#include "sandbox/lib/accuracy_plot.h"
+#include "sandbox/lib/bench.h"
+#include "sandbox/lib/frame_renderer.h"
+#include "sandbox/lib/reflection_scene.h"
+
+#include <ostream>
+#include <string>
+
+namespace specula {
+
+// The ground truth of one camera: environment only, full (multi-bounce), and the reflector
+// pixels measured (the mirror mask eroded by one pixel).
+struct BenchTruth {
+    GroundTruthImage env, full;
+    Image mask;
+};
+
+// Timed frames per row: the median settles between minFrames and maxFrames.
+struct BenchFrameBudget {
+    int minFrames = 6, maxFrames = 12;
+};
+
+// Times the reflector pass of the probe just synced from `cam`, renders it and compares it
+// with both truths: fills msMedian, frames, psnr/rmse (env and full) and gpuBytes. Returns
+// the image.
+Image measureProbeRow(FrameRenderer& fr, const CameraView& cam, const BenchTruth& truth,
+                      BenchFrameBudget budget, BenchRow& row);
+
+// "  room envmap -: 0.123 ms (x1.00), PSNR 30.1 dB, 1.00 fetches/px"
+void logBenchRow(std::ostream& log, const BenchRow& row);
+
+// The PEM rows of one scene, appended to report.rows and the scene's plot panel: one PEM
+// baked through the cooking API into outDir/probes/<scene>_pem (sandboxPemSettings(64)), drawn
+// from the walk orbit's camera at a sample's viewpoint ("t=on", t = 0) and half-way between
+// two samples ("t=off", t = 0.5 / samples), each against the ground truth of that camera.
+// A scene the PEM cannot be baked for is logged and left without rows.
+void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string& sceneName,
+                   const std::string& outDir, int width, int height, BenchFrameBudget budget,
+                   double envmapMs, BenchReport& report, PlotPanel& panel, std::ostream& log);
+
+} // namespace specula
