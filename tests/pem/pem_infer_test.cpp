@@ -231,7 +231,8 @@ TEST(PemInfer, BoxRoomInferredBeatsCapturedAtCentre) {
     EXPECT_NEAR(r.residualRms, rmsOn(r.map, samples), 1e-9);
     EXPECT_LT(r.residualRms, 1e-2);
     EXPECT_LT(r.residualRms, 0.25 * captured);
-    EXPECT_LT(r.seconds, 1.0);
+    // r.seconds is printed, not asserted: speed is a benchmark figure, and sanitizer builds
+    // run the solver several times slower.
 
     // Warm-started from its own answer, the solver has little left to do.
     o.warmStart = &r.map.texels;
