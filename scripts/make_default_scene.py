@@ -210,12 +210,11 @@ def quat_axis(axis, degrees):
     return (axis[0] * s, axis[1] * s, axis[2] * s, math.cos(h))
 
 
-def build():
-    b = Builder()
+def build_room(b):
+    """Adds the room without its reflectors (floor, walls, columns, panels, table) to `b`;
+    returns the root nodes. Textures are TEXTURES' indices. Shared with make_bowl_room.py."""
     quad = b.geometry(unit_quad())
     box = b.geometry(unit_box())
-    sphere = b.geometry(uv_sphere(0.32, 32, 32))
-    ring = b.geometry(torus(0.2, 0.07, 48, 24))
 
     tex_floor, tex_stripes, tex_grid = 0, 1, 2
     roots = []
@@ -263,6 +262,45 @@ def build():
         children.append(b.node("table_leg_%d" % i, mesh=leg_mesh, translation=(x, 0.36, z),
                                scale=(0.06, 0.72, 0.06)))
     roots.append(b.node("table", translation=(0, 0, -2.6), children=children))
+    return roots
+
+
+def finish(b, roots, scene_name, generator, bin_name):
+    """Appends the probe and the camera to `roots`; returns the glTF document of `b` (with
+    TEXTURES as its images, `bin_name` as its one buffer)."""
+    roots.append(b.node("probe", translation=PROBE, extras={"specula_probe": {"cell_size": 2.0}}))
+
+    # Camera 3.5 m from the probe, looking at it (glTF cameras look down local -Z).
+    eye = (0.0, 1.6, 3.48)
+    to = [PROBE[i] - eye[i] for i in range(3)]
+    pitch = math.degrees(math.atan2(to[1], math.hypot(to[0], to[2])))
+    roots.append(b.node("camera", camera=0, translation=eye, rotation=quat_axis((1, 0, 0), pitch)))
+
+    return {
+        "asset": {"version": "2.0", "generator": generator},
+        "scene": 0,
+        "scenes": [{"name": scene_name, "nodes": roots}],
+        "nodes": b.nodes,
+        "meshes": b.meshes,
+        "materials": b.materials,
+        "textures": [{"sampler": 0, "source": i} for i in range(len(TEXTURES))],
+        "images": [{"uri": name, "name": name} for name, _ in TEXTURES],
+        "samplers": [{"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}],
+        "cameras": [{"type": "perspective", "name": "camera",
+                     "perspective": {"yfov": 0.9, "aspectRatio": 16 / 9, "znear": 0.05,
+                                     "zfar": 100.0}}],
+        "accessors": b.accessors,
+        "bufferViews": b.views,
+        "buffers": [{"uri": bin_name, "byteLength": len(b.bin)}],
+    }
+
+
+def build():
+    b = Builder()
+    roots = build_room(b)
+    # The room added only the quad and the box to the buffer, so these follow them there.
+    sphere = b.geometry(uv_sphere(0.32, 32, 32))
+    ring = b.geometry(torus(0.2, 0.07, 48, 24))
 
     # Reflectors inside the probe's 2 m cell (both reach 0.74 m at most from the probe,
     # leaving 0.26 m for the sandbox to move them), keeping the probe centre clear.
@@ -275,46 +313,27 @@ def build():
                         rotation=quat_axis((1, 0, 0), 60),
                         extras={"specula_reflector": True}))
 
-    roots.append(b.node("probe", translation=PROBE, extras={"specula_probe": {"cell_size": 2.0}}))
-
-    # Camera 3.5 m from the probe, looking at it (glTF cameras look down local -Z).
-    eye = (0.0, 1.6, 3.48)
-    to = [PROBE[i] - eye[i] for i in range(3)]
-    pitch = math.degrees(math.atan2(to[1], math.hypot(to[0], to[2])))
-    roots.append(b.node("camera", camera=0, translation=eye, rotation=quat_axis((1, 0, 0), pitch)))
-
-    gltf = {
-        "asset": {"version": "2.0", "generator": "specula scripts/make_default_scene.py"},
-        "scene": 0,
-        "scenes": [{"name": "room", "nodes": roots}],
-        "nodes": b.nodes,
-        "meshes": b.meshes,
-        "materials": b.materials,
-        "textures": [{"sampler": 0, "source": i} for i in range(len(TEXTURES))],
-        "images": [{"uri": name, "name": name} for name, _ in TEXTURES],
-        "samplers": [{"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}],
-        "cameras": [{"type": "perspective", "name": "camera",
-                     "perspective": {"yfov": 0.9, "aspectRatio": 16 / 9, "znear": 0.05,
-                                     "zfar": 100.0}}],
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"uri": "room.bin", "byteLength": len(b.bin)}],
-    }
+    gltf = finish(b, roots, "room", "specula scripts/make_default_scene.py", "room.bin")
     return gltf, bytes(b.bin)
 
 
-def main():
-    os.makedirs(OUT_DIR, exist_ok=True)
-    gltf, binary = build()
+def write_scene(out_dir, stem, gltf, binary):
+    """Writes out_dir/stem.gltf, stem.bin and the room's textures (the glTF's buffer is stem.bin)."""
+    os.makedirs(out_dir, exist_ok=True)
     for name, fn in TEXTURES:
-        write_png(os.path.join(OUT_DIR, name), 64, 64, fn)
-    with open(os.path.join(OUT_DIR, "room.bin"), "wb") as f:
+        write_png(os.path.join(out_dir, name), 64, 64, fn)
+    with open(os.path.join(out_dir, stem + ".bin"), "wb") as f:
         f.write(binary)
-    with open(os.path.join(OUT_DIR, "room.gltf"), "w") as f:
+    with open(os.path.join(out_dir, stem + ".gltf"), "w") as f:
         json.dump(gltf, f, indent=1)
         f.write("\n")
-    total = sum(os.path.getsize(os.path.join(OUT_DIR, n)) for n in os.listdir(OUT_DIR))
-    print("wrote %s (%d bytes in all)" % (OUT_DIR, total), file=sys.stderr)
+    total = sum(os.path.getsize(os.path.join(out_dir, n)) for n in os.listdir(out_dir))
+    print("wrote %s (%d bytes in all)" % (out_dir, total), file=sys.stderr)
+
+
+def main():
+    gltf, binary = build()
+    write_scene(OUT_DIR, "room", gltf, binary)
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -29,10 +30,14 @@ constexpr const char* kBakeDescription =
     "cell faces extended to 3L, NUM x NUM cameras of RES x RES pixels (90 degree field of view)\n"
     "each; raw atlases (see lightfield_asset.h) and the focal-plane disparity per slab.\n"
     "\n"
-    "pem (Hakura et al. 2001): one box-geometry cube map of R x R x 6 per viewpoint, N viewpoints\n"
-    "t = k/N on the walk's camera orbit, each inferred by least squares from the ray-traced\n"
-    "reflections (self- and inter-reflections included) of S x S rays per reflector pixel; one\n"
-    "float EXR per viewpoint. The options of one flavour are refused with another.\n"
+    "pem (Hakura et al. 2001): one cube map of R x R x 6 per parameter sample t = k/N (the\n"
+    "viewpoint on the walk's camera orbit, or the reflectors on a walk path), looked up through\n"
+    "the environment's distance cube (--geometry distance) or its bounding box (box),\n"
+    "each inferred by least squares from the ray-traced reflections (self- and\n"
+    "inter-reflections included) of S x S rays per reflector pixel of a WxH camera image; one\n"
+    "float EXR per sample. The bake measures its maps against the ray tracer at the samples\n"
+    "and half-way between them and prints both PSNRs.\n"
+    "The options of one flavour are refused with another.\n"
     "\n"
     "A level's bake options can live in a file beside the scene: --config FILE (TOML or INI)\n"
     "with a [bake] section, e.g. face-res = 128; flags on the command line win.\n";
@@ -51,7 +56,7 @@ struct BakeArgs {
     std::string scene, out, flavour = "distance";
     std::optional<std::string> probe, sky;
     // distance and pem
-    std::optional<int> faceRes; // distance: 256, pem: 32
+    std::optional<int> faceRes; // distance: 256, pem: 128
     // distance
     std::string layers = "plan";
     // lightfield
@@ -60,7 +65,9 @@ struct BakeArgs {
     int cameras = 8, imageRes = 64;
     std::string compress = "none";
     // pem
-    int samples = 8, supersample = 2;
+    int samples = 8, supersample = 1;
+    std::string imageSize = "640x480", geometry = "distance";
+    float prior = 0.05f;
     std::string parameter = "viewpoint", path = "orbit";
     // The options that belong to some flavours only, with their names ("distance|pem").
     std::vector<std::pair<const CLI::Option*, std::string>> flavourOnly;
@@ -108,8 +115,11 @@ CookOptions cookOptions(const BakeArgs& a) {
         s.samples = a.samples;
         s.faceRes = a.faceRes.value_or(s.faceRes);
         s.supersample = a.supersample;
+        cli::parseSize(a.imageSize, s.imageWidth, s.imageHeight); // validated by the option
         s.parameter = a.parameter;
         s.path = a.path;
+        s.geometry = a.geometry;
+        s.priorWeight = a.prior;
         o.flavour = s;
     } else {
         DistanceCookSettings s;
@@ -167,6 +177,24 @@ void printPemSummary(const BakeArgs& a, const CookResult& r, double seconds, std
         << asset.parameterKind << " along " << asset.path << ") at " << asset.faceRes
         << "^2 x 6, box " << box.x << " x " << box.y << " x " << box.z << " m, bake "
         << r.bakeSeconds << " s, total " << seconds << " s -> " << a.out << "/manifest.json\n";
+    if (r.pemFits.empty()) return;
+    // The cooker's own measurement against the ray tracer: what the maps are worth on the
+    // baked viewpoints and half-way between them, where the runtime blends two.
+    double on = 0, off = 0, worstOff = 1e9, infer = 0, worstInfer = 0;
+    for (const PemSampleFit& f : r.pemFits) {
+        on += f.psnrOn, off += f.psnrOff, infer += f.inferSeconds;
+        worstOff = std::min(worstOff, f.psnrOff);
+        worstInfer = std::max(worstInfer, f.inferSeconds);
+    }
+    const double n = double(r.pemFits.size());
+    char line[256];
+    std::snprintf(
+        line, sizeof line,
+        "fit against the ray tracer (reflector rays, no Fresnel): on the samples %.1f dB, "
+        "half-way between them %.1f dB (worst %.1f); inference %.2f s per sample "
+        "(worst %.2f)\n",
+        on / n, off / n, worstOff, infer / n, worstInfer);
+    out << line;
 }
 
 // A flag of other flavours is refused, not ignored.
@@ -182,12 +210,6 @@ void refuseOtherFlavoursOptions(const BakeArgs& a) {
             throw UsageError(option->get_name(), "applies to --flavour " + flavours +
                                                      " only, not to --flavour " + a.flavour);
     }
-    // Only the viewpoint along the orbit is cooked so far.
-    if (a.parameter != "viewpoint")
-        throw UsageError("--parameter",
-                         "'" + a.parameter + "' is not implemented yet (only viewpoint is)");
-    if (a.path != "orbit")
-        throw UsageError("--path", "'" + a.path + "' is not implemented yet (only orbit is)");
 }
 
 int runBake(const BakeArgs& a, std::ostream& out) {
@@ -197,9 +219,25 @@ int runBake(const BakeArgs& a, std::ostream& out) {
         throw UsageError("--cameras",
                          "NUM x --image-res RES = " + std::to_string(a.cameras * a.imageRes) +
                              " exceeds 16384 (the 2D texture side)");
+    const CookOptions options = cookOptions(a);
+    // A PEM setting the flags got wrong (say --path line with the viewpoint parameter) is a
+    // usage error naming the flag, found before the scene is opened.
+    if (const auto* pem = std::get_if<PemCookSettings>(&options.flavour)) {
+        try {
+            validatePemCookSettings(*pem, a.scene);
+        } catch (const Error& e) {
+            // what() is "FILE: FIELD: message" (Error::compose): keep the message.
+            const std::string prefix = e.file() + ": " + e.field() + ": ", what = e.what();
+            std::string flag = e.field();
+            std::replace(flag.begin(), flag.end(), '_', '-');
+            if (flag == "prior-weight") flag = "prior";
+            throw UsageError("--" + flag,
+                             what.starts_with(prefix) ? what.substr(prefix.size()) : what);
+        }
+    }
     const SignalGuard guard; // first: a signal during the load and the plan is honoured too
     const auto start = std::chrono::steady_clock::now();
-    const CookResult r = cookProbe(cookOptions(a), &out);
+    const CookResult r = cookProbe(options, &out);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (lightField)
@@ -249,7 +287,7 @@ void addBakeCommand(cli::ToolCli& tool) {
         return o;
     };
     only(sub->add_option("--face-res", a->faceRes,
-                         "cube face resolution (distance: default 256; pem: default 32, at most "
+                         "cube face resolution (distance: default 256; pem: default 128, at most "
                          "1024)"),
          "distance|pem")
         ->check(CLI::Range(1, 4096));
@@ -280,16 +318,36 @@ void addBakeCommand(cli::ToolCli& tool) {
                          "parameter samples: one inferred map per viewpoint t = k/N (default 8)"),
          "pem")
         ->check(CLI::Range(1, kMaxPemSamples));
+    only(sub->add_option("--image-size", a->imageSize,
+                         "the camera image the maps are inferred for: bake at the frame size "
+                         "they will be drawn at (default 640x480, the walk's)"),
+         "pem")
+        ->check(cli::sizeText());
     only(sub->add_option("--supersample", a->supersample,
-                         "S x S rays per reflector pixel (default 2)"),
+                         "S x S rays per reflector pixel (default 1: the pixel centres the "
+                         "rasteriser shades)"),
          "pem")
         ->check(CLI::Range(1, 16));
+    only(sub->add_option("--geometry", a->geometry,
+                         "the maps' geometry: distance (rectified against the environment's "
+                         "distance cube, traced at the face resolution; default) or box (the "
+                         "environment's bounding box)"),
+         "pem")
+        ->check(CLI::IsMember({"box", "distance"}));
+    only(sub->add_option("--prior", a->prior,
+                         "distance geometry: weight pulling texels towards the radiance captured "
+                         "at the centre, where the camera sees nothing (default 0.05; 0: none)"),
+         "pem")
+        ->check(cli::finiteRange(0.0, 100.0));
     only(sub->add_option("--parameter", a->parameter,
-                         "what the maps vary with: viewpoint (reflector: not implemented yet)"),
-         "pem");
+                         "what the maps vary with: viewpoint (the camera moves, default) or "
+                         "reflector (the reflectors move before the scene camera)"),
+         "pem")
+        ->check(CLI::IsMember({"viewpoint", "reflector"}));
     only(sub->add_option("--path", a->path,
-                         "the path the parameter runs along: orbit (the walk's camera orbit; "
-                         "others not implemented yet)"),
+                         "the path the parameter runs along: orbit (the walk's camera orbit, or "
+                         "the reflectors' orbit), line or figure8 (reflector only); camera (a "
+                         "glTF camera animation) is refused: not read yet"),
          "pem");
 
     // Library code names the fields it read; these are the flags that set them.
@@ -301,6 +359,11 @@ void addBakeCommand(cli::ToolCli& tool) {
     tool.mapField("image_res", "--image-res");
     tool.mapField("samples", "--samples");
     tool.mapField("supersample", "--supersample");
+    tool.mapField("image_size", "--image-size");
+    tool.mapField("parameter", "--parameter");
+    tool.mapField("path", "--path");
+    tool.mapField("geometry", "--geometry");
+    tool.mapField("prior_weight", "--prior");
 }
 
 } // namespace specula::cook

@@ -114,6 +114,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const PemCookSettings& s,
     const auto start = Clock::now();
     PemCookHooks b;
     b.centre = o.probeCentre;
+    b.fits = &result.pemFits;
     PemAsset asset =
         bakeShared(o, "inferring PEMs", b, result, log, [&] { return cookPemAsset(scene, s, b); });
     result.bakeSeconds = secondsSince(start);

@@ -58,6 +58,8 @@ struct CookResult {
     glm::vec3 cellCentre{0.f};
     float cellSize = 0.f;
     std::vector<ReflectorOverhang> overhangs;
+    // PEM: each sample's fit on and off the manifold, as the cooker measured it.
+    std::vector<PemSampleFit> pemFits;
 };
 
 // Repairs what killed bakes left beside options.out and refuses an out that may not be

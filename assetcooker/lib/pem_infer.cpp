@@ -49,6 +49,15 @@ void validate(const PemSamples& samples, const PemInferOptions& o) {
             ok = finite((*o.warmStart)[t]);
         if (!ok) throw Error("", "warm_start", "expected 6 * face_res^2 finite texels");
     }
+    if (o.prior) {
+        bool ok = o.prior->size() == std::size_t(PemMap::texelCount(o.faceRes));
+        for (std::size_t t = 0; ok && t < o.prior->size(); ++t)
+            ok = finite((*o.prior)[t]);
+        if (!ok) throw Error("", "prior", "expected 6 * face_res^2 finite texels");
+    }
+    if (!(o.priorWeight >= 0.f) || !std::isfinite(o.priorWeight))
+        throw Error("", "prior_weight", "expected a finite weight >= 0");
+    if (o.distance) checkPemDistanceGeometry(*o.distance, "", "");
 }
 
 // Clamp to what a cooked probe may hold; NaN (never expected from finite input) reads 0.
@@ -100,6 +109,7 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     map.faceRes = o.faceRes;
     map.boxMin = o.boxMin;
     map.boxMax = o.boxMax;
+    map.distance = o.distance;
     const int texels = PemMap::texelCount(o.faceRes);
     const PemLookupCpu lookup(map); // weights need the geometry only
 
@@ -126,6 +136,13 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
             ++rows;
         }
     }
+    // Prior rows: w (t - prior_t), the prior's part going to the right-hand side.
+    const bool usePrior = o.prior && o.priorWeight > 0.f;
+    const int priorRow = rows;
+    if (usePrior) {
+        for (int t = 0; t < texels; ++t)
+            entries.emplace_back(rows++, t, double(o.priorWeight));
+    }
     Eigen::SparseMatrix<double> A(rows, texels);
     A.setFromTriplets(entries.begin(), entries.end());
 
@@ -139,6 +156,9 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     for (int c = 0; c < 3; ++c) {
         for (int s = 0; s < sampleRows; ++s)
             b[s] = samples[std::size_t(s)].target[c];
+        if (usePrior)
+            for (int t = 0; t < texels; ++t)
+                b[priorRow + t] = double(o.priorWeight) * (*o.prior)[std::size_t(t)][c];
         if (o.warmStart)
             for (int t = 0; t < texels; ++t)
                 guess[t] = (*o.warmStart)[std::size_t(t)][c];

@@ -9,6 +9,7 @@
 #include "components/reflection_probe/pem/pem_lookup_cpu.h"
 
 #include <array>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,9 @@ using PemSamples = std::vector<PemSample>;
 struct PemInferOptions {
     int faceRes = 32;                    // 1 .. 1024
     glm::vec3 boxMin{-1.f}, boxMax{1.f}; // the map's box geometry, probe-local, min < max
+    // Distance geometry (bakePemDistanceGeometry): the rows come from the distance-rectified
+    // lookup and the inferred map carries this pointer. Null: box geometry.
+    std::shared_ptr<const PemDistanceGeometry> distance;
     // lambda: weight of a neighbour-difference row against a sample row (whose weights sum
     // to 1). Small, so texels the samples pin follow the data (doubling it moves them by
     // 0.003 RMS in tests/pem), yet every unseen texel becomes the mean of its neighbours.
@@ -37,6 +41,12 @@ struct PemInferOptions {
     int maxIterations = 2000; // per channel
     // Start from this map's texels (e.g. the neighbouring parameter sample's); null: black.
     const std::vector<glm::vec3>* warmStart = nullptr;
+    // Optional prior: one row priorWeight * (t - prior_t) per texel, so a texel no sample
+    // sees falls back to the prior (e.g. the radiance captured at the centre,
+    // bakePemDistanceGeometry's capturedRadiance) instead of only its neighbours' mean. Null
+    // or priorWeight 0: no prior rows. Like lambda, weighed against sample rows summing to 1.
+    const std::vector<glm::vec3>* prior = nullptr;
+    float priorWeight = 0.f;
 };
 
 struct PemInference {
@@ -49,7 +59,8 @@ struct PemInference {
 };
 
 // Throws Error naming the field: "samples" (none; a non-finite x, l or target; l not unit),
-// "face_res", "box", "regularisation", "tolerance", "max_iterations", "warm_start".
+// "face_res", "box", "regularisation", "tolerance", "max_iterations", "warm_start", "prior",
+// "prior_weight", "distance.*" (checkPemDistanceGeometry).
 PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o);
 
 // Every unordered pair of texels that share a texel edge, within a face or across a cube

@@ -1,10 +1,14 @@
 #include "pem_samples.h"
 
+#include "assetcooker/lib/pem_geometry.h"
+#include "components/reflection_probe/pem/pem_blend.h"
+#include "components/reflection_probe/walk_path.h"
 #include "engine/core/error.h"
 #include "engine/scene/mesh_bounds.h"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -25,6 +29,78 @@ void requireRange(const std::string& file, const char* field, int v, int lo, int
         throw Error(file, field,
                     "expected " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
                         std::to_string(v));
+}
+
+// The scene at parameter t: parameter "viewpoint" moves the camera along the walk's orbit
+// (walkOrbitCameraView) past reflectors that stay put, so one tracer serves every t;
+// parameter "reflector" moves the reflectors along the walk path (walkOffset) before a fixed
+// camera (the orbit's t = 0, the scene camera), so each t gets a tracer of the moved scene.
+// The reflectors are back where the scene authors them when the state goes.
+class PemParameterState {
+public:
+    struct At {
+        const GroundTruthTracer* tracer;
+        CameraView camera;
+    };
+
+    PemParameterState(ProbeScene& scene, const PemCookSettings& s)
+        : scene_(scene), s_(s), byReflector_(s.parameter == "reflector"), roots_(scene) {
+        if (!byReflector_) {
+            tracer_.emplace(scene.registry, groundTruthOptions(scene, false));
+            return;
+        }
+        parseWalkPath(s.path, path_); // validated
+        amplitude_ = walkAmplitude(scene, glm::vec3(0.f));
+        if (!(amplitude_ > 0.f))
+            throw Error(scene.path, "parameter",
+                        "the reflectors have no room to move inside the probe's cell (cell_size)");
+    }
+    ~PemParameterState() {
+        if (byReflector_) roots_.setOffset(scene_.registry, glm::vec3(0.f));
+    }
+    PemParameterState(const PemParameterState&) = delete;
+    PemParameterState& operator=(const PemParameterState&) = delete;
+
+    At at(float t) {
+        if (!byReflector_)
+            return {&*tracer_, walkOrbitCameraView(scene_, s_.imageWidth, s_.imageHeight, t)};
+        roots_.setOffset(scene_.registry, walkOffset(path_, t, amplitude_));
+        tracer_.reset(); // one Embree scene at a time
+        tracer_.emplace(scene_.registry, groundTruthOptions(scene_, false));
+        return {&*tracer_, walkOrbitCameraView(scene_, s_.imageWidth, s_.imageHeight, 0.f)};
+    }
+
+private:
+    ProbeScene& scene_;
+    const PemCookSettings& s_;
+    bool byReflector_;
+    ReflectorRoots roots_;
+    WalkPath path_ = WalkPath::Orbit;
+    float amplitude_ = 0.f;
+    std::optional<GroundTruthTracer> tracer_;
+};
+
+// Each sample's fit half-way to the next one: the two maps blended as the runtime blends them
+// (pemBlend; the paths are closed loops, so the last sample blends with the first) against
+// the tracer at that viewpoint.
+void measureOffManifold(const PemAsset& asset, const PemCookSettings& s, const PemCookHooks& hooks,
+                        const std::string& file, const std::function<PemSamples(float)>& trace) {
+    std::vector<float> params;
+    for (const PemSampleMap& m : asset.samples)
+        params.push_back(m.parameter);
+    const bool periodic = true; // every walk path is a closed loop (walk_path.h)
+    for (int k = 0; k < s.samples; ++k) {
+        if (hooks.cancelled && hooks.cancelled())
+            throw Error(file, "cancelled", "the bake was cancelled");
+        const float t = (float(k) + 0.5f) / float(s.samples);
+        const PemBlendWeights w = pemBlend(params, t, false, periodic);
+        const PemLookupCpu a(asset.samples[std::size_t(w.a)].map);
+        const PemLookupCpu b(asset.samples[std::size_t(w.b)].map);
+        (*hooks.fits)[std::size_t(k)].psnrOff = pemSamplesPsnr(trace(t), [&](const PemSample& p) {
+            return glm::mix(a.radiance(p.x, p.l), b.radiance(p.x, p.l), w.wb);
+        });
+        if (hooks.progress) hooks.progress(0.5 + 0.5 * double(k + 1) / double(s.samples));
+    }
 }
 
 } // namespace
@@ -92,11 +168,39 @@ void validatePemCookSettings(const PemCookSettings& s, const std::string& file) 
         throw Error(file, "regularisation", "expected a finite lambda >= 0");
     if (s.imageWidth < 1 || s.imageHeight < 1 || s.imageWidth > 4096 || s.imageHeight > 4096)
         throw Error(file, "image_size", "expected 1 to 4096 pixels on each side");
-    if (s.parameter != "viewpoint")
+    if (s.geometry != "box" && s.geometry != "distance")
+        throw Error(file, "geometry", "expected box or distance, got '" + s.geometry + "'");
+    if (!(s.priorWeight >= 0.f) || !std::isfinite(s.priorWeight))
+        throw Error(file, "prior_weight", "expected a finite weight >= 0");
+    if (s.priorWeight > 0.f && s.geometry != "distance")
+        throw Error(file, "prior_weight",
+                    "the prior is the radiance the distance geometry captures: needs geometry "
+                    "distance");
+    if (s.parameter != "viewpoint" && s.parameter != "reflector")
         throw Error(file, "parameter",
-                    "'" + s.parameter + "' is not implemented yet (only viewpoint is)");
-    if (s.path != "orbit")
-        throw Error(file, "path", "'" + s.path + "' is not implemented yet (only orbit is)");
+                    "expected viewpoint or reflector, got '" + s.parameter + "'");
+    if (s.path == "camera")
+        throw Error(file, "path",
+                    "'camera' needs the glTF camera's animation, which the loader does not read "
+                    "yet (use orbit, or line/figure8 with --parameter reflector)");
+    WalkPath path;
+    if (s.parameter == "viewpoint" && s.path != "orbit")
+        throw Error(file, "path",
+                    "the viewpoint moves along the walk's camera orbit only ('orbit'), got '" +
+                        s.path + "'");
+    if (!parseWalkPath(s.path, path))
+        throw Error(file, "path", "expected orbit, line or figure8, got '" + s.path + "'");
+}
+
+double pemSamplesPsnr(const PemSamples& samples,
+                      const std::function<glm::vec3(const PemSample&)>& radiance) {
+    double sum = 0;
+    for (const PemSample& p : samples) {
+        const glm::dvec3 d = glm::dvec3(radiance(p)) - glm::dvec3(p.target);
+        sum += glm::dot(d, d);
+    }
+    const double mse = samples.empty() ? 0.0 : sum / (3.0 * double(samples.size()));
+    return 10.0 * std::log10(1.0 / std::max(mse, 1e-12));
 }
 
 Aabb pemMapBox(const ProbeScene& scene, glm::vec3 centre) {
@@ -117,30 +221,66 @@ PemAsset cookPemAsset(ProbeScene& scene, const PemCookSettings& s, const PemCook
     asset.parameterKind = s.parameter;
     asset.path = s.path;
     asset.faceRes = s.faceRes;
+    asset.imageWidth = s.imageWidth;
+    asset.imageHeight = s.imageHeight;
     const Aabb box = pemMapBox(scene, asset.centre);
     asset.boxMin = box.min;
     asset.boxMax = box.max;
 
-    const GroundTruthTracer tracer(scene.registry, groundTruthOptions(scene, false));
     PemInferOptions infer;
     infer.faceRes = s.faceRes;
     infer.boxMin = box.min;
     infer.boxMax = box.max;
     infer.regularisation = s.regularisation;
+    std::vector<glm::vec3> captured;
+    if (s.geometry == "distance") {
+        // The environment does not move with either parameter: one distance cube serves every
+        // sample. d_inf past any real distance: every environment point lies in the box.
+        const GroundTruthTracer environment(scene.registry, groundTruthOptions(scene, true));
+        const float dInf = 2.5f * glm::length(box.max - box.min) + 1.f;
+        asset.distance = std::make_shared<const PemDistanceGeometry>(bakePemDistanceGeometry(
+            environment, asset.centre, s.faceRes, dInf, s.priorWeight > 0.f ? &captured : nullptr));
+        asset.geometry = "distance";
+        infer.distance = asset.distance;
+        if (s.priorWeight > 0.f) {
+            infer.prior = &captured;
+            infer.priorWeight = s.priorWeight;
+        }
+    }
     PemSampleOptions so;
     so.supersample = s.supersample;
+    PemParameterState state(scene, s);
+    auto traceAt = [&](float t) {
+        const PemParameterState::At at = state.at(t);
+        return tracePemSamples(*at.tracer, at.camera, asset.centre, so, scene.path);
+    };
+    if (hooks.fits) hooks.fits->clear();
     for (int k = 0; k < s.samples; ++k) {
         if (hooks.cancelled && hooks.cancelled())
             throw Error(scene.path, "cancelled", "the bake was cancelled");
         const float t = float(k) / float(s.samples);
-        const CameraView camera = walkOrbitCameraView(scene, s.imageWidth, s.imageHeight, t);
-        const PemSamples samples = tracePemSamples(tracer, camera, asset.centre, so, scene.path);
+        const PemSamples samples = traceAt(t);
+        PemInference inferred = inferPemMap(samples, infer);
+        if (hooks.fits) {
+            PemSampleFit fit;
+            fit.parameter = t;
+            fit.rays = int(samples.size());
+            fit.unseenTexels = inferred.unseenTexels;
+            fit.inferSeconds = inferred.seconds;
+            const PemLookupCpu lookup(inferred.map);
+            fit.psnrOn = pemSamplesPsnr(
+                samples, [&](const PemSample& p) { return lookup.radiance(p.x, p.l); });
+            hooks.fits->push_back(fit);
+        }
         PemSampleMap m;
         m.parameter = t;
-        m.map = inferPemMap(samples, infer).map;
+        m.map = std::move(inferred.map);
         asset.samples.push_back(std::move(m));
-        if (hooks.progress) hooks.progress(double(k + 1) / double(s.samples));
+        // The off-manifold measurement traces once more per sample: its share of the bar.
+        const double share = hooks.fits ? 0.5 : 1.0;
+        if (hooks.progress) hooks.progress(share * double(k + 1) / double(s.samples));
     }
+    if (hooks.fits) measureOffManifold(asset, s, hooks, scene.path, traceAt);
     return asset;
 }
 

@@ -173,4 +173,23 @@ CLI::Validator vec3Text() {
         "x,y,z");
 }
 
+bool parseSize(const std::string& text, int& width, int& height) {
+    const std::size_t x = text.find('x');
+    if (x == std::string::npos) return false;
+    const bool ok = CLI::detail::lexical_cast(text.substr(0, x), width) &&
+                    CLI::detail::lexical_cast(text.substr(x + 1), height);
+    return ok && width >= 16 && width <= 8192 && height >= 16 && height <= 8192;
+}
+
+CLI::Validator sizeText() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            int w = 0, h = 0;
+            return parseSize(text, w, h)
+                       ? std::string()
+                       : "expected WIDTHxHEIGHT, each 16..8192, got '" + text + "'";
+        },
+        "WxH");
+}
+
 } // namespace specula::cli

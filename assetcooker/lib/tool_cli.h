@@ -55,5 +55,8 @@ CLI::Validator nonEmpty(const std::string& what);
 // "x,y,z": three finite numbers of magnitude at most 1e7.
 CLI::Validator vec3Text();
 glm::vec3 parseVec3(const std::string& text);
+// "WxH", each side 16..8192; false (width and height unspecified) otherwise.
+bool parseSize(const std::string& text, int& width, int& height);
+CLI::Validator sizeText();
 
 } // namespace specula::cli

@@ -43,6 +43,10 @@ std::string truckRoomPath() {
     return std::string(SPECULA_SOURCE_ROOT) + "/assets/truck_room/truck_room.gltf";
 }
 
+std::string bowlRoomPath() {
+    return std::string(SPECULA_SOURCE_ROOT) + "/assets/bowl_room/bowl_room.gltf";
+}
+
 namespace {
 
 std::string machineName() {
@@ -221,7 +225,8 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
     const int minFrames = std::min(maxFrames, opt.quick ? 6 : 16);
     const int gtRuns = opt.quick ? 1 : 3;
     std::vector<std::string> scenes = opt.scenes;
-    if (scenes.empty()) scenes = {defaultScenePath(), truckRoomPath(), skyOnlyPath()};
+    if (scenes.empty())
+        scenes = {defaultScenePath(), truckRoomPath(), bowlRoomPath(), skyOnlyPath()};
     const std::string sky = opt.sky.empty() ? defaultSkyPath() : opt.sky;
     for (const std::string& s : scenes)
         if (!fs::exists(s)) throw Error(s, "", "no such scene");
@@ -331,8 +336,15 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
                 panel.points.push_back({row.method, row.params, row.ratioToEnvmap, row.psnr});
             report.rows.push_back(row);
         }
-        appendPemRows(scene, fr, name, opt.outDir, report.width, report.height, budget, envmapMs,
-                      report, panel, log);
+        // The PEM sweep N in {4, 8, 16, 32} on the room and the concave bowl (self- and
+        // inter-reflection), N = 8 elsewhere and in quick runs; faces as the distance probes'
+        // but at most 256 (the inference goal is stated at 256^2).
+        const bool sampleSweep =
+            !opt.quick && (scenePath == defaultScenePath() || scenePath == bowlRoomPath());
+        const PemBenchSweep pemSweep{sampleSweep ? std::vector<int>{4, 8, 16, 32}
+                                                 : std::vector<int>{8},
+                                     std::min(report.faceRes, 256), report.width, report.height};
+        appendPemRows(scene, fr, name, opt.outDir, pemSweep, budget, envmapMs, report, panel, log);
         panels.push_back(panel);
 
         // Strip: ground truth | envmap | boxproj | distance cubemap (layered, d_e 0.01) | light

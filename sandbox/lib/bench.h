@@ -39,6 +39,9 @@ struct BenchReport {
 
 // `second scene` of the default set.
 std::string truckRoomPath();
+// A concave mirror bowl and a small mirror sphere in the default room: mirrors that see
+// themselves and each other over much of their area (scripts/make_bowl_room.py).
+std::string bowlRoomPath();
 std::string skyOnlyPath(); // a mirror under the sky alone: the plan must be the plain envmap
 
 // Runs the whole bench and writes its files; progress lines go to `log`. Throws Error

@@ -8,6 +8,7 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace specula {
 
@@ -32,13 +33,22 @@ Image measureProbeRow(FrameRenderer& fr, const CameraView& cam, const BenchTruth
 // "  room envmap -: 0.123 ms (x1.00), PSNR 30.1 dB, 1.00 fetches/px"
 void logBenchRow(std::ostream& log, const BenchRow& row);
 
-// The PEM rows of one scene, appended to report.rows and the scene's plot panel: one PEM
-// baked through the cooking API into outDir/probes/<scene>_pem (sandboxPemSettings(64)), drawn
-// from the walk orbit's camera at a sample's viewpoint ("t=on", t = 0) and half-way between
-// two samples ("t=off", t = 0.5 / samples), each against the ground truth of that camera.
+// Which PEMs the bench bakes on each scene: one per sample count, each inferred for the
+// bench's frame size (the pixels it is drawn at).
+struct PemBenchSweep {
+    std::vector<int> samples; // e.g. {4, 8, 16, 32}
+    int faceRes = 128;
+    int width = 0, height = 0;
+};
+
+// The PEM rows of one scene, appended to report.rows and the scene's plot panel: per sample
+// count N, one PEM baked through the cooking API into outDir/probes/<scene>_pemN, drawn from
+// the walk orbit's camera at a sample's viewpoint ("N=8 t=on", t = 0) and half-way between
+// two samples ("t=off", t = 0.5 / N), each against the ground truth of that camera. The
+// cooker's own fit (on and half-way, over all samples) and inference time go to the log.
 // A scene the PEM cannot be baked for is logged and left without rows.
 void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string& sceneName,
-                   const std::string& outDir, int width, int height, BenchFrameBudget budget,
+                   const std::string& outDir, const PemBenchSweep& sweep, BenchFrameBudget budget,
                    double envmapMs, BenchReport& report, PlotPanel& panel, std::ostream& log);
 
 } // namespace specula

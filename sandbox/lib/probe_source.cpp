@@ -1,5 +1,7 @@
 #include "probe_source.h"
 
+#include "components/reflection_probe/manifest_fields.h"
+
 #include "engine/core/error.h"
 #include "sandbox/lib/lightfield_hook.h"
 
@@ -29,18 +31,45 @@ CookResult cookSceneInto(ReflectionScene& scene, const std::string& dir, const C
     return cookProbe(scene.probeScene(), o, log);
 }
 
-PemCookSettings sandboxPemSettings(int faceRes) {
+PemCookSettings sandboxPemSettings(SourceBakeSize size, int samples) {
     PemCookSettings s;
-    s.samples = 8;
-    s.faceRes = faceRes;
-    s.supersample = 2;
+    s.samples = samples;
+    s.faceRes = size.faceRes;
+    s.imageWidth = size.width;
+    s.imageHeight = size.height;
+    s.supersample = 1;
+    s.parameter = size.pemByReflector ? "reflector" : "viewpoint";
+    s.path = toString(size.pemByReflector ? size.path : WalkPath::Orbit);
     return s;
 }
+
+namespace {
+
+// The parameter a PEM manifest's maps follow ("parameter_kind", "path"); the rest of the
+// asset is validated when the probe system loads it.
+void readPemParameter(const std::string& manifestPath, ProbeSource& src) {
+    const ParsedManifest m = ParsedManifest::load(manifestPath);
+    const ManifestFields f{m.path};
+    src.pemByReflector = f.string(m.json, "parameter_kind", "") == "reflector";
+    const std::string path = f.string(m.json, "path", "");
+    if (!parseWalkPath(path, src.pemPath))
+        throw Error(manifestPath, "path", "expected orbit, line or figure8, got '" + path + "'");
+    if (m.json.contains("image_size")) {
+        const nlohmann::json& size = m.json["image_size"];
+        if (size.is_array() && size.size() == 2 && size[0].is_number_integer() &&
+            size[1].is_number_integer()) {
+            src.pemImageWidth = size[0].get<int>();
+            src.pemImageHeight = size[1].get<int>();
+        }
+    }
+}
+
+} // namespace
 
 ProbeSource resolveProbeSource(const std::string& input,
                                const std::optional<std::string>& sceneOverride,
                                const std::optional<std::string>& skyOverride,
-                               const std::string& bakeDir, int faceRes, bool showProgress,
+                               const std::string& bakeDir, SourceBakeSize size, bool showProgress,
                                SourceBake bake, std::ostream* log) {
     std::error_code ec; // a symlink loop or unreadable parent is an error naming the input
     if (!fs::exists(input, ec))
@@ -54,6 +83,7 @@ ProbeSource resolveProbeSource(const std::string& input,
         src.manifest = input;
         src.lightField = facts.flavour == "lightfield";
         src.pem = facts.flavour == "pem";
+        if (src.pem) readPemParameter(input, src);
         if (sceneOverride) {
             src.scenePath = *sceneOverride;
         } else {
@@ -85,52 +115,19 @@ ProbeSource resolveProbeSource(const std::string& input,
         src.lightField = true;
     } else if (bake == SourceBake::Pem) {
         src.bakeSeconds =
-            cookSceneInto(scene, bakeDir, sandboxPemSettings(), showProgress, log).bakeSeconds;
+            cookSceneInto(scene, bakeDir, sandboxPemSettings(size), showProgress, log).bakeSeconds;
         src.pem = true;
+        src.pemByReflector = size.pemByReflector;
+        src.pemPath = size.path;
+        src.pemImageWidth = size.width;
+        src.pemImageHeight = size.height;
     } else {
-        src.bakeSeconds = bakeDistanceProbeInto(scene, bakeDir, faceRes, showProgress, false, log);
+        src.bakeSeconds =
+            bakeDistanceProbeInto(scene, bakeDir, size.faceRes, showProgress, false, log);
     }
     src.manifest = (fs::path(bakeDir) / "manifest.json").string();
     src.baked = true;
     return src;
-}
-
-bool parseWalkPath(const std::string& s, WalkPath& out) {
-    if (s == "orbit")
-        out = WalkPath::Orbit;
-    else if (s == "line")
-        out = WalkPath::Line;
-    else if (s == "figure8")
-        out = WalkPath::Figure8;
-    else
-        return false;
-    return true;
-}
-
-const char* toString(WalkPath p) {
-    switch (p) {
-    case WalkPath::Orbit:
-        return "orbit";
-    case WalkPath::Line:
-        return "line";
-    case WalkPath::Figure8:
-        return "figure8";
-    }
-    return "?";
-}
-
-glm::vec3 walkOffset(WalkPath path, float t, float amplitude) {
-    const float a = amplitude;
-    const float w = glm::two_pi<float>() * t;
-    switch (path) {
-    case WalkPath::Orbit:
-        return {a * std::sin(w), 0.25f * a * std::sin(2.f * w), a * std::cos(w)};
-    case WalkPath::Line:
-        return {a * std::sin(w), 0.f, 0.f};
-    case WalkPath::Figure8:
-        return {a * std::sin(w), 0.f, a * std::sin(2.f * w)};
-    }
-    return glm::vec3(0.f);
 }
 
 } // namespace specula

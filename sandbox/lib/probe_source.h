@@ -3,6 +3,7 @@
 // manifest (its scene found through the manifest's "source"). Plus the small helpers both
 // subcommands share: the reflector path inside the cell.
 #include "assetcooker/lib/cook.h"
+#include "components/reflection_probe/walk_path.h"
 #include "engine/image/image.h"
 #include "sandbox/lib/reflection_scene.h"
 
@@ -21,25 +22,41 @@ struct ProbeSource {
     bool baked = false;
     bool lightField = false; // the manifest is a light-field probe
     bool pem = false;        // the manifest is a parameterized environment map
+    // A PEM's parameter (its manifest's "parameter_kind" and "path"): "reflector" moves the
+    // reflectors along the path before a still camera; "viewpoint" swings the camera along
+    // the orbit past still reflectors.
+    bool pemByReflector = false;
+    WalkPath pemPath = WalkPath::Orbit;
+    int pemImageWidth = 0, pemImageHeight = 0; // the frame its maps fit; 0: not recorded
 };
 
 // What resolveProbeSource bakes from a scene.
 enum class SourceBake { Distance, LightField, Pem };
 
+// What resolveProbeSource bakes: the probe's cube faces, the frame it will be drawn at (a
+// PEM is inferred for those pixels) and, for a PEM, what its parameter moves: the viewpoint
+// along the camera orbit, or the reflectors along `path`.
+struct SourceBakeSize {
+    int faceRes = 128;
+    int width = 640, height = 480;
+    bool pemByReflector = false;
+    WalkPath path = WalkPath::Orbit;
+};
+
 // `input`: a scene or a manifest.json. `sceneOverride`: the scene to use with a manifest
 // (else its "source", relative to the working directory or to the manifest's folder).
-// A scene is baked with Embree into `bakeDir` (replaced): a distance probe with `faceRes`, a
-// light field (16 cameras of 32^2 pixels a slab) or a PEM (sandboxPemSettings()). Throws
+// A scene is baked with Embree into `bakeDir` (replaced): a distance probe with size.faceRes,
+// a light field (16 cameras of 32^2 pixels a slab) or a PEM (sandboxPemSettings(size)). Throws
 // Error naming the file on bad input. `log`: the bake's warnings (null: dropped).
 ProbeSource resolveProbeSource(const std::string& input,
                                const std::optional<std::string>& sceneOverride,
                                const std::optional<std::string>& skyOverride,
-                               const std::string& bakeDir, int faceRes, bool showProgress,
+                               const std::string& bakeDir, SourceBakeSize size, bool showProgress,
                                SourceBake bake = SourceBake::Distance, std::ostream* log = nullptr);
 
-// The PEM the sandbox bakes: 8 viewpoints t = k/8 on the walk's camera orbit, 2x2 rays a
-// pixel; walk bakes 32^2 faces, the bench 64^2 (about 1.5 s on the room).
-PemCookSettings sandboxPemSettings(int faceRes = 32);
+// The PEM the sandbox bakes: `samples` viewpoints t = k/samples on the walk's camera orbit,
+// one ray per pixel of the frame it is drawn at, size.faceRes^2 faces.
+PemCookSettings sandboxPemSettings(SourceBakeSize size, int samples = 8);
 
 // Bakes the distance probe of a loaded scene into `dir` through the cooking API (cookProbe);
 // returns the seconds it took. planned: the layers and methods of the effect plan (else one
@@ -50,12 +67,5 @@ double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int
 // The cooking API (cookProbe) on the sandbox's scene: `flavour`'s probe into `dir`.
 CookResult cookSceneInto(ReflectionScene& scene, const std::string& dir, const CookFlavour& flavour,
                          bool showProgress, std::ostream* log);
-
-// Walk paths: where the reflectors are at time t in [0, 1), as an offset from their authored
-// position. Every path stays within 0.2 cell sizes of it on each axis, inside the cell.
-enum class WalkPath { Orbit, Line, Figure8 };
-bool parseWalkPath(const std::string& s, WalkPath& out);
-const char* toString(WalkPath p);
-glm::vec3 walkOffset(WalkPath path, float t, float amplitude);
 
 } // namespace specula

@@ -1,5 +1,7 @@
 #include "reflection_scene.h"
 
+#include "components/reflection_probe/walk_path.h"
+
 #include "engine/scene/mesh_bounds.h"
 
 #include <algorithm>
@@ -29,16 +31,7 @@ float ReflectionScene::reflectorReach() const {
 }
 
 float ReflectionScene::walkAmplitude() const {
-    const float half = 0.5f * cellSize();
-    const Aabb cell = Aabb::cube(probeCentre(), half);
-    float slack = half;
-    // Room to the cell's faces of each mirror at its authored position (the current offset
-    // taken away).
-    for (ecs::Entity e : scene_.markup.mirrorEntities)
-        slack = std::min(
-            slack,
-            -meshWorldBounds(scene_.registry, e).translated(-reflectorOffset()).overhang(cell));
-    return std::clamp(slack, 0.f, 0.2f * cellSize());
+    return specula::walkAmplitude(scene_, reflectorOffset());
 }
 
 CameraView ReflectionScene::camera(int width, int height) const {

@@ -40,15 +40,17 @@ constexpr const char* kWalkDescription =
 
 constexpr const char* kBenchDescription =
     "Sweeps every method and its accuracy parameters (d_e in {0.1, 0.03, 0.01, 0.003}; quick:\n"
-    "{0.1, 0.01}) on each scene (default: the bundled room and truck_room), and measures per\n"
+    "{0.1, 0.01}) on each scene (default: the bundled room, truck_room, bowl_room and\n"
+    "sky_only), and measures per\n"
     "row: median reflector-pass time (GL timer queries on a GPU; wall clock around glFinish on\n"
     "CPU renderers such as llvmpipe, whose queries miss deferred rasterisation; as many frames\n"
     "as a stable median needs), its ratio to envmap in the same run, RMSE and PSNR against the "
     "Embree ground truth\n"
     "on reflector pixels (environment-only and full), texture fetches per pixel (CPU twin),\n"
-    "probe GPU memory and bake time. The ground truth itself is a row. The PEM rows (one\n"
-    "PEM a scene: 8 viewpoints, 64^2 faces) are drawn from the walk orbit's camera at a sample\n"
-    "(t=on) and half-way between two (t=off), each against the ground truth of that camera.\n"
+    "probe GPU memory and bake time. The ground truth itself is a row. The PEM rows (one PEM\n"
+    "per N in {4, 8, 16, 32} viewpoints, quick: 8; faces as --face-res, at most 256; each\n"
+    "inferred for the frame size) are drawn from the walk orbit's camera at a sample (t=on)\n"
+    "and half-way between two (t=off), each against the ground truth of that camera.\n"
     "\n"
     "Writes DIR/bench.csv, DIR/bench.md (machine and renderer named), DIR/accuracy_vs_time.png\n"
     "(PSNR against time, one line per method, Pareto front ringed) and DIR/strip_<scene>.png\n"
@@ -93,37 +95,18 @@ private:
     std::filesystem::path created_;
 };
 
-// "WxH", each side 16..8192.
-bool parseSize(const std::string& text, int& width, int& height) {
-    const std::size_t x = text.find('x');
-    if (x == std::string::npos) return false;
-    const bool ok = CLI::detail::lexical_cast(text.substr(0, x), width) &&
-                    CLI::detail::lexical_cast(text.substr(x + 1), height);
-    return ok && width >= 16 && width <= 8192 && height >= 16 && height <= 8192;
-}
-
-CLI::Validator sizeText() {
-    return CLI::Validator(
-        [](std::string& text) -> std::string {
-            int w = 0, h = 0;
-            return parseSize(text, w, h)
-                       ? std::string()
-                       : "expected WIDTHxHEIGHT, each 16..8192, got '" + text + "'";
-        },
-        "WxH");
-}
-
 // What walk's flags set; --size and --frames are resolved once the mode is known.
 struct WalkArgs {
     WalkOptions o;
-    std::string path = "orbit", size;
+    std::string path = "orbit", size, parameter = "viewpoint";
     std::optional<int> frames;
 };
 
 int runWalk(WalkArgs& a, std::ostream& out) {
     WalkOptions& o = a.o;
     parseWalkPath(a.path, o.path);
-    if (!a.size.empty()) parseSize(a.size, o.width, o.height);
+    o.pemByReflector = a.parameter == "reflector";
+    if (!a.size.empty()) cli::parseSize(a.size, o.width, o.height);
     if (o.headless && a.frames && *a.frames < 1)
         throw UsageError("--frames", "expected at least 1 frame with --headless, got " +
                                          std::to_string(*a.frames));
@@ -149,14 +132,19 @@ void addWalkCommand(cli::ToolCli& tool) {
         methods.push_back(m.name);
         methodHelp += std::string("\n  ") + m.name + ": " + m.help;
     }
-    methodHelp += "\n(lightfield and pem bake their flavour's probe from a scene, pem with its "
-                  "parameter following the walk's camera; a light-field or pem manifest always "
-                  "draws with its flavour)";
+    methodHelp += "\n(lightfield and pem bake their flavour's probe from a scene, pem for the "
+                  "frame size with its parameter following the walk (--parameter); a "
+                  "light-field or pem manifest always draws with its flavour)";
     sub->add_option("--method", o.method, methodHelp)->check(CLI::IsMember(methods));
     sub->add_option("--de", o.tolerance, "rectification tolerance d_e in metres")
         ->check(cli::finiteRange(1e-5, 10.0));
     sub->add_option("--path", a->path, "within 0.2 cell sizes of the start")
         ->check(CLI::IsMember({"orbit", "line", "figure8"}));
+    sub->add_option("--parameter", a->parameter,
+                    "a PEM baked from a scene varies with the viewpoint (the camera swings, the "
+                    "reflectors stay) or the reflector (the reflectors walk --path before a "
+                    "still camera); a PEM manifest says which itself")
+        ->check(CLI::IsMember({"viewpoint", "reflector"}));
     sub->add_option("--frames", a->frames,
                     "headless: frames to write (default 60); window: quit after N frames and "
                     "play the path (default: run until closed)")
@@ -165,7 +153,7 @@ void addWalkCommand(cli::ToolCli& tool) {
     sub->add_flag("--compare", o.compare,
                   "headless: trace every frame's ground truth and add its PSNR");
     sub->add_option("--out", o.outDir, "output folder")->check(cli::nonEmpty("a folder"));
-    sub->add_option("--size", a->size, "frame size (default 640x480)")->check(sizeText());
+    sub->add_option("--size", a->size, "frame size (default 640x480)")->check(cli::sizeText());
     sub->add_option("--scene", o.scene, "the scene of a manifest (overrides its \"source\")");
     sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
     sub->add_option("--face-res", o.faceRes, "cube face resolution when baking a scene")
@@ -180,7 +168,7 @@ struct BenchArgs {
 
 int runBenchCommand(BenchArgs& a, std::ostream& out) {
     BenchOptions& o = a.o;
-    if (!a.size.empty()) parseSize(a.size, o.width, o.height);
+    if (!a.size.empty()) cli::parseSize(a.size, o.width, o.height);
     o.faceRes = a.faceRes.value_or(0);
     o.maxFrames = a.maxFrames.value_or(0);
     CreatedOutputFolder created(o.outDir);
@@ -199,14 +187,14 @@ void addBenchCommand(cli::ToolCli& tool) {
         kBenchDescription, kOutputAndExitNote,
         [a](std::ostream& out) { return runBenchCommand(*a, out); });
     sub->add_option("--scene", o.scenes,
-                    "a scene to bench (repeatable; default: room and "
-                    "truck_room)")
+                    "a scene to bench (repeatable; default: room, truck_room, bowl_room and "
+                    "sky_only)")
         ->allow_extra_args(false);
     sub->add_flag("--quick", o.quick,
                   "small frame (160x120), 64^2 probe faces, fewer frames and d_e values");
     sub->add_option("--out", o.outDir, "output folder")->check(cli::nonEmpty("a folder"));
     sub->add_option("--size", a->size, "frame size (default 1024x768, quick 160x120)")
-        ->check(sizeText());
+        ->check(cli::sizeText());
     sub->add_option("--face-res", a->faceRes,
                     "cube face resolution of the baked probes (default 256, quick 64)")
         ->check(CLI::Range(8, 2048));

@@ -45,6 +45,12 @@ SourceBake walkSourceBake(const WalkOptions& o) {
     return SourceBake::Distance;
 }
 
+WalkMotion walkMotion(const ProbeSource& src, const WalkOptions& o) {
+    if (!src.pem) return {true, true, o.path};
+    if (src.pemByReflector) return {true, false, src.pemPath};
+    return {false, true, o.path};
+}
+
 void setWalkParameter(ReflectionScene& scene, float t) {
     if (PemProbe* p = scene.registry().find<PemProbe>(scene.probeEntity())) p->parameter = t;
 }
@@ -74,7 +80,8 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     fs::create_directories(o.outDir);
     const ProbeSource src =
         resolveProbeSource(o.input, o.scene, o.sky, (fs::path(o.outDir) / "probe").string(),
-                           o.faceRes, o.progress, walkSourceBake(o), &out);
+                           SourceBakeSize{o.faceRes, o.width, o.height, o.pemByReflector, o.path},
+                           o.progress, walkSourceBake(o), &out);
     if (src.baked) out << "baked " << src.manifest << " in " << src.bakeSeconds << " s\n";
     auto context = gpu::GlContext::createHeadless();
     ReflectionScene scene(src.scenePath, src.skyPath);
@@ -82,7 +89,14 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
 
     std::ostringstream csv;
     csv << "frame,reflector_x,reflector_y,reflector_z,camera_angle_deg,pass_ms"
-        << (o.compare ? ",psnr" : "") << '\n';
+        << (o.compare ? ",psnr,psnr_full" : "") << '\n';
+    const WalkMotion motion = walkMotion(src, o);
+    if (src.pem && src.pemImageWidth > 0 &&
+        (src.pemImageWidth != o.width || src.pemImageHeight != o.height))
+        out << "note: the PEM was inferred for " << src.pemImageWidth << "x" << src.pemImageHeight
+            << " frames; drawn at " << o.width << "x" << o.height
+            << " every pixel is off the manifold (bake with --image-size " << o.width << "x"
+            << o.height << ")\n";
     std::vector<Image> sheet;
     std::vector<std::string> labels;
     const int sheetEvery = std::max(1, (o.frames + 23) / 24); // at most 24 tiles
@@ -96,9 +110,12 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
         if (o.progress) bar.emplace("walk " + std::string(toString(o.path)));
         for (int i = 0; i < o.frames; ++i) {
             const float t = float(i) / float(o.frames);
-            scene.setReflectorOffset(walkOffset(o.path, t, scene.walkAmplitude()));
+            if (motion.moveReflectors)
+                scene.setReflectorOffset(walkOffset(motion.path, t, scene.walkAmplitude()));
             setWalkParameter(scene, t);
-            const float angle = angle0 + 0.4f * std::sin(glm::two_pi<float>() * t);
+            const float swing =
+                motion.swingCamera ? 0.4f * std::sin(glm::two_pi<float>() * t) : 0.f;
+            const float angle = angle0 + swing;
             const CameraView cam = walkCamera(scene, o.width, o.height, angle, dist, h);
             const Image img = fr.render(cam);
             const double ms = fr.passMs();
@@ -109,12 +126,16 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
             csv << i << ',' << p.x << ',' << p.y << ',' << p.z << ','
                 << glm::degrees(angle - angle0) << ',' << ms;
             if (o.compare) {
-                const GroundTruthImage gt = scene.groundTruth(cam, true);
-                const Image mask = erodedMask(gt.mirrorMask);
-                // "none" when the frame has no reflector pixel or both are black (see
-                // ImageStats::hasPsnr): such a frame measures nothing and must not read as
-                // a perfect score.
-                csv << ',' << formatPsnr(compareImages(img, gt.color, &mask).psnr, 6);
+                // Against the environment-only truth (what a probe captured at a point can
+                // hold) and the full multi-bounce one (what a PEM aims at).
+                for (const bool environmentOnly : {true, false}) {
+                    const GroundTruthImage gt = scene.groundTruth(cam, environmentOnly);
+                    const Image mask = erodedMask(gt.mirrorMask);
+                    // "none" when the frame has no reflector pixel or both are black (see
+                    // ImageStats::hasPsnr): such a frame measures nothing and must not read
+                    // as a perfect score.
+                    csv << ',' << formatPsnr(compareImages(img, gt.color, &mask).psnr, 6);
+                }
             }
             csv << '\n';
             if (i % sheetEvery == 0) {

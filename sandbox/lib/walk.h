@@ -27,8 +27,20 @@ struct WalkOptions {
     std::string outDir = "walk-out";
     int width = 640, height = 480;
     int faceRes = 128; // when a scene is baked here
+    // A PEM baked here: its parameter is the reflectors' position on `path` (false: the
+    // viewpoint on the camera orbit).
+    bool pemByReflector = false;
     bool progress = true;
 };
+
+// What a walk frame moves: the reflectors along a path and/or the camera along its orbit. A
+// viewpoint PEM keeps its reflectors where its maps were inferred; a reflector PEM keeps the
+// scene camera still and walks the reflectors along its baked path; every other probe both.
+struct WalkMotion {
+    bool moveReflectors = true, swingCamera = true;
+    WalkPath path = WalkPath::Orbit;
+};
+WalkMotion walkMotion(const ProbeSource& src, const WalkOptions& options);
 
 // The camera of frame t in [0, 1): the scene camera's distance and height around the probe,
 // swung +-23 degrees about its starting angle (a full circle would pass behind columns).

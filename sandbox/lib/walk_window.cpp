@@ -133,8 +133,11 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             fs::remove_all(dir, ec);
         }
     } cleanup{bakeDir};
-    const ProbeSource src = resolveProbeSource(o.input, o.scene, o.sky, bakeDir.string(), o.faceRes,
-                                               o.progress, walkSourceBake(o), &out);
+    const ProbeSource src =
+        resolveProbeSource(o.input, o.scene, o.sky, bakeDir.string(),
+                           {o.faceRes, o.width, o.height, o.pemByReflector, o.path}, o.progress,
+                           walkSourceBake(o), &out);
+    const WalkMotion motion = walkMotion(src, o);
     auto context = gpu::GlContext::createWindow(o.width, o.height, "specula-sandbox walk");
     GLFWwindow* window = context->window();
     glfwSwapInterval(0);
@@ -199,11 +202,14 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             }
             if (playing) {
                 t = std::fmod(t + 1.f / 120.f, 1.f);
-                offset = walkOffset(o.path, t, scene.walkAmplitude());
-                if (src.pem) { // the PEM's parameter is the viewpoint: the camera follows t
+                if (motion.moveReflectors)
+                    offset = walkOffset(motion.path, t, scene.walkAmplitude());
+                if (src.pem) { // the PEM's parameter follows t
                     setWalkParameter(scene, t);
-                    walkCameraOrbit(scene, angle, distance, height);
-                    angle += 0.4f * std::sin(glm::two_pi<float>() * t);
+                    if (motion.swingCamera) {
+                        walkCameraOrbit(scene, angle, distance, height);
+                        angle += 0.4f * std::sin(glm::two_pi<float>() * t);
+                    }
                 }
                 changed = true;
             }
@@ -241,7 +247,8 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
                 lastChange = std::chrono::steady_clock::now();
             }
 
-            scene.setReflectorOffset(offset);
+            // A viewpoint PEM's maps hold the reflectors where they were baked.
+            scene.setReflectorOffset(motion.moveReflectors ? offset : glm::vec3(0.f));
             const CameraView cam = walkCamera(scene, o.width, o.height, angle, distance, height);
             const Image img = fr.render(cam);
             if (frames > 0) { // the first timer result of a context can be garbage
@@ -251,7 +258,9 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             // The error of the current view, traced once the view has rested for 0.3 s.
             if (showError && errorKey != stateKey &&
                 std::chrono::steady_clock::now() - lastChange > std::chrono::milliseconds(300)) {
-                const GroundTruthImage gt = scene.groundTruth(cam, true);
+                // A PEM aims at the full multi-bounce truth, the other flavours at the
+                // environment-only one.
+                const GroundTruthImage gt = scene.groundTruth(cam, !src.pem);
                 const Image mask = erodedMask(gt.mirrorMask);
                 const ImageStats stats = compareImages(img, gt.color, &mask);
                 psnrText = stats.hasPsnr ? formatPsnr(stats.psnr) + " dB"

@@ -7,6 +7,7 @@
 #include "engine/core/glsl_host.h" // glm, which sampling.h expects
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
+#include "pem_room.h"
 
 #include <gtest/gtest.h>
 
@@ -18,44 +19,9 @@
 #include <random>
 
 using namespace specula;
+using namespace specula::test;
 
 namespace {
-
-// The room of the closed-form tests, probe-local; its walls emit a smooth function of the
-// point (RGB in roughly [0.25, 0.85]).
-const glm::vec3 kRoomMin(-2.f, -1.f, -3.f), kRoomMax(2.f, 1.5f, 3.f);
-
-glm::vec3 wallRadiance(glm::vec3 p) {
-    return {0.55f + 0.3f * std::sin(1.1f * p.x + 0.5f * p.z),
-            0.5f + 0.25f * std::cos(0.8f * p.y - 0.6f * p.x),
-            0.45f + 0.2f * std::sin(0.7f * p.z + 0.9f * p.y + 0.3f)};
-}
-
-// Where x + t l (x inside [lo, hi]) meets the box: the nearest of the six wall planes crossed
-// ahead whose crossing lies on the wall. Written apart from the shared lookup on purpose.
-glm::vec3 exitPoint(glm::vec3 x, glm::vec3 l, glm::vec3 lo, glm::vec3 hi) {
-    float best = std::numeric_limits<float>::infinity();
-    for (int a = 0; a < 3; ++a)
-        for (float plane : {lo[a], hi[a]}) {
-            if (l[a] == 0.f) continue;
-            const float t = (plane - x[a]) / l[a];
-            if (!(t > 0.f) || t >= best) continue;
-            const glm::vec3 p = x + t * l;
-            bool onWall = true;
-            for (int b = 0; b < 3; ++b)
-                if (b != a) onWall = onWall && p[b] >= lo[b] - 1e-4f && p[b] <= hi[b] + 1e-4f;
-            if (onWall) best = t;
-        }
-    return x + best * l;
-}
-
-glm::vec3 randomDirection(std::mt19937& rng) {
-    std::normal_distribution<float> g;
-    for (;;) {
-        const glm::vec3 v(g(rng), g(rng), g(rng));
-        if (glm::length(v) > 1e-3f) return glm::normalize(v);
-    }
-}
 
 // Reflector points in a cube of half-side `spread` around `centre`, directions uniform on
 // the sphere (those `keep` accepts), targets the room's radiance where the ray leaves it.
@@ -76,7 +42,7 @@ PemSamples roomSamples(int count, unsigned seed, glm::vec3 centre, float spread,
 }
 
 PemMap emptyMap(int n, glm::vec3 lo, glm::vec3 hi) {
-    return PemMap{n, lo, hi, std::vector<glm::vec3>(std::size_t(PemMap::texelCount(n)))};
+    return PemMap{n, lo, hi, std::vector<glm::vec3>(std::size_t(PemMap::texelCount(n))), nullptr};
 }
 
 PemMap randomMap(int n, glm::vec3 lo, glm::vec3 hi, unsigned seed) {
@@ -167,25 +133,9 @@ TEST(PemLookup, WeightsReproduceRadianceSumToOneAndStayOnOneFace) {
     for (int n : {1, 2, 5, 32}) {
         const PemMap map = randomMap(n, kRoomMin, kRoomMax, 3u * unsigned(n));
         const PemLookupCpu lookup(map);
-        const int perFace = n * n;
         for (const auto& [x, l] : testRays(kRoomMin, kRoomMax, 3000)) {
-            lookup.weights(x, l, w);
-            ASSERT_GE(w.size(), 1u);
-            ASSERT_LE(w.size(), 4u);
-            glm::vec3 sum(0.f);
-            float total = 0.f;
-            for (const auto& [t, weight] : w) {
-                ASSERT_GE(t, 0);
-                ASSERT_LT(t, 6 * perFace);
-                EXPECT_EQ(t / perFace, w.front().first / perFace); // bilinear within a face
-                EXPECT_GT(weight, 0.f);
-                total += weight;
-                sum += weight * map.texels[std::size_t(t)];
-            }
-            EXPECT_NEAR(total, 1.f, 1e-6f);
-            const glm::vec3 r = lookup.radiance(x, l);
-            for (int c = 0; c < 3; ++c)
-                ASSERT_NEAR(sum[c], r[c], 2e-6f) << "n " << n;
+            expectWeightsReproduceRadiance(lookup, map, x, l, w);
+            if (HasFatalFailure()) return;
         }
     }
 }

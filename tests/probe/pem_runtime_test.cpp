@@ -1,15 +1,18 @@
 // The runtime side of the parameterized-environment-map flavour: the asset's write/read
-// round trip and what the reader refuses, the blend weights, the shader against its CPU twin
-// on the default room (at a sample and between two), and a parameter edit that uploads the
-// parameter block only. Components, engine and cooker only: no sandbox code.
+// round trip (box and distance geometry) and what the reader refuses, the blend weights, the shader
+// against its CPU twin on the default room (at a sample and between two), and a parameter edit that
+// uploads the parameter block only. Components, engine and cooker only: no sandbox code.
+#include "assetcooker/lib/pem_geometry.h"
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_blend.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/pem/pem_store.h"
+#include "components/reflection_probe/probe_setup.h"
 #include "engine/core/error.h"
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"
 #include "engine/image/image_io.h"
+#include "engine/raytrace/ground_truth.h"
 #include "engine/scene/mesh_bounds.h"
 #include "support/probe_room.h"
 #include "support/scratch_dir_test.h"
@@ -47,12 +50,31 @@ PemAsset randomAsset(int faceRes, int count, glm::vec3 boxMin, glm::vec3 boxMax,
     for (int k = 0; k < count; ++k) {
         PemSampleMap s;
         s.parameter = count > 1 ? float(k) / float(count - 1) : 0.f;
-        s.map = {faceRes, boxMin, boxMax, {}};
+        s.map = {faceRes, boxMin, boxMax, {}, nullptr};
         for (int t = 0; t < PemMap::texelCount(faceRes); ++t)
             s.map.texels.emplace_back(u(rng), u(rng), u(rng));
         a.samples.push_back(std::move(s));
     }
     return a;
+}
+
+// Gives the asset and every sample map one distance geometry: `m`^2 faces of distances in
+// [0.5, 5) m, d_inf 1000, a search of the cooker's kind.
+void addDistanceGeometry(PemAsset& a, int m, unsigned seed = 9) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.5f, 5.f);
+    auto g = std::make_shared<PemDistanceGeometry>();
+    g->faceRes = m;
+    for (int t = 0; t < PemMap::texelCount(m); ++t)
+        g->distances.push_back(u(rng));
+    g->dInf = 1000.f;
+    g->range = 5.25f;
+    g->tolerance = 5.25e-3f;
+    g->maxSteps = 11;
+    a.geometry = "distance";
+    a.distance = g;
+    for (PemSampleMap& s : a.samples)
+        s.map.distance = g;
 }
 
 class PemAssetFiles : public test::ScratchDirTest {
@@ -85,9 +107,12 @@ protected:
 } // namespace
 
 TEST_F(PemAssetFiles, RoundTripKeepsEveryFieldAndTexel) {
-    const PemAsset a = randomAsset(4, 3, glm::vec3(-2.f, -1.f, -3.f), glm::vec3(2.f, 3.f, 1.f));
+    PemAsset a = randomAsset(4, 3, glm::vec3(-2.f, -1.f, -3.f), glm::vec3(2.f, 3.f, 1.f));
+    a.imageWidth = 320, a.imageHeight = 240;
     writePemProbe(a, dir(), "analytic");
     const PemAsset b = readPemProbe(manifest());
+    EXPECT_EQ(b.imageWidth, 320);
+    EXPECT_EQ(b.imageHeight, 240);
     EXPECT_EQ(b.manifestPath, manifest());
     EXPECT_EQ(b.centre, a.centre);
     EXPECT_EQ(b.parameterKind, "reflector");
@@ -167,6 +192,103 @@ TEST_F(PemAssetFiles, ReaderRefusesBadInputNamingFileAndField) {
     rewrite();
     editManifest([](json& m) { m["face_res"] = 8; }); // the images are 4 x 24
     expectRefused("manifest.json", "samples[0].file");
+
+    rewrite();
+    editManifest([](json& m) { m["image_size"] = {0, 240}; });
+    expectRefused("manifest.json", "image_size.w");
+    rewrite();
+    editManifest([](json& m) { m["image_size"] = 640; });
+    expectRefused("manifest.json", "image_size");
+}
+
+TEST_F(PemAssetFiles, DistanceGeometryRoundTrips) {
+    PemAsset a = randomAsset(4, 2, glm::vec3(-1.f), glm::vec3(1.f));
+    addDistanceGeometry(a, 6);
+    writePemProbe(a, dir(), "analytic");
+    const PemAsset b = readPemProbe(manifest());
+    EXPECT_EQ(b.geometry, "distance");
+    ASSERT_NE(b.distance, nullptr);
+    EXPECT_EQ(*b.distance, *a.distance); // distances, d_inf, range, tolerance, steps
+    EXPECT_EQ(b.distanceFile, "distance.exr");
+    EXPECT_EQ(b.distanceChecksum, fileChecksum(dir() + "/distance.exr"));
+    const Image img = readFloatExr(dir() + "/distance.exr");
+    EXPECT_EQ(img.width, 6);
+    EXPECT_EQ(img.height, 36);
+    for (const PemSampleMap& s : b.samples)
+        EXPECT_EQ(s.map.distance, b.distance) << "every map shares the asset's geometry";
+}
+
+// A box PEM written before distance geometry existed has no "geometry" field.
+TEST_F(PemAssetFiles, ManifestWithoutGeometryReadsAsBox) {
+    writePemProbe(randomAsset(4, 2, glm::vec3(-1.f), glm::vec3(1.f)), dir(), "analytic");
+    editManifest([](json& m) {
+        EXPECT_EQ(m["geometry"], "box");
+        m.erase("geometry");
+    });
+    const PemAsset b = readPemProbe(manifest());
+    EXPECT_EQ(b.geometry, "box");
+    EXPECT_EQ(b.distance, nullptr);
+    EXPECT_EQ(b.samples[0].map.distance, nullptr);
+}
+
+TEST_F(PemAssetFiles, ReaderRefusesBadDistanceGeometryNamingFileAndField) {
+    PemAsset a = randomAsset(4, 2, glm::vec3(-1.f), glm::vec3(1.f));
+    addDistanceGeometry(a, 6);
+    auto rewrite = [&] {
+        fs::remove_all(dir());
+        writePemProbe(a, dir(), "analytic");
+    };
+    const std::string distanceFile = dir() + "/distance.exr";
+    rewrite(); // tampered pixels: the checksum no longer matches
+    Image img = readFloatExr(distanceFile);
+    img.at(2, 11)[0] += 1.f;
+    writeImage(distanceFile, img);
+    expectRefused("manifest.json", "distance.checksum");
+
+    for (const float bad : {float(NAN), -1.f, 0.f, 2000.f}) {
+        rewrite(); // checksum updated, so that the content check is reached
+        img = readFloatExr(distanceFile);
+        img.at(2, 11)[0] = bad;
+        writeImage(distanceFile, img);
+        editManifest([&](json& m) { m["distance"]["checksum"] = fileChecksum(distanceFile); });
+        expectRefused("distance.exr", "distance");
+    }
+
+    rewrite();
+    fs::remove(distanceFile);
+    expectRefused("manifest.json", "distance.file");
+
+    rewrite();
+    editManifest([](json& m) { m["distance"]["face_res"] = 5; }); // the image is 6 x 36
+    expectRefused("manifest.json", "distance.file");
+
+    for (const char* field : {"face_res", "d_inf", "range", "tolerance", "max_steps"}) {
+        rewrite();
+        editManifest([&](json& m) { m["distance"].erase(field); });
+        expectRefused("manifest.json", std::string("distance.") + field);
+    }
+    rewrite();
+    editManifest([](json& m) { m["distance"]["range"] = 600.0; }); // past d_inf / 2
+    expectRefused("manifest.json", "distance.range");
+
+    rewrite();
+    editManifest([](json& m) { m.erase("distance"); });
+    expectRefused("manifest.json", "distance");
+
+    rewrite();
+    editManifest([](json& m) { m["geometry"] = "sphere"; });
+    expectRefused("manifest.json", "geometry");
+
+    // The writer refuses a sample map whose geometry is not the asset's.
+    PemAsset mixed = a;
+    mixed.samples[1].map.distance = nullptr;
+    fs::remove_all(dir());
+    try {
+        writePemProbe(mixed, dir(), "analytic");
+        ADD_FAILURE() << "expected samples[1].map to be refused";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.field(), "samples[1].map") << e.what();
+    }
 }
 
 TEST(PemBlend, ContinuousExactAtSamplesClampedAtTheEnds) {
@@ -219,9 +341,10 @@ TEST(PemBlend, NearestModePicksTheNearerSampleAlone) {
 namespace {
 
 // The default room with a PEM probe of three random 16^2 maps whose box encloses the
-// reflectors, a headless context and a renderer (built-in flavours: PEM included).
-// Everything a PemRoom test draws with, made once per suite; members are destroyed in
-// reverse, so the GL objects go before the context.
+// reflectors (distance: plus the room's distance cube, 64^2, baked with Embree as the cooker
+// does), a headless context and a renderer (built-in flavours: PEM included). Everything a
+// PemRoom test draws with, made once per suite; members are destroyed in reverse, so the GL
+// objects go before the context.
 struct PemRoomState {
     static constexpr int kWidth = 200, kHeight = 150;
 
@@ -231,7 +354,7 @@ struct PemRoomState {
     std::string manifest;
     fs::path dir = fs::temp_directory_path() / ("specula-pem-room-" + std::to_string(::getpid()));
 
-    PemRoomState() {
+    explicit PemRoomState(bool distance) {
         const glm::vec3 centre = scene.probeCentre();
         Aabb box;
         for (const ReflectorMarkup& r : scene.markup().reflectors)
@@ -239,39 +362,55 @@ struct PemRoomState {
                 box.extend(meshWorldBoundsConservative(scene.registry(), mesh));
         PemAsset a = randomAsset(16, 3, box.min - centre - 0.5f, box.max - centre + 0.5f);
         a.centre = centre;
+        if (distance) {
+            const GroundTruthTracer tracer(scene.registry(),
+                                           groundTruthOptions(scene.probeScene(), true));
+            a.geometry = "distance";
+            a.distance = std::make_shared<PemDistanceGeometry>(
+                bakePemDistanceGeometry(tracer, centre, 64, 1000.f, nullptr));
+            for (PemSampleMap& s : a.samples)
+                s.map.distance = a.distance;
+        }
         writePemProbe(a, dir.string(), scene.path());
         manifest = (dir / "manifest.json").string();
     }
     ~PemRoomState() { fs::remove_all(dir); }
 };
 
-class PemRoom : public ::testing::Test {
+template <bool Distance> class PemRoomSuite : public ::testing::Test {
 protected:
     static constexpr int kWidth = PemRoomState::kWidth, kHeight = PemRoomState::kHeight;
 
-    static void SetUpTestSuite() { room_ = std::make_unique<PemRoomState>(); }
+    static void SetUpTestSuite() { room_ = std::make_unique<PemRoomState>(Distance); }
     static void TearDownTestSuite() { room_.reset(); }
 
     static const PemStore& store() { return *room_->renderer.probes().store<PemStore>(); }
 
     static inline std::unique_ptr<PemRoomState> room_;
 };
+using PemRoom = PemRoomSuite<false>;
+using PemDistanceRoom = PemRoomSuite<true>;
 
-} // namespace
+struct TwinBounds {
+    double share; // of the pixels within 2e-3 of the twin, at least
+    double mean;  // mean error, below
+};
 
-TEST_F(PemRoom, ShaderMatchesCpuTwinPerPixelAtSamplesAndBetween) {
-    // The twin runs on the shader's own inputs (probe-local position and reflected direction
-    // read back as float32) with the block the store uploaded, over the same texels: the
-    // shader filters with texelFetch, so only float rounding may differ.
-    const CameraView cam = room_->scene.camera(kWidth, kHeight);
-    const Image mask = erodedMask(room_->scene.groundTruth(cam, true).mirrorMask);
+// The twin runs on the shader's own inputs (probe-local position and reflected direction
+// read back as float32) with the block the store uploaded, over the same texels: the shader
+// filters with texelFetch, so only float rounding may differ.
+void expectShaderMatchesTwin(PemRoomState& room, const TwinBounds& bounds) {
+    const int kWidth = PemRoomState::kWidth, kHeight = PemRoomState::kHeight;
+    const PemStore& store = *room.renderer.probes().store<PemStore>();
+    const CameraView cam = room.scene.camera(kWidth, kHeight);
+    const Image mask = erodedMask(room.scene.groundTruth(cam, true).mirrorMask);
     for (const PemProbe settings : {PemProbe{0.f, false}, PemProbe{0.5f, false},
                                     PemProbe{0.3f, false}, PemProbe{0.3f, true}}) {
-        room_->scene.setProbe(room_->manifest, settings);
-        const Image colour = room_->renderer.render(cam, 0);
-        const Image pos = room_->renderer.render(cam, 1);
-        const Image dir = room_->renderer.render(cam, 2);
-        const PemProbeGpu* synced = store().probe(room_->scene.probeEntity());
+        room.scene.setProbe(room.manifest, settings);
+        const Image colour = room.renderer.render(cam, 0);
+        const Image pos = room.renderer.render(cam, 1);
+        const Image dir = room.renderer.render(cam, 2);
+        const PemProbeGpu* synced = store.probe(room.scene.probeEntity());
         ASSERT_NE(synced, nullptr);
         const PemAsset* asset = synced->asset.get();
         const glsl::PemParams* params = &synced->params;
@@ -286,15 +425,55 @@ TEST_F(PemRoom, ShaderMatchesCpuTwinPerPixelAtSamplesAndBetween) {
             2e-3);
         ASSERT_GT(px.n, 500) << "the camera must see the reflectors";
         EXPECT_GT(px.colourSum / double(px.n), 0.25) << "the maps (random in [0, 1)) are drawn";
-        std::printf("pem parameter %.2f%s (samples %d/%d, wb %.2f): twin vs GLSL over %ld px: "
-                    "%.3f%% within 2e-3, mean %.2e, worst %.2e\n",
-                    double(settings.parameter), settings.nearest ? " nearest" : "", w.a, w.b,
-                    double(w.wb), px.n, 100.0 * px.share(), px.mean(), px.worst);
-        EXPECT_GE(px.share(), 0.995) << settings.parameter;
-        EXPECT_LT(px.mean(), 5e-4) << settings.parameter;
+        std::printf("pem (%s) parameter %.2f%s (samples %d/%d, wb %.2f): twin vs GLSL over %ld "
+                    "px: %.3f%% within 2e-3, mean %.2e, worst %.2e\n",
+                    asset->geometry.c_str(), double(settings.parameter),
+                    settings.nearest ? " nearest" : "", w.a, w.b, double(w.wb), px.n,
+                    100.0 * px.share(), px.mean(), px.worst);
+        EXPECT_GE(px.share(), bounds.share) << settings.parameter;
+        EXPECT_LT(px.mean(), bounds.mean) << settings.parameter;
     }
+}
+
+} // namespace
+
+TEST_F(PemRoom, ShaderMatchesCpuTwinPerPixelAtSamplesAndBetween) {
+    expectShaderMatchesTwin(*room_, {0.995, 5e-4});
     const auto& drawn = room_->renderer.stats().permutations;
     EXPECT_NE(std::find(drawn.begin(), drawn.end(), "pem"), drawn.end());
+}
+
+// The distance geometry's shader against its twin. Its search reads the distance cube at the
+// nearest texel, and a point within float rounding of a texel boundary can read the
+// neighbour on one side and not the other; the search then continues elsewhere and reads
+// other map texels (random, so the error is large where it happens). Such pixels must stay
+// rare, as in the distance flavour's twin tests; everywhere else only rounding differs.
+TEST_F(PemDistanceRoom, ShaderMatchesCpuTwinPerPixelAtSamplesAndBetween) {
+    expectShaderMatchesTwin(*room_, {0.99, 5e-3});
+    const auto& drawn = room_->renderer.stats().permutations;
+    EXPECT_NE(std::find(drawn.begin(), drawn.end(), "pem-distance"), drawn.end());
+    EXPECT_EQ(room_->renderer.stats().probeGpuBytes,
+              3u * 6 * 16 * 16 * 16 + 6 * 64 * 64 * 4 + sizeof(glsl::PemParams));
+
+    // Agreement must not be that of two box lookups: the baked cube sees the room, and the
+    // same map looked up with box geometry draws something else.
+    const PemAsset& asset = *store().probe(room_->scene.probeEntity())->asset;
+    const long walls =
+        std::count_if(asset.distance->distances.begin(), asset.distance->distances.end(),
+                      [&](float d) { return d < asset.distance->dInf; });
+    EXPECT_GT(walls, long(asset.distance->distances.size()) / 2);
+    const CameraView cam = room_->scene.camera(kWidth, kHeight);
+    const Image mask = erodedMask(room_->scene.groundTruth(cam, true).mirrorMask);
+    room_->scene.setProbe(room_->manifest, PemProbe{0.f, false});
+    PemMap box = asset.samples[0].map;
+    box.distance = nullptr;
+    const test::PixelAgreement px = test::agreeByPixel(
+        room_->renderer.render(cam, 0), room_->renderer.render(cam, 1),
+        room_->renderer.render(cam, 2), mask,
+        [&](glm::vec3 x, glm::vec3 l) { return PemLookupCpu(box).radiance(x, l); }, 2e-3);
+    std::printf("pem (distance) vs the same map as a box map: %.1f%% of %ld px within 2e-3\n",
+                100.0 * px.share(), px.n);
+    EXPECT_LT(px.share(), 0.5);
 }
 
 TEST_F(PemRoom, ParameterEditUploadsTheBlockOnly) {

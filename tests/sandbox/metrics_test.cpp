@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -56,15 +57,28 @@ fs::path scaledRoom(const fs::path& dir, float s) {
     return out;
 }
 
-// The psnr cells of frames.csv.
-std::vector<std::string> psnrCells(const fs::path& csv) {
+// The cells of frames.csv's column `name` ("psnr": against the environment-only truth).
+std::vector<std::string> psnrCells(const fs::path& csv, const std::string& name = "psnr") {
     std::ifstream in(csv);
     std::string line;
     std::getline(in, line);
-    EXPECT_EQ(line.substr(line.rfind(',') + 1), "psnr");
+    auto split = [](const std::string& text) {
+        std::vector<std::string> out;
+        std::stringstream s(text);
+        for (std::string cell; std::getline(s, cell, ',');)
+            out.push_back(cell);
+        return out;
+    };
+    const std::vector<std::string> header = split(line);
+    const auto column = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(column, header.end()) << name << " missing from " << line;
+    if (column == header.end()) return {};
     std::vector<std::string> cells;
-    while (std::getline(in, line))
-        cells.push_back(line.substr(line.rfind(',') + 1));
+    while (std::getline(in, line)) {
+        const std::vector<std::string> row = split(line);
+        const std::size_t c = std::size_t(column - header.begin());
+        cells.push_back(c < row.size() ? row[c] : "");
+    }
     return cells;
 }
 
@@ -83,10 +97,13 @@ TEST(WalkMetrics, FramesWithoutReflectorPixelsHaveNoPsnr) {
         Scratch t;
         const auto r = walk(scaledRoom(t.dir, s), t.dir / "walk", t.dir);
         ASSERT_EQ(r.status, 0) << s << "\n" << r.err;
-        const std::vector<std::string> cells = psnrCells(t.dir / "walk" / "frames.csv");
-        ASSERT_EQ(cells.size(), 2u);
-        for (const std::string& c : cells)
-            EXPECT_EQ(c, "none") << "scale " << s << ": a frame with nothing measured scored " << c;
+        for (const char* column : {"psnr", "psnr_full"}) {
+            const std::vector<std::string> cells = psnrCells(t.dir / "walk" / "frames.csv", column);
+            ASSERT_EQ(cells.size(), 2u);
+            for (const std::string& c : cells)
+                EXPECT_EQ(c, "none") << "scale " << s << ", " << column
+                                     << ": a frame with nothing measured scored " << c;
+        }
     }
 }
 

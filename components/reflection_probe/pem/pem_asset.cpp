@@ -53,13 +53,28 @@ Image stackMap(const PemMap& m) {
 }
 
 PemMap unstackMap(const Image& img, const PemAsset& a) {
-    PemMap m{a.faceRes, a.boxMin, a.boxMax, {}};
+    PemMap m{a.faceRes, a.boxMin, a.boxMax, {}, a.distance};
     m.texels.resize(std::size_t(PemMap::texelCount(a.faceRes)));
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x)
             m.texels[std::size_t(y) * std::size_t(img.width) + std::size_t(x)] =
                 glm::vec3(img.rgba(x, y));
     return m;
+}
+
+constexpr const char* kDistanceFile = "distance.exr";
+
+// The distance cube's faces stacked as the maps' are, one channel.
+Image stackDistances(const PemDistanceGeometry& g) {
+    Image out(g.faceRes, 6 * g.faceRes, 1);
+    for (std::size_t t = 0; t < g.distances.size(); ++t)
+        out.pixels[t] = g.distances[t];
+    return out;
+}
+
+// Both box, or both the same distance geometry (the same object, or equal contents).
+bool sameGeometry(const PemDistanceGeometry* a, const PemDistanceGeometry* b) {
+    return a == b || (a && b && *a == *b);
 }
 
 // Every texel's RGB finite in [0, kMaxRadiance]; the error names the face, texel and channel.
@@ -79,9 +94,9 @@ void checkRadiance(const PemMap& m, const std::string& file, std::size_t k) {
 }
 
 // What the reader checks of the whole asset; the writer runs it first too. `files[k]` names
-// sample k's image.
+// sample k's image, `distanceFile` the distance cube's.
 void checkAsset(const PemAsset& a, const std::string& manifest,
-                const std::vector<std::string>& files) {
+                const std::vector<std::string>& files, const std::string& distanceFile) {
     for (int i = 0; i < 3; ++i)
         if (!(std::fabs(a.centre[i]) <= kMaxCoordinate))
             throw Error(manifest, "centre",
@@ -96,9 +111,21 @@ void checkAsset(const PemAsset& a, const std::string& manifest,
         throw Error(manifest, "face_res",
                     "expected an integer in [1, " + std::to_string(kMaxPemFaceRes) + "], got " +
                         std::to_string(a.faceRes));
+    const bool noImage = a.imageWidth == 0 && a.imageHeight == 0;
+    if (!noImage &&
+        (a.imageWidth < 1 || a.imageHeight < 1 || a.imageWidth > 8192 || a.imageHeight > 8192))
+        throw Error(manifest, "image_size", "expected 1 to 8192 pixels on each side");
     for (int i = 0; i < 3; ++i)
         if (!(a.boxMin[i] < a.boxMax[i]) || !std::isfinite(a.boxMax[i] - a.boxMin[i]))
             throw Error(manifest, "box", "expected finite bounds with min < max on every axis");
+    if (a.geometry != "box" && a.geometry != "distance")
+        throw Error(manifest, "geometry",
+                    "expected \"box\" or \"distance\", got \"" + a.geometry + "\"");
+    if ((a.geometry == "distance") != bool(a.distance))
+        throw Error(manifest, "geometry",
+                    a.distance ? "a box-geometry asset holds a distance cube"
+                               : "distance geometry without its distance cube");
+    if (a.distance) checkPemDistanceGeometry(*a.distance, manifest, distanceFile);
     if (a.samples.empty() || a.samples.size() > std::size_t(kMaxPemSamples))
         throw Error(manifest, "samples",
                     "expected 1 to " + std::to_string(kMaxPemSamples) + " sample maps, got " +
@@ -113,11 +140,12 @@ void checkAsset(const PemAsset& a, const std::string& manifest,
                         "parameters must increase strictly: " + number(s.parameter) + " follows " +
                             number(a.samples[k - 1].parameter));
         if (s.map.faceRes != a.faceRes || s.map.boxMin != a.boxMin || s.map.boxMax != a.boxMax ||
-            s.map.texels.size() != std::size_t(PemMap::texelCount(a.faceRes)))
+            s.map.texels.size() != std::size_t(PemMap::texelCount(a.faceRes)) ||
+            !sameGeometry(s.map.distance.get(), a.distance.get()))
             throw Error(manifest, samplePath(k) + "map",
                         "expected " + std::to_string(PemMap::texelCount(a.faceRes)) +
                             " texels of face resolution " + std::to_string(a.faceRes) +
-                            " over the asset's box");
+                            " over the asset's box and geometry");
         checkRadiance(s.map, files[k], k);
     }
 }
@@ -128,7 +156,8 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
     std::vector<std::string> files;
     for (std::size_t k = 0; k < asset.samples.size(); ++k)
         files.push_back((fs::path(dir) / sampleFileName(k)).string());
-    checkAsset(asset, (fs::path(dir) / "manifest.json").string(), files);
+    checkAsset(asset, (fs::path(dir) / "manifest.json").string(), files,
+               (fs::path(dir) / kDistanceFile).string());
 
     writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
         json samples = json::array();
@@ -142,6 +171,19 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
                                {"checksum", fileChecksum(path)}});
         }
         json manifest = probeManifestHeader("pem", sourceScene);
+        manifest["geometry"] = asset.geometry;
+        if (asset.imageWidth > 0) manifest["image_size"] = {asset.imageWidth, asset.imageHeight};
+        if (const PemDistanceGeometry* g = asset.distance.get()) {
+            const std::string path = (tmp / kDistanceFile).string();
+            writeImage(path, stackDistances(*g));
+            manifest["distance"] = {{"face_res", g->faceRes},
+                                    {"d_inf", g->dInf},
+                                    {"range", g->range},
+                                    {"tolerance", g->tolerance},
+                                    {"max_steps", g->maxSteps},
+                                    {"file", kDistanceFile},
+                                    {"checksum", fileChecksum(path)}};
+        }
         manifest.update(
             {{"centre", vec3Json(asset.centre)},
              {"parameter_kind", asset.parameterKind},
@@ -171,9 +213,42 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
     a.parameterKind = r.string(m, "parameter_kind", "");
     a.path = r.string(m, "path", "");
     a.faceRes = r.integer(m, "face_res", "", 1, kMaxPemFaceRes);
+    // Absent in manifests written before it was recorded.
+    if (m.contains("image_size")) {
+        const json& size = r.member(m, "image_size", "");
+        if (!size.is_array() || size.size() != 2)
+            throw Error(manifest.path, "image_size", "expected [width, height]");
+        const json pair = {{"w", size[0]}, {"h", size[1]}};
+        a.imageWidth = r.integer(pair, "w", "image_size.", 1, 8192);
+        a.imageHeight = r.integer(pair, "h", "image_size.", 1, 8192);
+    }
     const json& box = r.member(m, "box", "");
     a.boxMin = r.vec3(box, "min", "box.", FLT_MAX);
     a.boxMax = r.vec3(box, "max", "box.", FLT_MAX);
+    // Absent in manifests written before distance geometry: those are box maps.
+    if (m.contains("geometry")) a.geometry = r.string(m, "geometry", "");
+    std::string distanceFile = (dir / kDistanceFile).string();
+    if (a.geometry == "distance") {
+        const json& d = r.member(m, "distance", "");
+        auto g = std::make_shared<PemDistanceGeometry>();
+        g->faceRes = r.integer(d, "face_res", "distance.", 1, kMaxPemFaceRes);
+        g->dInf = float(r.number(d, "d_inf", "distance.", 0.0, FLT_MAX));
+        g->range = float(r.number(d, "range", "distance.", 0.0, FLT_MAX));
+        g->tolerance = float(r.number(d, "tolerance", "distance.", 0.0, FLT_MAX));
+        g->maxSteps = r.integer(d, "max_steps", "distance.", 1, 40);
+        const ManifestFields::CheckedFile file =
+            r.checkedFile(d, "distance.", dir, maxSampleFileBytes(g->faceRes));
+        a.distanceFile = file.name;
+        a.distanceChecksum = file.checksum;
+        distanceFile = file.path;
+        const Image img = r.namedFile("distance.", [&] {
+            return readFloatExr(file.path, {.width = g->faceRes, .height = 6 * g->faceRes});
+        });
+        g->distances.resize(std::size_t(PemMap::texelCount(g->faceRes)));
+        for (std::size_t t = 0; t < g->distances.size(); ++t)
+            g->distances[t] = img.pixels[t * std::size_t(img.channels)];
+        a.distance = std::move(g);
+    }
     const json& samples = r.member(m, "samples", "");
     if (!samples.is_array() || samples.empty() || samples.size() > std::size_t(kMaxPemSamples))
         throw Error(manifest.path, "samples",
@@ -199,7 +274,7 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
         a.samples.push_back(std::move(s));
         files.push_back(file.path);
     }
-    checkAsset(a, manifest.path, files);
+    checkAsset(a, manifest.path, files, distanceFile);
     return a;
 }
 

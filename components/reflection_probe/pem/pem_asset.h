@@ -1,16 +1,19 @@
 #pragma once
-// A cooked parameterized-environment-map probe (Hakura, Snyder, Lengyel 2001): one box-geometry
-// map per sample of a one-dimensional parameter (where the viewer or the reflector is along a
-// walk path), the maps inferred offline so that the lookup reproduces the ray-traced
-// reflection at that sample. At run time the two samples nearest the current parameter are
-// blended (pem_blend.h).
+// A cooked parameterized-environment-map probe (Hakura, Snyder, Lengyel 2001): one map
+// (box or distance geometry) per sample of a one-dimensional parameter (where the viewer or the
+// reflector is along a walk path), the maps inferred offline so that the lookup reproduces the
+// ray-traced reflection at that sample. At run time the two samples nearest the current parameter
+// are blended (pem_blend.h).
 //
 // On disk: manifest.json ("flavour": "pem") plus one float EXR per sample, N x 6N, faces
 // +X -X +Y -Y +Z -Z top to bottom (OpenGL face orientation, each face's row 0 first), RGB
-// linear radiance: texel (face, i, j) of the PemMap is pixel (i, face * N + j).
+// linear radiance: texel (face, i, j) of the PemMap is pixel (i, face * N + j). A map of
+// distance geometry ("geometry": "distance") adds distance.exr, M x 6M in the same layout,
+// one channel: the environment's distance from the centre per texel of its own cube.
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/pem/pem_lookup_cpu.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -30,24 +33,37 @@ struct PemAsset {
     std::string parameterKind = "viewpoint"; // "viewpoint" | "reflector"
     std::string path = "orbit";              // the walk path the parameter runs along
     int faceRes = 0;
+    // The camera image the maps were inferred for (their rows are its pixel centres): drawn at
+    // another size, every pixel is off the manifold. 0 x 0: not recorded (older manifests).
+    int imageWidth = 0, imageHeight = 0;
     glm::vec3 boxMin{-1.f}, boxMax{1.f}; // probe-local map box
-    std::vector<PemSampleMap> samples;   // parameter strictly increasing
+    // Every sample map's geometry: "box" (the map box) or "distance" (the distance cube
+    // below, which every sample's map.distance then points to as well). A manifest written
+    // before distance geometry existed has no "geometry" field and reads as "box".
+    std::string geometry = "box";
+    std::shared_ptr<const PemDistanceGeometry> distance; // set iff geometry == "distance"
+    std::string distanceFile, distanceChecksum;          // set by the reader
+    std::vector<PemSampleMap> samples;                   // parameter strictly increasing
 };
 
 // Most samples a manifest may list (each is a full cube map).
 inline constexpr int kMaxPemSamples = 1024;
 
-// Writes DIR/manifest.json and sample_NN.exr through writeProbeFolder (atomic: DIR is replaced
-// by one rename or left as it was). The reader's checks run first, so a probe the reader would
-// refuse is never written; they throw Error naming DIR's manifest (or a sample's file) and the
-// field: "centre", "parameter_kind", "path", "face_res", "box", "samples",
-// "samples[k].parameter", "samples[k].map" (size or box unlike the asset's), "radiance".
+// Writes DIR/manifest.json, sample_NN.exr (and distance.exr) through writeProbeFolder (atomic: DIR
+// is replaced by one rename or left as it was). The reader's checks run first, so a probe the
+// reader would refuse is never written; they throw Error naming DIR's manifest (or a sample's file)
+// and the field: "centre", "parameter_kind", "path", "face_res", "box", "geometry", "distance.*"
+// (checkPemDistanceGeometry; distance.exr for the distances), "samples",
+// "samples[k].parameter", "samples[k].map" (size, box or geometry unlike the asset's),
+// "radiance".
 void writePemProbe(const PemAsset& asset, const std::string& dir, const std::string& sourceScene);
 
 // Reads and validates a manifest and its images: format, version and flavour, every field's
 // type and range, parameters in [0, 1] strictly increasing, each file a plain name inside the
 // folder with a matching checksum, each image a float EXR of exactly N x 6N whose RGB is
-// finite in [0, kMaxRadiance]. Errors name the file and the field.
+// finite in [0, kMaxRadiance]; distance geometry: its parameters, distance.exr a float EXR of
+// exactly M x 6M with a matching checksum whose first channel lies in (0, d_inf]. Errors
+// name the file and the field.
 PemAsset readPemProbe(const ProbeManifest& manifest);
 PemAsset readPemProbe(const std::string& manifestPath);
 

@@ -1,14 +1,20 @@
 #include "pem_lookup_cpu.h"
 
+#include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 #include "engine/math/cube_face.h"
 
 #include <array>
 #include <cassert>
+#include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <type_traits>
 
 namespace specula {
 namespace glsl {
+// At namespace scope once, so the lookups included in the structs below share the types.
+#include "components/reflection_probe/distance/shaders/distance_lookup_types.glsl.h"
 
 // Reads the map, as the GPU's texelFetch will.
 struct PemTexelRead {
@@ -20,21 +26,16 @@ struct PemTexelRead {
     }
 };
 
-// The shared lookup is included inside a struct so its fetchTexel calls bind to the member.
-struct PemReadTwin : PemTexelRead {
-#include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
-};
-#undef SPECULA_PEM_LOOKUP_GLSL_H
-
 // Measures the lookup's weights by linearity, as Hakura et al. build the rendering matrix
 // from test renderings that isolate each texel: on pass p, fetch number k of the lookup reads
 // a texel that is 1 in channel k - 3p when 3p <= k < 3p + 3 and black otherwise, so the
 // result's three channels are the weights the lookup gave fetches 3p .. 3p+2, whatever
 // arithmetic it used to apply them. Texel indices are recorded on the way; they depend on
-// the ray only, so every pass fetches the same texels in the same order.
+// the ray only (the distance cube is geometry, not a texel), so every pass fetches the same
+// texels in the same order.
 struct PemTexelProbe {
     static constexpr int kMaxFetches = 16; // 4 now; trilinear MIP lookups will need 8
-    int faceRes = 0;
+    const PemMap* map = nullptr;
     int pass = 0;
     int fetches = 0;
     std::array<int, kMaxFetches> index{};
@@ -42,33 +43,86 @@ struct PemTexelProbe {
     vec3 fetchTexel(int face, int i, int j) {
         const int k = fetches++;
         assert(k < kMaxFetches);
-        if (pass == 0) index[std::size_t(k)] = (face * faceRes + j) * faceRes + i;
+        if (pass == 0) index[std::size_t(k)] = (face * map->faceRes + j) * map->faceRes + i;
         vec3 unit(0.0f);
         if (k / 3 == pass) unit[k % 3] = 1.0f;
         return unit;
     }
 };
 
+// What the distance geometry's lookup reads besides the map: the distance cube (nearest).
+struct PemDistanceRead {
+    const PemDistanceGeometry* geometry = nullptr;
+    int mapFaceRes = 0;
+
+    float fetchDistanceTexel(int face, int i, int j) const {
+        const int n = geometry->faceRes;
+        return geometry->distances[std::size_t((face * n + j) * n + i)];
+    }
+    int pemMapFaceRes() const { return mapFaceRes; }
+    int pemDistanceFaceRes() const { return geometry->faceRes; }
+};
+
+// The shared lookups are included inside structs so their fetch calls bind to the members.
+struct PemReadTwin : PemTexelRead {
+#include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
+};
+#undef SPECULA_PEM_LOOKUP_GLSL_H
+
 struct PemProbeTwin : PemTexelProbe {
 #include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
 };
+#undef SPECULA_PEM_LOOKUP_GLSL_H
+
+// The distance hooks take the distance lookup's `layer` argument, which a single-layer
+// lookup does not need: GLSL does not mind, C++ warns.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+struct PemDistanceReadTwin : PemTexelRead, PemDistanceRead {
+#include "components/reflection_probe/pem/shaders/pem_distance_lookup.glsl.h"
+#include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
+};
+#undef SPECULA_PEM_LOOKUP_GLSL_H
+#undef SPECULA_PEM_DISTANCE_LOOKUP_GLSL_H
+#undef SPECULA_DISTANCE_LOOKUP_GLSL_H
+
+struct PemDistanceProbeTwin : PemTexelProbe, PemDistanceRead {
+#include "components/reflection_probe/pem/shaders/pem_distance_lookup.glsl.h"
+#include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
+};
+#pragma GCC diagnostic pop
 
 } // namespace glsl
 
-glm::vec3 PemLookupCpu::radiance(glm::vec3 x, glm::vec3 l) const {
-    glsl::PemReadTwin twin;
-    twin.map = map_;
-    return twin.pemRadiance(x, l, map_->boxMin, map_->boxMax, map_->faceRes);
+namespace {
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
 }
 
-void PemLookupCpu::weights(glm::vec3 x, glm::vec3 l, PemWeights& out) const {
+template <typename Twin> glm::vec3 lookup(Twin& twin, const PemMap& m, glm::vec3 x, glm::vec3 l) {
+    if constexpr (std::is_base_of_v<glsl::PemDistanceRead, Twin>) {
+        const PemDistanceGeometry& g = *m.distance;
+        twin.geometry = &g;
+        twin.mapFaceRes = m.faceRes;
+        return twin.pemDistanceRadiance(
+            x, l, twin.pemDistanceParams(g.dInf, g.range, g.tolerance, g.maxSteps));
+    } else {
+        return twin.pemRadiance(x, l, m.boxMin, m.boxMax, m.faceRes);
+    }
+}
+
+// Runs the recording twin pass by pass (PemTexelProbe) and gathers its weights.
+template <typename Twin>
+void measureWeights(Twin& twin, const PemMap& m, glm::vec3 x, glm::vec3 l, PemWeights& out) {
     out.clear();
-    glsl::PemProbeTwin twin;
-    twin.faceRes = map_->faceRes;
+    twin.map = &m;
     int fetches = 0;
     do {
         twin.fetches = 0;
-        const glm::vec3 w = twin.pemRadiance(x, l, map_->boxMin, map_->boxMax, map_->faceRes);
+        const glm::vec3 w = lookup(twin, m, x, l);
         assert(twin.pass == 0 || twin.fetches == fetches);
         fetches = twin.fetches;
         for (int c = 0; c < 3 && 3 * twin.pass + c < fetches; ++c) {
@@ -85,6 +139,64 @@ void PemLookupCpu::weights(glm::vec3 x, glm::vec3 l, PemWeights& out) const {
                 it->second += weight;
         }
     } while (3 * ++twin.pass < fetches);
+}
+
+} // namespace
+
+void checkPemDistanceGeometry(const PemDistanceGeometry& g, const std::string& file,
+                              const std::string& distanceFile) {
+    if (g.faceRes < 1 || g.faceRes > 4096)
+        throw Error(file, "distance.face_res",
+                    "expected an integer in [1, 4096], got " + std::to_string(g.faceRes));
+    if (!(g.dInf > 0.f) || !std::isfinite(g.dInf))
+        throw Error(file, "distance.d_inf", "expected a finite d_inf > 0, got " + number(g.dInf));
+    // Past d_inf / 2 the search would treat its own points as seeing nothing.
+    if (!(g.range > 0.f && g.range <= 0.5f * g.dInf))
+        throw Error(file, "distance.range",
+                    "expected D in (0, d_inf / 2 = " + number(0.5 * g.dInf) + "], got " +
+                        number(g.range));
+    if (!(g.tolerance > 0.f && g.tolerance < g.range))
+        throw Error(file, "distance.tolerance",
+                    "expected d_e in (0, D), got " + number(g.tolerance));
+    if (g.maxSteps < 1 || g.maxSteps > 40)
+        throw Error(file, "distance.max_steps",
+                    "expected an integer in [1, 40], got " + std::to_string(g.maxSteps));
+    const std::size_t count = std::size_t(PemMap::texelCount(g.faceRes));
+    if (g.distances.size() != count)
+        throw Error(distanceFile, "distance",
+                    "expected " + std::to_string(count) + " distances, got " +
+                        std::to_string(g.distances.size()));
+    for (std::size_t t = 0; t < count; ++t) {
+        const float d = g.distances[t];
+        if (d > 0.f && d <= g.dInf) continue; // false for NaN too
+        const int n = g.faceRes;
+        throw Error(distanceFile, "distance",
+                    "face " + std::to_string(int(t) / (n * n)) + " texel (" +
+                        std::to_string(int(t) % n) + ", " + std::to_string(int(t) / n % n) +
+                        ") holds " + number(d) +
+                        "; expected a distance in (0, d_inf = " + number(g.dInf) + "]");
+    }
+}
+
+glm::vec3 PemLookupCpu::radiance(glm::vec3 x, glm::vec3 l) const {
+    if (map_->distance) {
+        glsl::PemDistanceReadTwin twin;
+        twin.map = map_;
+        return lookup(twin, *map_, x, l);
+    }
+    glsl::PemReadTwin twin;
+    twin.map = map_;
+    return lookup(twin, *map_, x, l);
+}
+
+void PemLookupCpu::weights(glm::vec3 x, glm::vec3 l, PemWeights& out) const {
+    if (map_->distance) {
+        glsl::PemDistanceProbeTwin twin;
+        measureWeights(twin, *map_, x, l, out);
+    } else {
+        glsl::PemProbeTwin twin;
+        measureWeights(twin, *map_, x, l, out);
+    }
 }
 
 } // namespace specula

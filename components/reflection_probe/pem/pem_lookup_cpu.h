@@ -1,25 +1,51 @@
 #pragma once
-// The CPU twin of the parameterized-environment-map lookup (shaders/pem_lookup.glsl.h): the
-// same code compiled as C++, either reading a map (radiance) or reporting which texels it
+// The CPU twin of the parameterized-environment-map lookups (shaders/pem_lookup.glsl.h for
+// box geometry, shaders/pem_distance_lookup.glsl.h for distance geometry): the same code
+// compiled as C++, either reading a map (radiance) or reporting which texels it
 // reads and with what weight (weights). The cooker builds its rendering matrix from
 // `weights`, so the map it infers is the best match as this very lookup applies it.
 #include <glm/vec3.hpp>
 
+#include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
 namespace specula {
 
-// One map of box geometry: six N x N faces in OpenGL order (+X -X +Y -Y +Z -Z, OpenGL face
-// orientation), linear RGB, texel (face, column i, row j) at face*N*N + j*N + i. The box is
-// probe-local and holds the reflector; the map's centre is the probe origin.
+// Distance geometry of a map (shaders/pem_distance_lookup.glsl.h): the environment's
+// distance from the map centre through every texel centre of its own cube (mirrors
+// excluded), dInf where nothing is hit, and the secant search's parameters. Shared by every
+// sample map of an asset: it is the scene's, not the parameter's.
+struct PemDistanceGeometry {
+    int faceRes = 0;              // texels along a face edge, 1 .. 4096
+    std::vector<float> distances; // 6 * faceRes^2, texel order as PemMap's; in (0, dInf]
+    float dInf = 0.f;             // sentinel of texels that see nothing; > 2 * every distance
+    float range = 0.f;            // D: every hit lies within (x, x + 2D l); <= dInf / 2
+    float tolerance = 0.f;        // d_e: the search stops when |stored - |l|| < d_e
+    int maxSteps = 0;             // fetches of the search, 1 .. 40
+
+    bool operator==(const PemDistanceGeometry&) const = default;
+};
+
+// One map: six N x N faces in OpenGL order (+X -X +Y -Y +Z -Z, OpenGL face orientation),
+// linear RGB, texel (face, column i, row j) at face*N*N + j*N + i. The box is probe-local and
+// holds the reflector; the map's centre is the probe origin. Geometry: the box when
+// `distance` is null, else the distance cube (the box then only bounds the reflector).
 struct PemMap {
     int faceRes = 0;
     glm::vec3 boxMin{-1.f}, boxMax{1.f};
     std::vector<glm::vec3> texels; // 6 * faceRes * faceRes
+    std::shared_ptr<const PemDistanceGeometry> distance;
 
     static int texelCount(int faceRes) { return 6 * faceRes * faceRes; }
 };
+
+// Throws Error(file, field) unless `g` is usable: "distance.face_res", "distance.d_inf",
+// "distance.range", "distance.tolerance", "distance.max_steps" name `file`; a distance
+// outside (0, dInf] (or a wrong count) names `distanceFile` and "distance".
+void checkPemDistanceGeometry(const PemDistanceGeometry& g, const std::string& file,
+                              const std::string& distanceFile);
 
 // (texel index, weight) pairs of one lookup; each texel at most once, no zero weights.
 using PemWeights = std::vector<std::pair<int, float>>;
@@ -33,7 +59,7 @@ public:
 
     // The texels radiance(x, l) reads and their weights, so that radiance(x, l) equals
     // sum(weight * texel) up to float rounding. Needs only the map's geometry (faceRes,
-    // box), not its texels. `out` is cleared first.
+    // box, distance), not its texels. `out` is cleared first.
     void weights(glm::vec3 x, glm::vec3 l, PemWeights& out) const;
 
 private:

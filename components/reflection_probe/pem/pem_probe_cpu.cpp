@@ -1,5 +1,7 @@
 #include "pem_probe_cpu.h"
 
+#include "components/reflection_probe/walk_path.h"
+
 namespace specula {
 
 std::vector<float> pemSampleParameters(const PemAsset& asset) {
@@ -11,8 +13,12 @@ std::vector<float> pemSampleParameters(const PemAsset& asset) {
 }
 
 glsl::PemParams pemParams(const PemAsset& asset, const PemProbe& settings) {
+    // Every walk path is a closed loop (walk_path.h): past the last sample the blend runs on
+    // to the first. A path this build does not know is treated as open.
+    WalkPath path;
+    const bool closed = parseWalkPath(asset.path, path);
     const PemBlendWeights w =
-        pemBlend(pemSampleParameters(asset), settings.parameter, settings.nearest);
+        pemBlend(pemSampleParameters(asset), settings.parameter, settings.nearest, closed);
     glsl::PemParams p{};
     p.boxMin = asset.boxMin;
     p.boxMax = asset.boxMax;
@@ -21,6 +27,13 @@ glsl::PemParams pemParams(const PemAsset& asset, const PemProbe& settings) {
     p.wb = w.wb;
     p.layerA = 6 * w.a;
     p.layerB = 6 * w.b;
+    if (const PemDistanceGeometry* g = asset.distance.get()) {
+        p.distanceFaceRes = g->faceRes;
+        p.dInf = g->dInf;
+        p.range = g->range;
+        p.tolerance = g->tolerance;
+        p.maxSteps = g->maxSteps;
+    }
     return p;
 }
 

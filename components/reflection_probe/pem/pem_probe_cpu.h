@@ -18,8 +18,9 @@ namespace glsl {
 // The asset's sample parameters, in order (pemBlend's first argument).
 std::vector<float> pemSampleParameters(const PemAsset& asset);
 
-// The block the shader reads for `settings` on `asset`: box, face resolution, centre and the
-// two samples' first array layers and weight from pemBlend.
+// The block the shader reads for `settings` on `asset`: box, face resolution, centre, the
+// two samples' first array layers and weight from pemBlend, and the distance geometry's
+// search parameters (zero for box maps).
 glsl::PemParams pemParams(const PemAsset& asset, const PemProbe& settings);
 
 class PemProbeCpu {

@@ -10,7 +10,10 @@ namespace specula {
 namespace {
 
 std::size_t mapBytes(const PemAsset& a) {
-    return std::size_t(PemMap::texelCount(a.faceRes)) * a.samples.size() * 4 * sizeof(float);
+    const std::size_t distance =
+        a.distance ? std::size_t(PemMap::texelCount(a.distance->faceRes)) * sizeof(float) : 0;
+    return std::size_t(PemMap::texelCount(a.faceRes)) * a.samples.size() * 4 * sizeof(float) +
+           distance;
 }
 
 // Every sample's six faces as array layers 6s .. 6s+5 of one RGBA32F array. Throws Error
@@ -44,13 +47,33 @@ gpu::Texture uploadMaps(const PemAsset& a) {
     return maps;
 }
 
+// The distance cube as six R32F layers, once per probe. NEAREST: the lookup reads it with
+// texelFetch at the nearest texel it computes itself (pem_distance_lookup.glsl.h).
+gpu::Texture uploadDistance(const PemAsset& a) {
+    const PemDistanceGeometry& g = *a.distance;
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (g.faceRes > maxSize)
+        throw Error(a.manifestPath, "distance.face_res",
+                    "a distance cube of " + std::to_string(g.faceRes) +
+                        "^2 exceeds this GPU's limit (" + std::to_string(maxSize) + "^2)");
+    gpu::Texture tex = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(tex.id(), 1, GL_R32F, g.faceRes, g.faceRes, 6);
+    glTextureSubImage3D(tex.id(), 0, 0, 0, 0, g.faceRes, g.faceRes, 6, GL_RED, GL_FLOAT,
+                        g.distances.data());
+    glTextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(tex.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return tex;
+}
+
 } // namespace
 
 gpu::Program PemVariant::build() const {
     return gpu::buildProgram(
         gpu::ShaderSource::file("components/reflection_probe/shaders/reflector.vert"),
         gpu::ShaderSource::file("components/reflection_probe/pem/shaders/pem_reflector.frag"),
-        {std::string("HAS_FRESNEL=") + (fresnel ? "1" : "0"), "OUTPUT=" + std::to_string(output)});
+        {std::string("HAS_FRESNEL=") + (fresnel ? "1" : "0"), "OUTPUT=" + std::to_string(output),
+         std::string("GEOMETRY_DISTANCE=") + (distance ? "1" : "0")});
 }
 
 PemProbeGpu PemStore::loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) {
@@ -58,6 +81,10 @@ PemProbeGpu PemStore::loadProbe(const ProbeManifest& manifest, ProbeFrameStats& 
     g.asset = assets_.get(manifest.path, [&] { return readPemProbe(manifest); });
     g.maps = uploadMaps(*g.asset);
     ++stats.textureUploads;
+    if (g.asset->distance) {
+        g.distance = uploadDistance(*g.asset);
+        ++stats.textureUploads;
+    }
     return g;
 }
 
@@ -73,13 +100,17 @@ std::size_t PemStore::gpuBytesOf(const PemProbeGpu& g) const {
 
 void PemStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector, const Reflector& r,
                              const PemProbeGpu& g, const PemProbe&) {
-    const PemVariant v{r.fresnelF0 >= 0.f, ctx.output};
+    const PemVariant v{r.fresnelF0 >= 0.f, ctx.output, g.asset->distance != nullptr};
     gpu::Program& prog = variants_.get(v);
     ctx.stats.drew(v.filter().name());
     prog.use();
     SceneRenderer::setCameraUniforms(prog, ctx.camera);
     glBindTextureUnit(1, g.maps.id());
     prog.setUniform("uPemMaps", 1);
+    if (v.distance) {
+        glBindTextureUnit(2, g.distance.id());
+        prog.setUniform("uPemDistance", 2);
+    }
     g.block.bind(glsl::kPemParamsBinding);
     prog.setUniform("uF0", r.fresnelF0);
     ctx.scene.drawEntity(reflector, prog);

@@ -1,8 +1,9 @@
 #pragma once
 // The GPU side of parameterized-environment-map probes: every sample map of the asset as one
-// RGBA32F texture array (six layers per sample, NEAREST: the lookup filters itself), and the
-// blend of the two samples nearest the parameter as one uniform block. A parameter edit
-// rewrites the block only; the maps are uploaded once per asset.
+// RGBA32F texture array (six layers per sample, NEAREST: the lookup filters itself), a
+// distance-geometry asset's distance cube as six R32F layers, and the blend of the two
+// samples nearest the parameter as one uniform block. A parameter edit rewrites the block
+// only; the textures are uploaded once per probe.
 #include "components/reflection_probe/flavour_store_base.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/shader_variants.h"
@@ -21,16 +22,20 @@ struct PemProbeGpu {
     glsl::PemParams params{}; // what `block` holds
     gpu::UniformBuffer<glsl::PemParams> block;
     gpu::Texture maps;
+    gpu::Texture distance; // the distance cube of distance-geometry assets, else empty
 };
 
 struct PemVariant {
     bool fresnel = false;
     int output = 0;
+    bool distance = false; // distance geometry (GEOMETRY_DISTANCE), else box
 
     auto operator<=>(const PemVariant&) const = default;
     // The twin-input outputs (1, 2) write no colour, so Fresnel is irrelevant to them.
-    PemVariant filter() const { return {fresnel && output == 0, output}; }
-    std::string name() const { return fresnel ? "pem+fresnel" : "pem"; }
+    PemVariant filter() const { return {fresnel && output == 0, output, distance}; }
+    std::string name() const {
+        return std::string(distance ? "pem-distance" : "pem") + (fresnel ? "+fresnel" : "");
+    }
     gpu::Program build() const;
 };
 

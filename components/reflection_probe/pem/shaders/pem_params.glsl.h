@@ -18,16 +18,24 @@ struct PemParams {
     vec3 centre; // world position of the maps' origin: reflector points are made local
     int layerA;  // first array layer of sample a (6 a: faces +X -X +Y -Y +Z -Z follow)
     int layerB;  // first array layer of sample b
+    // Distance geometry (GEOMETRY_DISTANCE shaders; zero for box maps): the distance cube's
+    // face resolution and the secant search's parameters (PemDistanceGeometry).
+    int distanceFaceRes;
+    float dInf;
+    float range;
+    float tolerance;
+    int maxSteps;
     int pad0;
     int pad1;
-    int pad2;
 };
 
 #ifdef __cplusplus
 static_assert(offsetof(PemParams, faceRes) == 12 && offsetof(PemParams, boxMax) == 16);
 static_assert(offsetof(PemParams, wb) == 28 && offsetof(PemParams, centre) == 32);
 static_assert(offsetof(PemParams, layerA) == 44 && offsetof(PemParams, layerB) == 48);
-static_assert(sizeof(PemParams) == 64);
+static_assert(offsetof(PemParams, distanceFaceRes) == 52 && offsetof(PemParams, dInf) == 56);
+static_assert(offsetof(PemParams, range) == 60 && offsetof(PemParams, tolerance) == 64);
+static_assert(offsetof(PemParams, maxSteps) == 68 && sizeof(PemParams) == 80);
 #endif
 
 #endif

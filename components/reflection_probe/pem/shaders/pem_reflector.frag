@@ -1,7 +1,8 @@
-// Reflector pixels of a parameterized-environment-map probe: the box-geometry lookup
-// (pem_lookup.glsl.h) of the two samples the parameter block names, mixed by its weight.
-// Defines: HAS_FRESNEL (0/1), OUTPUT (0 colour, 1 probe-local position, 2 reflected
-// direction: inputs for the CPU twin).
+// Reflector pixels of a parameterized-environment-map probe: the lookup of the two samples
+// the parameter block names, mixed by its weight. Defines: GEOMETRY_DISTANCE (0 the box
+// lookup, pem_lookup.glsl.h; 1 the distance-rectified one, pem_distance_lookup.glsl.h),
+// HAS_FRESNEL (0/1), OUTPUT (0 colour, 1 probe-local position, 2 reflected direction: inputs
+// for the CPU twin).
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
@@ -13,6 +14,10 @@ layout(std140, binding = kPemParamsBinding) uniform PemParamsUniforms {
 // Sample s's faces are array layers 6s .. 6s+5; RGB radiance, NEAREST filtering: the lookup
 // does its own bilinear through fetchTexel, as the twin does.
 uniform sampler2DArray uPemMaps;
+#if GEOMETRY_DISTANCE
+// The distance cube: six R32F layers, read nearest with texelFetch as the twin reads it.
+uniform sampler2DArray uPemDistance;
+#endif
 uniform vec3 uEye;
 uniform float uF0;
 
@@ -28,9 +33,30 @@ vec3 fetchTexel(int face, int i, int j) {
 
 #include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
 
+#if GEOMETRY_DISTANCE
+#include "components/reflection_probe/distance/shaders/distance_lookup_types.glsl.h"
+
+float fetchDistanceTexel(int face, int i, int j) {
+    return texelFetch(uPemDistance, ivec3(i, j, face), 0).r;
+}
+int pemMapFaceRes() {
+    return uPem.faceRes;
+}
+int pemDistanceFaceRes() {
+    return uPem.distanceFaceRes;
+}
+
+#include "components/reflection_probe/pem/shaders/pem_distance_lookup.glsl.h"
+#endif
+
 vec3 sampleRadiance(int layer, vec3 x, vec3 l) {
     gPemLayer = layer;
+#if GEOMETRY_DISTANCE
+    DistanceParams p = pemDistanceParams(uPem.dInf, uPem.range, uPem.tolerance, uPem.maxSteps);
+    return pemDistanceRadiance(x, l, p);
+#else
     return pemRadiance(x, l, uPem.boxMin, uPem.boxMax, uPem.faceRes);
+#endif
 }
 
 void main() {
