@@ -74,16 +74,6 @@ PemSamples rays(int count, unsigned seed, float spread,
     return s;
 }
 
-double rmsOn(const PemMap& map, const PemSamples& samples) {
-    const PemLookupCpu lookup(map);
-    double sum = 0;
-    for (const PemSample& p : samples) {
-        const glm::dvec3 d = glm::dvec3(lookup.radiance(p.x, p.l)) - glm::dvec3(p.target);
-        sum += glm::dot(d, d);
-    }
-    return std::sqrt(sum / (3.0 * double(samples.size())));
-}
-
 float angle(glm::vec3 a, glm::vec3 b) {
     return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.f, 1.f));
 }

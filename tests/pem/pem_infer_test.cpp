@@ -77,16 +77,6 @@ PemInferOptions boxOptions(int n, glm::vec3 lo, glm::vec3 hi) {
     return o;
 }
 
-double rmsOn(const PemMap& map, const PemSamples& samples) {
-    const PemLookupCpu lookup(map);
-    double sum = 0;
-    for (const PemSample& p : samples) {
-        const glm::dvec3 d = glm::dvec3(lookup.radiance(p.x, p.l)) - glm::dvec3(p.target);
-        sum += glm::dot(d, d);
-    }
-    return std::sqrt(sum / (3.0 * double(samples.size())));
-}
-
 // Rays that test the edges: along the axes, through cube edges and corners, from the centre
 // and from off-centre points; then random ones.
 std::vector<std::pair<glm::vec3, glm::vec3>> testRays(glm::vec3 lo, glm::vec3 hi, int random) {

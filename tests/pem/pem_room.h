@@ -2,10 +2,11 @@
 // The closed-form room of the PEM tests (pem_infer_test, pem_distance_test): a box, probe-
 // local, whose walls emit a smooth function of the point, and where a ray leaves it, computed
 // apart from the shared lookups on purpose.
+#include "assetcooker/lib/pem_infer.h"
 #include "components/reflection_probe/pem/pem_lookup_cpu.h"
 
-#include <gtest/gtest.h>
 #include <glm/glm.hpp>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
@@ -71,6 +72,17 @@ inline void expectWeightsReproduceRadiance(const PemLookupCpu& lookup, const Pem
     const glm::vec3 r = lookup.radiance(x, l);
     for (int c = 0; c < 3; ++c)
         ASSERT_NEAR(sum[c], r[c], 2e-6f) << "face_res " << map.faceRes;
+}
+
+// RMS over RGB of the map's lookups at the samples against their targets.
+inline double rmsOn(const PemMap& map, const PemSamples& samples) {
+    const PemLookupCpu lookup(map);
+    double sum = 0;
+    for (const PemSample& p : samples) {
+        const glm::dvec3 d = glm::dvec3(lookup.radiance(p.x, p.l)) - glm::dvec3(p.target);
+        sum += glm::dot(d, d);
+    }
+    return std::sqrt(sum / (3.0 * double(samples.size())));
 }
 
 } // namespace specula::test
