@@ -1,4 +1,5 @@
 #include "components/reflection_probe/pem/pem_probe.h"
+#include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "engine/core/error.h"
 #include "engine/image/compare.h"
 #include "sandbox/lib/bench_internal.h"
@@ -26,6 +27,21 @@ void logCookerFit(std::ostream& log, const std::string& sceneName, int samples,
                   "on, %.1f dB half-way; inference %.2f s per sample\n",
                   sceneName.c_str(), samples, cooked.bakeSeconds, on / n, off / n, infer / n);
     log << line << std::flush;
+}
+
+// Texture fetches per reflector pixel of the blend at `probe`, counted by the CPU twin on the
+// camera's reflector rays as Embree finds them (the shader's inputs up to normal
+// interpolation): a distance-geometry lookup reads the distance cube while it searches.
+double pemFetchesPerPixel(ProbeScene& scene, const CameraView& cam, const PemAsset& asset,
+                          const PemProbe& probe) {
+    const PemSamples rays = tracePemSamples(scene, cam, asset.centre, {});
+    const glsl::PemParams p = pemParams(asset, probe);
+    const PemLookupCpu a(asset.samples[std::size_t(p.layerA / 6)].map);
+    const PemLookupCpu b(asset.samples[std::size_t(p.layerB / 6)].map);
+    double sum = 0;
+    for (const PemSample& r : rays)
+        sum += a.textureFetches(r.x, r.l) + (p.wb > 0.f ? b.textureFetches(r.x, r.l) : 0);
+    return sum / double(rays.size());
 }
 
 } // namespace
@@ -73,7 +89,8 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
             row.params = "N=" + std::to_string(samples) + " t=" + v.where;
             measureProbeRow(fr, cam, truth, budget, row);
             row.bakeSeconds = cooked.bakeSeconds;
-            row.fetchesPerPixel = 2; // one bilinear cube lookup in each of the two samples
+            row.fetchesPerPixel = pemFetchesPerPixel(scene.probeScene(), cam,
+                                                     std::get<PemAsset>(cooked.asset), probe);
             row.ratioToEnvmap = row.msMedian / envmapMs;
             logBenchRow(log, row);
             panel.points.push_back({row.method, row.params, row.ratioToEnvmap, row.psnr});

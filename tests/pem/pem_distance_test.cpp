@@ -109,6 +109,27 @@ TEST(PemDistanceLookup, WeightsReproduceRadiance) {
 // A map holding the walls' radiance per direction (a capture at the centre) then gives the
 // radiance at the true hit within the maps' bilinear error: the box lookup with the room's
 // exact box is that error alone.
+// The fetch count the bench reports: one map read for box geometry; for distance geometry the
+// search's distance reads on top: at least one, at most one per step of its budget (the
+// secant reads the cube once per step, then the map once).
+TEST(PemDistanceLookup, TextureFetchesCountTheSearch) {
+    const auto g = roomGeometry(32);
+    const PemMap distanceMap = randomMap(16, g, 5u);
+    const PemMap boxMap = randomMap(16, nullptr, 5u);
+    const PemLookupCpu distance(distanceMap), box(boxMap);
+    double mean = 0;
+    const PemSamples r = rays(2000, 9u, 0.95f);
+    for (const PemSample& p : r) {
+        EXPECT_EQ(box.textureFetches(p.x, p.l), 1);
+        const int f = distance.textureFetches(p.x, p.l);
+        ASSERT_GE(f, 2);
+        ASSERT_LE(f, 1 + g->maxSteps);
+        mean += f;
+    }
+    std::printf("[pem fetches] distance geometry: %.2f fetches per lookup (max steps %d)\n",
+                mean / double(r.size()), g->maxSteps);
+}
+
 TEST(PemDistanceLookup, BoxRoomSearchFindsTheWallHit) {
     const int m = 128, n = 64;
     const std::shared_ptr<const PemDistanceGeometry> geometry = roomGeometry(m);

@@ -54,8 +54,10 @@ struct PemTexelProbe {
 struct PemDistanceRead {
     const PemDistanceGeometry* geometry = nullptr;
     int mapFaceRes = 0;
+    mutable int distanceReads = 0; // texture fetches of the distance cube
 
     float fetchDistanceTexel(int face, int i, int j) const {
+        ++distanceReads;
         const int n = geometry->faceRes;
         return geometry->distances[std::size_t((face * n + j) * n + i)];
     }
@@ -187,6 +189,14 @@ glm::vec3 PemLookupCpu::radiance(glm::vec3 x, glm::vec3 l) const {
     glsl::PemReadTwin twin;
     twin.map = map_;
     return lookup(twin, *map_, x, l);
+}
+
+int PemLookupCpu::textureFetches(glm::vec3 x, glm::vec3 l) const {
+    if (!map_->distance) return 1;
+    glsl::PemDistanceReadTwin twin;
+    twin.map = map_;
+    lookup(twin, *map_, x, l);
+    return twin.distanceReads + 1; // the search's distance reads, then the map's bilinear read
 }
 
 void PemLookupCpu::weights(glm::vec3 x, glm::vec3 l, PemWeights& out) const {

@@ -62,6 +62,11 @@ public:
     // box, distance), not its texels. `out` is cleared first.
     void weights(glm::vec3 x, glm::vec3 l, PemWeights& out) const;
 
+    // Texture fetches radiance(x, l) makes, as the bench counts them for every method: one per
+    // bilinear read of the map (its four texelFetch calls are one filtered fetch elsewhere),
+    // one per distance-cube read of the search.
+    int textureFetches(glm::vec3 x, glm::vec3 l) const;
+
 private:
     const PemMap* map_;
 };

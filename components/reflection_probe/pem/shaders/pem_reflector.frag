@@ -1,5 +1,5 @@
 // Reflector pixels of a parameterized-environment-map probe: the lookup of the two samples
-// the parameter block names, mixed by its weight. Defines: GEOMETRY_DISTANCE (0 the box
+// the parameter block names, mixed by its weight (texel by texel: one lookup). Defines: GEOMETRY_DISTANCE (0 the box
 // lookup, pem_lookup.glsl.h; 1 the distance-rectified one, pem_distance_lookup.glsl.h),
 // HAS_FRESNEL (0/1), OUTPUT (0 colour, 1 probe-local position, 2 reflected direction: inputs
 // for the CPU twin).
@@ -25,10 +25,13 @@ in vec3 vWorldPos;
 in vec3 vNormal;
 out vec4 fragColor;
 
-int gPemLayer = 0; // first array layer of the sample the next lookup reads
-
+// The lookup is linear in the texels, so blending the two samples' texels as they are fetched
+// equals blending the two lookups (the CPU twin blends lookups): one search, not two, for the
+// same ray and the same geometry.
 vec3 fetchTexel(int face, int i, int j) {
-    return texelFetch(uPemMaps, ivec3(i, j, gPemLayer + face), 0).rgb;
+    vec3 a = texelFetch(uPemMaps, ivec3(i, j, uPem.layerA + face), 0).rgb;
+    if (uPem.wb <= 0.0) return a;
+    return mix(a, texelFetch(uPemMaps, ivec3(i, j, uPem.layerB + face), 0).rgb, uPem.wb);
 }
 
 #include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
@@ -49,8 +52,7 @@ int pemDistanceFaceRes() {
 #include "components/reflection_probe/pem/shaders/pem_distance_lookup.glsl.h"
 #endif
 
-vec3 sampleRadiance(int layer, vec3 x, vec3 l) {
-    gPemLayer = layer;
+vec3 blendedRadiance(vec3 x, vec3 l) {
 #if GEOMETRY_DISTANCE
     DistanceParams p = pemDistanceParams(uPem.dInf, uPem.range, uPem.tolerance, uPem.maxSteps);
     return pemDistanceRadiance(x, l, p);
@@ -67,8 +69,7 @@ void main() {
     vec3 n = safeNormal(vNormal, geometric);
     vec3 lhat = normalize(mirrorDirection(v, n));
 
-    vec3 colour = sampleRadiance(uPem.layerA, x, lhat);
-    if (uPem.wb > 0.0) colour = mix(colour, sampleRadiance(uPem.layerB, x, lhat), uPem.wb);
+    vec3 colour = blendedRadiance(x, lhat);
 #if HAS_FRESNEL
     colour *= schlickFresnel(uF0, abs(dot(n, v)));
 #endif
