@@ -23,8 +23,10 @@ constexpr const char* kBakeDescription =
     "\n"
     "Probe placement: --probe, else the first node whose extras hold \"specula_probe\": {...}\n"
     "(members: cell_size), else the centre of the reflectors. Reflectors are the nodes with\n"
-    "\"specula_reflector\": true or {\"f0\": F}; every other mesh is environment, one layer\n"
-    "per root node unless grouped with \"specula_layer\": \"name\".\n"
+    "\"specula_reflector\": true or {\"f0\": F}, and the meshes whose material has metallic\n"
+    ">= 0.9 and roughness <= 0.1 (F0 its base colour's luminance) unless a node above says\n"
+    "\"specula_reflector\": false; every other mesh is environment, one layer per root node\n"
+    "unless grouped with \"specula_layer\": \"name\".\n"
     "\n"
     "lightfield (Yu et al. 2005): six slabs around a cubic cell of side L, camera planes on the\n"
     "cell faces extended to 3L, NUM x NUM cameras of RES x RES pixels (90 degree field of view)\n"
@@ -67,7 +69,7 @@ struct BakeArgs {
     // pem
     int samples = 8, supersample = 1;
     std::string imageSize = "640x480", geometry = "distance";
-    float prior = 0.05f;
+    float prior = 0.05f, smoothness = 0.02f;
     std::string parameter = "viewpoint", path = "orbit";
     // The options that belong to some flavours only, with their names ("distance|pem").
     std::vector<std::pair<const CLI::Option*, std::string>> flavourOnly;
@@ -120,6 +122,7 @@ CookOptions cookOptions(const BakeArgs& a) {
         s.path = a.path;
         s.geometry = a.geometry;
         s.priorWeight = a.prior;
+        s.regularisation = a.smoothness;
         o.flavour = s;
     } else {
         DistanceCookSettings s;
@@ -180,9 +183,9 @@ void printPemSummary(const BakeArgs& a, const CookResult& r, double seconds, std
     if (r.pemFits.empty()) return;
     // The cooker's own measurement against the ray tracer: what the maps are worth on the
     // baked viewpoints and half-way between them, where the runtime blends two.
-    double on = 0, off = 0, worstOff = 1e9, infer = 0, worstInfer = 0;
+    double on = 0, off = 0, worstOff = 1e9, infer = 0, worstInfer = 0, rays = 0;
     for (const PemSampleFit& f : r.pemFits) {
-        on += f.psnrOn, off += f.psnrOff, infer += f.inferSeconds;
+        on += f.psnrOn, off += f.psnrOff, infer += f.inferSeconds, rays += f.rays;
         worstOff = std::min(worstOff, f.psnrOff);
         worstInfer = std::max(worstInfer, f.inferSeconds);
     }
@@ -190,10 +193,10 @@ void printPemSummary(const BakeArgs& a, const CookResult& r, double seconds, std
     char line[256];
     std::snprintf(
         line, sizeof line,
-        "fit against the ray tracer (reflector rays, no Fresnel): on the samples %.1f dB, "
-        "half-way between them %.1f dB (worst %.1f); inference %.2f s per sample "
+        "fit against the ray tracer (%.0f reflector rays a sample, no Fresnel): on the samples "
+        "%.1f dB, half-way between them %.1f dB (worst %.1f); inference %.2f s per sample "
         "(worst %.2f)\n",
-        on / n, off / n, worstOff, infer / n, worstInfer);
+        rays / n, on / n, off / n, worstOff, infer / n, worstInfer);
     out << line;
 }
 
@@ -231,6 +234,7 @@ int runBake(const BakeArgs& a, std::ostream& out) {
             std::string flag = e.field();
             std::replace(flag.begin(), flag.end(), '_', '-');
             if (flag == "prior-weight") flag = "prior";
+            if (flag == "regularisation") flag = "smoothness";
             throw UsageError("--" + flag,
                              what.starts_with(prefix) ? what.substr(prefix.size()) : what);
         }
@@ -339,6 +343,10 @@ void addBakeCommand(cli::ToolCli& tool) {
                          "at the centre, where the camera sees nothing (default 0.05; 0: none)"),
          "pem")
         ->check(cli::finiteRange(0.0, 100.0));
+    only(sub->add_option("--smoothness", a->smoothness,
+                         "weight of the rows tying every texel to its neighbours (default 0.02)"),
+         "pem")
+        ->check(cli::finiteRange(0.0, 100.0));
     only(sub->add_option("--parameter", a->parameter,
                          "what the maps vary with: viewpoint (the camera moves, default) or "
                          "reflector (the reflectors move before the scene camera)"),
@@ -364,6 +372,7 @@ void addBakeCommand(cli::ToolCli& tool) {
     tool.mapField("path", "--path");
     tool.mapField("geometry", "--geometry");
     tool.mapField("prior_weight", "--prior");
+    tool.mapField("regularisation", "--smoothness");
 }
 
 } // namespace specula::cook

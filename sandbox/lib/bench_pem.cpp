@@ -2,6 +2,8 @@
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "engine/core/error.h"
 #include "engine/image/compare.h"
+#include "engine/image/contact_sheet.h"
+#include "engine/image/image_io.h"
 #include "sandbox/lib/bench_internal.h"
 #include "sandbox/lib/probe_source.h"
 
@@ -37,11 +39,26 @@ double pemFetchesPerPixel(ProbeScene& scene, const CameraView& cam, const PemAss
     const PemSamples rays = tracePemSamples(scene, cam, asset.centre, {});
     const glsl::PemParams p = pemParams(asset, probe);
     const PemLookupCpu a(asset.samples[std::size_t(p.layerA / 6)].map);
-    const PemLookupCpu b(asset.samples[std::size_t(p.layerB / 6)].map);
+    // The shader blends the two samples' texels as it fetches them (one search, both maps
+    // read at the texel it finds): one more filtered read when the second sample counts.
     double sum = 0;
     for (const PemSample& r : rays)
-        sum += a.textureFetches(r.x, r.l) + (p.wb > 0.f ? b.textureFetches(r.x, r.l) : 0);
+        sum += a.textureFetches(r.x, r.l) + (p.wb > 0.f ? 1 : 0);
     return sum / double(rays.size());
+}
+
+// outDir/pem_<scene>.png: full truth and PEM on and off the manifold, the PEM's error
+// against the full truth below each PEM tile (`heat`: one per tile, empty under a truth).
+void writePemPicture(const std::string& outDir, const std::string& sceneName,
+                     std::vector<Image> tiles, const std::vector<Image>& heat,
+                     std::vector<std::string> labels, int width) {
+    const int columns = int(tiles.size());
+    for (const Image& h : heat) {
+        tiles.push_back(h); // an empty tile leaves its cell blank
+        labels.push_back(h.empty() ? "" : "error vs full (red >= 0.25)");
+    }
+    writeImage((fs::path(outDir) / ("pem_" + sceneName + ".png")).string(),
+               contactSheet(tiles, labels, columns, std::min(width, 400)));
 }
 
 } // namespace
@@ -74,6 +91,10 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
         // At the first sample, and half-way between the first two (where the blend is
         // furthest from both maps it blends).
         const float half = 0.5f / float(samples);
+        // The picture of the first PEM of the sweep: full truth and PEM, on and off.
+        std::vector<Image> tiles, heat;
+        std::vector<std::string> labels;
+        const bool picture = samples == sweep.samples.front();
         for (const Viewpoint& v : {Viewpoint{"on", 0.f}, Viewpoint{"off", half}}) {
             const CameraView cam =
                 walkOrbitCameraView(scene.probeScene(), sweep.width, sweep.height, v.t);
@@ -87,7 +108,16 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
             row.scene = sceneName;
             row.method = kPemMethods[0].label.name;
             row.params = "N=" + std::to_string(samples) + " t=" + v.where;
-            measureProbeRow(fr, cam, truth, budget, row);
+            Image shot = measureProbeRow(fr, cam, truth, budget, row);
+            if (picture) {
+                labels.push_back(std::string("full truth t=") + v.where);
+                labels.push_back(row.method + " " + row.params + " " + formatPsnr(row.psnrFull, 1) +
+                                 " dB full");
+                heat.push_back(Image{});
+                heat.push_back(errorHeatmap(shot, truth.full.color, &truth.mask, 0.25f));
+                tiles.push_back(truth.full.color);
+                tiles.push_back(std::move(shot));
+            }
             row.bakeSeconds = cooked.bakeSeconds;
             row.fetchesPerPixel = pemFetchesPerPixel(scene.probeScene(), cam,
                                                      std::get<PemAsset>(cooked.asset), probe);
@@ -96,6 +126,7 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
             panel.points.push_back({row.method, row.params, row.ratioToEnvmap, row.psnr});
             report.rows.push_back(row);
         }
+        if (picture) writePemPicture(outDir, sceneName, tiles, heat, labels, sweep.width);
     }
 }
 

@@ -53,8 +53,9 @@ constexpr const char* kBenchDescription =
     "and half-way between two (t=off), each against the ground truth of that camera.\n"
     "\n"
     "Writes DIR/bench.csv, DIR/bench.md (machine and renderer named), DIR/accuracy_vs_time.png\n"
-    "(PSNR against time, one line per method, Pareto front ringed) and DIR/strip_<scene>.png\n"
-    "(ground truth | envmap | boxproj | distance cubemap | light field, error maps below).\n";
+    "(PSNR against time, one line per method, Pareto front ringed), DIR/strip_<scene>.png\n"
+    "(ground truth | envmap | boxproj | distance cubemap | light field, error maps below) and\n"
+    "DIR/pem_<scene>.png (full truth | PEM at a sample and half-way, error maps below).\n";
 
 // What walk and bench write into --out, partial outputs and temporaries included.
 bool isOwnOutput(const std::string& name) {

@@ -316,7 +316,7 @@ TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
     EXPECT_NE(text.find("| envmap |"), std::string::npos);
     EXPECT_NE(text.find("| groundtruth |"), std::string::npos);
     for (const char* png : {"accuracy_vs_time.png", "strip_room.png", "strip_truck_room.png",
-                            "strip_bowl_room.png"}) {
+                            "strip_bowl_room.png", "pem_room.png", "pem_bowl_room.png"}) {
         const specula::Image img = specula::readImage((out / png).string());
         EXPECT_GT(img.width, 100) << png;
     }
