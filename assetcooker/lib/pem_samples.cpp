@@ -221,6 +221,7 @@ PemAsset cookPemAsset(ProbeScene& scene, const PemCookSettings& s, const PemCook
     asset.parameterKind = s.parameter;
     asset.path = s.path;
     asset.faceRes = s.faceRes;
+    asset.skySource = scene.skyPath;
     asset.imageWidth = s.imageWidth;
     asset.imageHeight = s.imageHeight;
     const Aabb box = pemMapBox(scene, asset.centre);
@@ -259,7 +260,17 @@ PemAsset cookPemAsset(ProbeScene& scene, const PemCookSettings& s, const PemCook
         if (hooks.cancelled && hooks.cancelled())
             throw Error(scene.path, "cancelled", "the bake was cancelled");
         const float t = float(k) / float(s.samples);
-        const PemSamples samples = traceAt(t);
+        PemSamples samples;
+        try {
+            samples = traceAt(t);
+        } catch (const Error& e) {
+            // Say which sample: a reflector walking out of the frame sees no pixel at one t.
+            if (e.field() != "camera") throw;
+            throw Error(e.file(), "camera",
+                        "parameter sample " + std::to_string(k) + " (t = " + std::to_string(t) +
+                            "): no reflector pixel to infer its map from (" +
+                            std::string(e.what()).substr(e.file().size() + 10) + ")");
+        }
         PemInference inferred = inferPemMap(samples, infer);
         if (hooks.fits) {
             PemSampleFit fit;

@@ -16,7 +16,8 @@
 
 namespace specula {
 
-ProbeScene::ProbeScene(const std::string& gltfPath, const std::string& skyPath) : path(gltfPath) {
+ProbeScene::ProbeScene(const std::string& gltfPath, const std::string& skyPath)
+    : path(gltfPath), skyPath(skyPath) {
     loaded = loadGltf(gltfPath, registry);
     updateWorldTransforms(registry);
     markup = readSceneMarkup(registry, loaded, gltfPath);
@@ -109,6 +110,7 @@ CookedProbeFacts readCookedProbeFacts(const std::string& manifestPath) {
     CookedProbeFacts f;
     f.flavour = r.probeFlavour(m, kProbeFormatVersion);
     if (m.contains("source")) f.source = r.string(m, "source", "");
+    if (m.contains("sky_source")) f.skySource = r.string(m, "sky_source", "");
     if (m.contains("sky"))
         f.skyFile =
             r.fileInFolder(m["sky"], "sky.", std::filesystem::path(manifestPath).parent_path());

@@ -25,6 +25,7 @@ struct ProbeScene {
     ProbeScene(const std::string& gltfPath, const std::string& skyPath);
 
     std::string path;
+    std::string skyPath; // as given (empty: a black sky)
     ecs::Registry registry;
     LoadedScene loaded;
     SceneMarkup markup;
@@ -106,6 +107,9 @@ struct CookedProbeFacts {
     std::string flavour; // "distance", "lightfield"
     std::string source;  // the "source" member as written (a path; empty when absent)
     std::string skyFile; // the sky image beside the manifest (a path; empty when none)
+    // "sky_source": the sky the bake used, as it was given (a path, like "source"), for a
+    // flavour that keeps no copy (a PEM's maps hold the sky already); empty when absent.
+    std::string skySource;
 };
 // Throws Error naming the manifest and the field when it is no Specula probe manifest of
 // this format version.

@@ -3,6 +3,7 @@
 #include "engine/core/error.h"
 #include "engine/scene/components.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <unordered_map>
@@ -32,7 +33,8 @@ std::string nameOf(ecs::Registry& reg, ecs::Entity e) {
 
 } // namespace
 
-SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const std::string& file) {
+SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const std::string& file,
+                            const ReflectorRule& rule) {
     std::unordered_map<std::uint32_t, std::vector<ecs::Entity>> children;
     for (ecs::Entity e : scene.entities)
         if (const Transform* t = reg.find<Transform>(e); t && !t->parent.isNull())
@@ -52,6 +54,7 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const 
 
     SceneMarkup m;
     std::unordered_set<ecs::Entity> claimed; // entities already a probe or reflector
+    std::vector<ecs::Entity> notReflectors;  // nodes marked "specula_reflector": false
     for (ecs::Entity e : scene.entities) {
         const json x = extrasOf(reg, e, file);
         const std::string where = "nodes[" + nameOf(reg, e) + "].extras.";
@@ -80,7 +83,10 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const 
             ReflectorMarkup refl;
             refl.node = nameOf(reg, e);
             if (r.is_boolean()) {
-                if (!r.get<bool>()) continue;
+                if (!r.get<bool>()) {
+                    notReflectors.push_back(e);
+                    continue;
+                }
             } else if (r.is_object()) {
                 if (r.contains("f0")) {
                     if (!r["f0"].is_number() || r["f0"].get<double>() < 0.0 ||
@@ -90,7 +96,7 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const 
                     refl.f0 = r["f0"].get<float>();
                 }
             } else {
-                throw Error(file, where + "specula_reflector", "expected true or an object");
+                throw Error(file, where + "specula_reflector", "expected true, false or an object");
             }
             refl.meshes = subtreeMeshes(e);
             for (ecs::Entity me : refl.meshes) {
@@ -100,6 +106,33 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const 
             claimed.insert(e);
             m.reflectors.push_back(std::move(refl));
         }
+    }
+
+    // Reflectors by material, where the markup says nothing.
+    std::unordered_set<ecs::Entity> excluded;
+    for (ecs::Entity e : notReflectors)
+        for (ecs::Entity me : subtreeMeshes(e))
+            excluded.insert(me);
+    const auto qualifies = [&](const Primitive& p) {
+        return p.material && p.material->metallicFactor >= rule.minMetallic &&
+               p.material->roughnessFactor <= rule.maxRoughness;
+    };
+    for (ecs::Entity e : scene.entities) {
+        const Mesh* mesh = reg.find<Mesh>(e);
+        if (!mesh || mesh->primitives.empty() || m.mirrorEntities.count(e) || excluded.count(e))
+            continue;
+        if (!std::all_of(mesh->primitives.begin(), mesh->primitives.end(), qualifies)) continue;
+        float luminance = 0.f;
+        for (const Primitive& p : mesh->primitives) {
+            const glm::vec4& c = p.material->baseColorFactor;
+            luminance += 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+        }
+        ReflectorMarkup refl;
+        refl.node = nameOf(reg, e);
+        refl.meshes = {e};
+        refl.f0 = std::clamp(luminance / float(mesh->primitives.size()), 0.f, 1.f);
+        m.mirrorEntities.insert(e);
+        m.reflectors.push_back(std::move(refl));
     }
 
     // Environment objects: root subtrees.

@@ -2,7 +2,16 @@
 // Reads the Specula markup of a loaded glTF scene (node `extras`, DESIGN §3):
 //   "specula_probe": {...}           a probe at the node's world position (options inside)
 //   "specula_reflector": true|{f0}   the node's meshes (and its subtree's) are mirrors
+//   "specula_reflector": false       no mesh of the node's subtree is a mirror by its material
 //   "specula_layer": "name"          groups the node's subtree with others of that name
+// A scene without our markup still has mirrors: a node whose mesh has, on every primitive,
+// a material with metallicFactor >= ReflectorRule::minMetallic and roughnessFactor <=
+// ReflectorRule::maxRoughness (0.9 and 0.1 by default; the factors decide, the
+// metallic-roughness texture is not read) is a reflector of its own, named after the node,
+// with f0 = the Rec. 709 luminance of the base colour factor (0.2126 R + 0.7152 G + 0.0722 B,
+// clamped to [0, 1]; of the primitives' mean when they differ). The markup takes precedence:
+// meshes claimed by a `true`/{f0} node stay in that node's reflector, and a `false` node's
+// subtree gets no material reflector (an explicit `true` inside or above it still counts).
 // Every other mesh is environment. Environment objects are the root nodes' subtrees (a
 // single mesh-less root wrapping the whole scene is looked through), so each object can be
 // its own probe layer.
@@ -45,9 +54,15 @@ struct SceneMarkup {
     std::unordered_set<ecs::Entity> mirrorEntities;
 };
 
+// When a material alone makes its mesh a mirror (see above).
+struct ReflectorRule {
+    float minMetallic = 0.9f;
+    float maxRoughness = 0.1f;
+};
+
 // Throws Error naming `file` and the node when markup has the wrong type.
 SceneMarkup readSceneMarkup(ecs::Registry& registry, const LoadedScene& scene,
-                            const std::string& file);
+                            const std::string& file, const ReflectorRule& rule = {});
 
 // Where the probe goes: the first `specula_probe` node, else the centre of the reflectors'
 // bounds, else the centre of the scene.

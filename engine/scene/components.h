@@ -43,6 +43,11 @@ struct MeshData {
 struct MaterialData {
     glm::vec4 baseColorFactor{1.f};
     std::shared_ptr<const Image> baseColorTexture; // linear RGBA float, may be null
+    // pbrMetallicRoughness factors, glTF's defaults when absent. The metallic-roughness
+    // texture is not loaded: the factors alone describe the material (readSceneMarkup uses
+    // them to find mirrors).
+    float metallicFactor = 1.f;
+    float roughnessFactor = 1.f;
     std::string name;
     bool doubleSided = false; // glTF: its back faces are surface too, not the inside of a solid
 };

@@ -3,6 +3,9 @@
 #include "engine/scene/gltf_accessors.h"
 #include "engine/scene/texture_decode.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace specula::gltf_internal {
 
 // Images are decoded here, not by tinygltf: only the images a material uses, and only
@@ -51,6 +54,21 @@ std::shared_ptr<const MaterialData> MaterialCache::material(int index, const std
             ctx_.fail(mf + ".pbrMetallicRoughness.baseColorFactor", "non-finite value");
         md->baseColorFactor[c] = float(f[std::size_t(c)]);
     }
+    // The factors only: metallicRoughnessTexture is deliberately not read (a mirror is told
+    // by its factors, and no renderer here shades with the texture).
+    const auto readFactor = [&](double v, const char* field) {
+        const std::string where = mf + ".pbrMetallicRoughness." + field;
+        if (!std::isfinite(v)) ctx_.fail(where, "non-finite value");
+        // Out of range is against the spec but harmless: clamped, and said (a scene that
+        // loaded before the factors were read still loads).
+        if (v < 0.0 || v > 1.0) {
+            ctx_.warn(where, std::to_string(v) + " is outside [0, 1]; clamped");
+            v = std::clamp(v, 0.0, 1.0);
+        }
+        return float(v);
+    };
+    md->metallicFactor = readFactor(mat.pbrMetallicRoughness.metallicFactor, "metallicFactor");
+    md->roughnessFactor = readFactor(mat.pbrMetallicRoughness.roughnessFactor, "roughnessFactor");
     const auto& bct = mat.pbrMetallicRoughness.baseColorTexture;
     if (bct.index >= 0) {
         if (bct.texCoord != 0)

@@ -64,6 +64,16 @@ void readPemParameter(const std::string& manifestPath, ProbeSource& src) {
     }
 }
 
+// The sky a PEM was baked under ("sky_source", resolved as "source" is: as written, else
+// beside the manifest), for the ground truth it is compared with; the bundled field.jpg
+// when the manifest does not say (older manifests).
+std::string pemSky(const std::string& manifest, const CookedProbeFacts& facts) {
+    if (facts.skySource.empty()) return defaultSkyPath();
+    const fs::path s = facts.skySource;
+    const fs::path beside = fs::path(manifest).parent_path() / s;
+    return fs::exists(s) || s.is_absolute() || !fs::exists(beside) ? s.string() : beside.string();
+}
+
 } // namespace
 
 ProbeSource resolveProbeSource(const std::string& input,
@@ -97,9 +107,10 @@ ProbeSource resolveProbeSource(const std::string& input,
         }
         if (!fs::exists(src.scenePath))
             throw Error(input, "source", "scene '" + src.scenePath + "' not found (give --scene)");
-        src.skyPath = skyOverride                                            ? *skyOverride
-                      : src.lightField || (src.pem && facts.skyFile.empty()) ? defaultSkyPath()
-                                                                             : facts.skyFile;
+        src.skyPath = skyOverride      ? *skyOverride
+                      : src.lightField ? defaultSkyPath()
+                      : src.pem        ? pemSky(input, facts)
+                                       : facts.skyFile;
         return src;
     }
     if (ext != ".gltf" && ext != ".glb")

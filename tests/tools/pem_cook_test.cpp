@@ -178,12 +178,20 @@ TEST_F(PemCook, CookApiWritesAFolderThePemReaderAccepts) {
     PemCookSettings s;
     s.samples = 2;
     s.faceRes = 16;
-    const CookResult r = cookProbe(options(s, "pem"), nullptr);
+    s.imageWidth = 64, s.imageHeight = 48;
+    CookOptions o = options(s, "pem");
+    o.sky = kSky;
+    const CookResult r = cookProbe(o, nullptr);
     ASSERT_TRUE(std::holds_alternative<PemAsset>(r.asset));
     const PemAsset& cooked = std::get<PemAsset>(r.asset);
-    EXPECT_EQ(readCookedProbeFacts(r.manifest).flavour, "pem");
+    const CookedProbeFacts facts = readCookedProbeFacts(r.manifest);
+    EXPECT_EQ(facts.flavour, "pem");
+    EXPECT_EQ(facts.skySource, kSky); // the walk compares against the sky the bake traced
     const PemAsset read = readPemProbe(r.manifest);
     EXPECT_EQ(read.faceRes, 16);
+    EXPECT_EQ(read.skySource, kSky);
+    EXPECT_EQ(read.imageWidth, 64);
+    EXPECT_EQ(read.imageHeight, 48);
     EXPECT_EQ(read.parameterKind, "viewpoint");
     EXPECT_EQ(read.path, "orbit");
     ASSERT_EQ(read.samples.size(), 2u);

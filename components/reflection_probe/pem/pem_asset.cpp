@@ -173,6 +173,7 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
         json manifest = probeManifestHeader("pem", sourceScene);
         manifest["geometry"] = asset.geometry;
         if (asset.imageWidth > 0) manifest["image_size"] = {asset.imageWidth, asset.imageHeight};
+        if (!asset.skySource.empty()) manifest["sky_source"] = asset.skySource;
         if (const PemDistanceGeometry* g = asset.distance.get()) {
             const std::string path = (tmp / kDistanceFile).string();
             writeImage(path, stackDistances(*g));
@@ -210,6 +211,7 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
     PemAsset a;
     a.manifestPath = manifest.path;
     a.centre = r.vec3(m, "centre", "", kMaxCoordinate);
+    if (m.contains("sky_source")) a.skySource = r.string(m, "sky_source", "");
     a.parameterKind = r.string(m, "parameter_kind", "");
     a.path = r.string(m, "path", "");
     a.faceRes = r.integer(m, "face_res", "", 1, kMaxPemFaceRes);

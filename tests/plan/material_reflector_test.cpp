@@ -1,0 +1,263 @@
+// Reflectors found from the glTF materials (metallic and smooth), not only from the markup:
+// small glTF files written here, loaded by the real loader, read by readSceneMarkup.
+#include "components/reflection_probe/scene_markup.h"
+#include "engine/core/error.h"
+#include "engine/scene/components.h"
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/transform_system.h"
+#include "support/scratch_dir_test.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+
+using namespace specula;
+using nlohmann::json;
+
+namespace {
+
+// A glTF scene of one-triangle meshes, one mesh per node, sharing one buffer.
+struct GltfScene {
+    json materials = json::array();
+    json meshes = json::array();
+    json nodes = json::array();
+    std::vector<int> roots;
+
+    // `pbr`: the pbrMetallicRoughness object; nullopt leaves the block out.
+    int material(const std::string& name, std::optional<json> pbr) {
+        json m = {{"name", name}};
+        if (pbr) m["pbrMetallicRoughness"] = *pbr;
+        materials.push_back(m);
+        return int(materials.size()) - 1;
+    }
+    int metal(const std::string& name, double metallic, double roughness,
+              std::vector<double> colour = {1, 1, 1, 1}) {
+        return material(name, json{{"baseColorFactor", colour},
+                                   {"metallicFactor", metallic},
+                                   {"roughnessFactor", roughness}});
+    }
+    // A node with a mesh of `material` (-1: no mesh); a root unless `parent` is given.
+    int node(const std::string& name, int material, const json& extras = nullptr, int parent = -1) {
+        json n = {{"name", name}, {"translation", {double(nodes.size()) * 2.0, 0.0, 0.0}}};
+        if (material >= 0) {
+            meshes.push_back(
+                {{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"material", material}}}}});
+            n["mesh"] = int(meshes.size()) - 1;
+        }
+        if (!extras.is_null()) n["extras"] = extras;
+        nodes.push_back(n);
+        const int i = int(nodes.size()) - 1;
+        if (parent >= 0)
+            nodes[std::size_t(parent)]["children"].push_back(i);
+        else
+            roots.push_back(i);
+        return i;
+    }
+    std::filesystem::path write(const std::filesystem::path& dir) const {
+        const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        std::ofstream(dir / "scene.bin", std::ios::binary)
+            .write(reinterpret_cast<const char*>(triangle), sizeof(triangle));
+        const json j = {
+            {"asset", {{"version", "2.0"}}},
+            {"scene", 0},
+            {"scenes", {{{"nodes", roots}}}},
+            {"nodes", nodes},
+            {"meshes", meshes},
+            {"materials", materials},
+            {"buffers", {{{"uri", "scene.bin"}, {"byteLength", sizeof(triangle)}}}},
+            {"bufferViews", {{{"buffer", 0}, {"byteLength", sizeof(triangle)}}}},
+            {"accessors",
+             {{{"bufferView", 0},
+               {"componentType", 5126},
+               {"count", 3},
+               {"type", "VEC3"},
+               {"min", {0, 0, 0}},
+               {"max", {1, 1, 0}}}}},
+        };
+        const std::filesystem::path path = dir / "scene.gltf";
+        std::ofstream(path) << j.dump();
+        return path;
+    }
+};
+
+class MaterialReflector : public test::ScratchDirTest {
+protected:
+    MaterialReflector() : ScratchDirTest("specula-material-reflector") {}
+
+    SceneMarkup read(const GltfScene& g, const ReflectorRule& rule = {}) {
+        const std::filesystem::path path = g.write(root_);
+        scene_ = loadGltf(path.string(), reg_);
+        updateWorldTransforms(reg_);
+        return readSceneMarkup(reg_, scene_, path.string(), rule);
+    }
+    // Reflector node name -> its f0.
+    static std::map<std::string, float> reflectors(const SceneMarkup& m) {
+        std::map<std::string, float> out;
+        for (const ReflectorMarkup& r : m.reflectors)
+            out[r.node] = r.f0;
+        return out;
+    }
+    static bool inEnvironment(const SceneMarkup& m, const std::string& object) {
+        for (const EnvironmentObject& o : m.objects)
+            if (o.name == object) return true;
+        return false;
+    }
+
+    ecs::Registry reg_;
+    LoadedScene scene_;
+};
+
+} // namespace
+
+TEST_F(MaterialReflector, LoaderKeepsTheFactorsWithGltfDefaults) {
+    GltfScene g;
+    g.node("chrome", g.metal("chrome", 0.25, 0.75));
+    g.node("plain", g.material("plain", std::nullopt));
+    g.node("partial", g.material("partial", json{{"metallicFactor", 0.5}}));
+    read(g);
+    std::map<std::string, const MaterialData*> byName;
+    reg_.view<Mesh>().each([&](ecs::Entity, Mesh& m) {
+        const MaterialData* md = m.primitives.at(0).material.get();
+        byName[md->name] = md;
+    });
+    ASSERT_EQ(byName.size(), 3u);
+    EXPECT_FLOAT_EQ(byName["chrome"]->metallicFactor, 0.25f);
+    EXPECT_FLOAT_EQ(byName["chrome"]->roughnessFactor, 0.75f);
+    EXPECT_FLOAT_EQ(byName["plain"]->metallicFactor, 1.f);
+    EXPECT_FLOAT_EQ(byName["plain"]->roughnessFactor, 1.f);
+    EXPECT_FLOAT_EQ(byName["partial"]->metallicFactor, 0.5f);
+    EXPECT_FLOAT_EQ(byName["partial"]->roughnessFactor, 1.f);
+}
+
+TEST_F(MaterialReflector, SmoothMetalIsAReflectorWithItsBaseColourLuminance) {
+    GltfScene g;
+    g.node("mirror", g.metal("silver", 1.0, 0.0, {0.9, 0.8, 0.5, 1.0}));
+    g.node("wall", g.metal("paint", 0.0, 0.9));
+    const SceneMarkup m = read(g);
+    const auto r = reflectors(m);
+    ASSERT_EQ(r.size(), 1u);
+    ASSERT_EQ(r.count("mirror"), 1u);
+    EXPECT_NEAR(r.at("mirror"), 0.2126f * 0.9f + 0.7152f * 0.8f + 0.0722f * 0.5f, 1e-5f);
+    EXPECT_EQ(m.reflectors[0].meshes.size(), 1u);
+    EXPECT_EQ(m.mirrorEntities.size(), 1u);
+    EXPECT_TRUE(inEnvironment(m, "wall"));
+    EXPECT_FALSE(inEnvironment(m, "mirror"));
+}
+
+TEST_F(MaterialReflector, BrightBaseColourClampsF0ToOne) {
+    GltfScene g;
+    g.node("mirror", g.metal("chrome", 1.0, 0.0, {1, 1, 1, 1}));
+    const auto r = reflectors(read(g));
+    ASSERT_EQ(r.count("mirror"), 1u);
+    EXPECT_FLOAT_EQ(r.at("mirror"), 1.f);
+}
+
+TEST_F(MaterialReflector, MarkupFalseExcludesAQualifyingSubtree) {
+    GltfScene g;
+    const int chrome = g.metal("chrome", 1.0, 0.0);
+    g.node("kept", chrome);
+    g.node("not_me", chrome, json{{"specula_reflector", false}});
+    const int group = g.node("group", -1, json{{"specula_reflector", false}});
+    g.node("child", chrome, nullptr, group);
+    const SceneMarkup m = read(g);
+    const auto r = reflectors(m);
+    ASSERT_EQ(r.size(), 1u);
+    EXPECT_EQ(r.count("kept"), 1u);
+    // The excluded ones are environment.
+    EXPECT_TRUE(inEnvironment(m, "not_me"));
+    EXPECT_TRUE(inEnvironment(m, "group"));
+}
+
+TEST_F(MaterialReflector, MarkupTrueOnARoughNodeStillMakesAReflector) {
+    GltfScene g;
+    g.node("marked", g.metal("paint", 0.0, 1.0), json{{"specula_reflector", true}});
+    g.node("glass", g.metal("paint2", 0.0, 1.0), json{{"specula_reflector", {{"f0", 0.04}}}});
+    const auto r = reflectors(read(g));
+    ASSERT_EQ(r.size(), 2u);
+    EXPECT_LT(r.at("marked"), 0.f); // a perfect mirror, as before
+    EXPECT_FLOAT_EQ(r.at("glass"), 0.04f);
+}
+
+TEST_F(MaterialReflector, MarkupWinsOverTheMaterialsOfItsSubtree) {
+    GltfScene g;
+    const int chrome = g.metal("chrome", 1.0, 0.0, {0.5, 0.5, 0.5, 1.0});
+    const int parent = g.node("parent", chrome, json{{"specula_reflector", {{"f0", 0.2}}}});
+    g.node("child", chrome, nullptr, parent);
+    const SceneMarkup m = read(g);
+    ASSERT_EQ(m.reflectors.size(), 1u); // one per marked node, not one more per material
+    EXPECT_EQ(m.reflectors[0].node, "parent");
+    EXPECT_FLOAT_EQ(m.reflectors[0].f0, 0.2f);
+    EXPECT_EQ(m.reflectors[0].meshes.size(), 2u);
+}
+
+TEST_F(MaterialReflector, ThresholdsComeFromTheRule) {
+    GltfScene g;
+    g.node("almost_metal", g.metal("a", 0.89, 0.0));
+    g.node("almost_smooth", g.metal("b", 1.0, 0.11));
+    g.node("edge", g.metal("c", 0.9, 0.1));
+    const auto strict = reflectors(read(g));
+    ASSERT_EQ(strict.size(), 1u);
+    EXPECT_EQ(strict.count("edge"), 1u);
+
+    ecs::Registry reg;
+    const std::filesystem::path path = g.write(root_);
+    const LoadedScene scene = loadGltf(path.string(), reg);
+    updateWorldTransforms(reg);
+    const SceneMarkup loose =
+        readSceneMarkup(reg, scene, path.string(), ReflectorRule{0.85f, 0.15f});
+    EXPECT_EQ(reflectors(loose).size(), 3u);
+}
+
+TEST_F(MaterialReflector, NoPbrBlockMeansRoughMetalNotAMirror) {
+    GltfScene g;
+    g.node("default_pbr", g.material("bare", std::nullopt));
+    const SceneMarkup m = read(g);
+    EXPECT_TRUE(m.reflectors.empty());
+    EXPECT_TRUE(inEnvironment(m, "default_pbr"));
+}
+
+TEST_F(MaterialReflector, MarkupOfTheWrongTypeIsStillRefused) {
+    GltfScene g;
+    g.node("odd", g.metal("chrome", 1.0, 0.0), json{{"specula_reflector", "yes"}});
+    EXPECT_THROW(read(g), Error);
+}
+
+TEST_F(MaterialReflector, OutOfRangeFactorsAreClampedAndSaid) {
+    GltfScene g;
+    g.node("over", g.metal("over", 1.5, -0.5));
+    const SceneMarkup m = read(g);
+    const MaterialData& md = *reg_.get<Mesh>(scene_.entities.at(0)).primitives.at(0).material;
+    EXPECT_FLOAT_EQ(md.metallicFactor, 1.f);
+    EXPECT_FLOAT_EQ(md.roughnessFactor, 0.f);
+    EXPECT_EQ(scene_.warnings.size(), 2u);
+    EXPECT_EQ(m.reflectors.size(), 1u);
+}
+
+// The bundled scenes: their materials are all rough dielectrics, so the reflectors are
+// exactly the nodes their markup names, as before materials counted.
+TEST(MaterialReflectorBundled, BundledScenesKeepTheirMarkedReflectors) {
+    for (const char* name : {"room", "truck_room", "bowl_room", "sky_only"}) {
+        const std::filesystem::path path = std::filesystem::path(SPECULA_SOURCE_DIR) / "assets" /
+                                           name / (std::string(name) + ".gltf");
+        std::set<std::string> marked;
+        const json j = json::parse(std::ifstream(path));
+        for (const json& n : j["nodes"])
+            if (n.contains("extras") && n["extras"].contains("specula_reflector") &&
+                n["extras"]["specula_reflector"] != false)
+                marked.insert(n.value("name", ""));
+        ecs::Registry reg;
+        const LoadedScene scene = loadGltf(path.string(), reg);
+        updateWorldTransforms(reg);
+        const SceneMarkup m = readSceneMarkup(reg, scene, path.string());
+        std::set<std::string> found;
+        for (const ReflectorMarkup& r : m.reflectors)
+            found.insert(r.node);
+        EXPECT_FALSE(marked.empty()) << name;
+        EXPECT_EQ(found, marked) << name;
+        EXPECT_EQ(m.reflectors.size(), marked.size()) << name;
+    }
+}
