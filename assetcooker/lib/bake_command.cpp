@@ -229,14 +229,7 @@ int runBake(const BakeArgs& a, std::ostream& out) {
         try {
             validatePemCookSettings(*pem, a.scene);
         } catch (const Error& e) {
-            // what() is "FILE: FIELD: message" (Error::compose): keep the message.
-            const std::string prefix = e.file() + ": " + e.field() + ": ", what = e.what();
-            std::string flag = e.field();
-            std::replace(flag.begin(), flag.end(), '_', '-');
-            if (flag == "prior-weight") flag = "prior";
-            if (flag == "regularisation") flag = "smoothness";
-            throw UsageError("--" + flag,
-                             what.starts_with(prefix) ? what.substr(prefix.size()) : what);
+            throw UsageError(e.field(), e.message()); // the tool names the field's flag
         }
     }
     const SignalGuard guard; // first: a signal during the load and the plan is honoured too

@@ -268,8 +268,7 @@ PemAsset cookPemAsset(ProbeScene& scene, const PemCookSettings& s, const PemCook
             if (e.field() != "camera") throw;
             throw Error(e.file(), "camera",
                         "parameter sample " + std::to_string(k) + " (t = " + std::to_string(t) +
-                            "): no reflector pixel to infer its map from (" +
-                            std::string(e.what()).substr(e.file().size() + 10) + ")");
+                            "): no reflector pixel to infer its map from (" + e.message() + ")");
         }
         PemInference inferred = inferPemMap(samples, infer);
         if (hooks.fits) {

@@ -118,7 +118,7 @@ int ToolCli::run(std::span<const std::string> args, std::ostream& out, std::ostr
     } catch (const CLI::ParseError& e) {
         return usageError(firstLine(e.what()));
     } catch (const UsageError& e) {
-        return usageError(firstLine(e.what()));
+        return usageError(describe(e)); // a library field raised as usage names its flag
     } catch (const Cancelled& e) {
         err << where() << ": cancelled: " << firstLine(e.what()) << '\n';
         return kExitCancelled;

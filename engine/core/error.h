@@ -10,11 +10,14 @@ class Error : public std::runtime_error {
 public:
     Error(std::string file, std::string field, const std::string& what)
         : std::runtime_error(compose(file, field, what)), file_(std::move(file)),
-          field_(std::move(field)) {}
-    explicit Error(const std::string& what) : std::runtime_error(what) {}
+          field_(std::move(field)), message_(what) {}
+    explicit Error(const std::string& what) : std::runtime_error(what), message_(what) {}
 
     const std::string& file() const { return file_; }
     const std::string& field() const { return field_; }
+    // What was expected, without the file and the field (what() has all three): for a
+    // caller that re-raises the error under another field or flag.
+    const std::string& message() const { return message_; }
 
 private:
     static std::string compose(const std::string& file, const std::string& field,
@@ -23,7 +26,7 @@ private:
         if (!field.empty()) s += field + ": ";
         return s + what;
     }
-    std::string file_, field_;
+    std::string file_, field_, message_;
 };
 
 // A wrong command line (exit status 2), as opposed to bad input data (exit 1). The field is

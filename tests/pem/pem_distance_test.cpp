@@ -58,20 +58,10 @@ PemMap randomMap(int n, std::shared_ptr<const PemDistanceGeometry> g, unsigned s
     return mapOf(n, std::move(g), [&](glm::vec3) { return glm::vec3(u(rng), u(rng), u(rng)); });
 }
 
-// Reflector points in a cube of half-side `spread` about the centre, directions uniform
-// (those `keep` accepts); targets left black.
+// Reflector points about the centre (randomRays), targets left black.
 PemSamples rays(int count, unsigned seed, float spread,
                 const std::function<bool(glm::vec3)>& keep = nullptr) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-spread, spread);
-    PemSamples s;
-    while (int(s.size()) < count) {
-        PemSample p;
-        p.x = glm::vec3(u(rng), u(rng), u(rng));
-        p.l = randomDirection(rng);
-        if (!keep || keep(p.l)) s.push_back(p);
-    }
-    return s;
+    return randomRays(count, seed, glm::vec3(0.f), spread, keep);
 }
 
 float angle(glm::vec3 a, glm::vec3 b) {

@@ -23,21 +23,12 @@ using namespace specula::test;
 
 namespace {
 
-// Reflector points in a cube of half-side `spread` around `centre`, directions uniform on
-// the sphere (those `keep` accepts), targets the room's radiance where the ray leaves it.
+// randomRays with targets: the room's radiance where each ray leaves it.
 PemSamples roomSamples(int count, unsigned seed, glm::vec3 centre, float spread,
                        const std::function<bool(glm::vec3)>& keep = nullptr) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-spread, spread);
-    PemSamples s;
-    while (int(s.size()) < count) {
-        PemSample p;
-        p.x = centre + glm::vec3(u(rng), u(rng), u(rng));
-        p.l = randomDirection(rng);
-        if (keep && !keep(p.l)) continue;
+    PemSamples s = randomRays(count, seed, centre, spread, keep);
+    for (PemSample& p : s)
         p.target = wallRadiance(exitPoint(p.x, p.l, kRoomMin, kRoomMax));
-        s.push_back(p);
-    }
     return s;
 }
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 
@@ -48,6 +49,22 @@ inline glm::vec3 randomDirection(std::mt19937& rng) {
         const glm::vec3 v(g(rng), g(rng), g(rng));
         if (glm::length(v) > 1e-3f) return glm::normalize(v);
     }
+}
+
+// Reflector points in a cube of half-side `spread` around `centre`, directions uniform on
+// the sphere (those `keep` accepts); targets left black.
+inline PemSamples randomRays(int count, unsigned seed, glm::vec3 centre, float spread,
+                             const std::function<bool(glm::vec3)>& keep = nullptr) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-spread, spread);
+    PemSamples s;
+    while (int(s.size()) < count) {
+        PemSample p;
+        p.x = centre + glm::vec3(u(rng), u(rng), u(rng));
+        p.l = randomDirection(rng);
+        if (!keep || keep(p.l)) s.push_back(p);
+    }
+    return s;
 }
 
 // One row of the rendering matrix against the lookup it comes from: 1 to 4 texels of one face
