@@ -1,6 +1,7 @@
 #include "bake_command.h"
 
 #include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/level_bake.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
 
@@ -41,6 +42,15 @@ constexpr const char* kBakeDescription =
     "and half-way between them and prints both PSNRs.\n"
     "The options of one flavour are refused with another.\n"
     "\n"
+    "A level: when the scene has several \"specula_probe\" nodes, or --probe is given more\n"
+    "than once, or --probes FILE, every probe is baked into DIR/<probe name>/ and DIR/level.json\n"
+    "indexes them (position, proxy box, influence box or sphere, blend distance, priority,\n"
+    "checksums). Probe members in the markup (boxes relative to the probe): \"proxy\": {\"min\",\n"
+    "\"max\"}, \"influence\": {\"box\": {\"min\", \"max\"}} or {\"sphere\": {\"radius\"}},\n"
+    "\"blend_distance\" (default 0.5 m), \"priority\" (0); the proxy defaults to the box the\n"
+    "six axis rays from the probe reach, the influence to the proxy. A re-run re-bakes only\n"
+    "the probes whose geometry in reach, options or sky changed, and says which and why.\n"
+    "\n"
     "A level's bake options can live in a file beside the scene: --config FILE (TOML or INI)\n"
     "with a [bake] section, e.g. face-res = 128; flags on the command line win.\n";
 
@@ -56,7 +66,8 @@ constexpr const char* kBakeFooter =
 // What the bake's flags set; defaults are the help's.
 struct BakeArgs {
     std::string scene, out, flavour = "distance";
-    std::optional<std::string> probe, sky;
+    std::vector<std::string> probes; // --probe, repeatable
+    std::optional<std::string> probeList, sky;
     // distance and pem
     std::optional<int> faceRes; // distance: 256, pem: 128
     // distance
@@ -102,7 +113,7 @@ CookOptions cookOptions(const BakeArgs& a) {
     o.scene = a.scene;
     o.out = a.out;
     if (a.sky) o.sky = *a.sky;
-    if (a.probe) o.probeCentre = cli::parseVec3(*a.probe);
+    if (a.probes.size() == 1) o.probeCentre = cli::parseVec3(a.probes.front());
     if (a.flavour == "lightfield") {
         LightFieldCookSettings s;
         if (a.cellCentre) s.cellCentre = cli::parseVec3(*a.cellCentre);
@@ -215,6 +226,33 @@ void refuseOtherFlavoursOptions(const BakeArgs& a) {
     }
 }
 
+// The flavour's settings as text: a change re-bakes a level's probes (the options checksum).
+std::string optionsText(const BakeArgs& a) {
+    std::ostringstream t;
+    t << a.flavour << " face_res " << (a.faceRes ? *a.faceRes : 0) << " layers " << a.layers
+      << " cell_size " << (a.cellSize ? *a.cellSize : 0.f) << " cameras " << a.cameras
+      << " image_res " << a.imageRes << " compress " << a.compress;
+    return t.str();
+}
+
+void printLevelSummary(const LevelCookResult& r, std::ostream& out) {
+    std::size_t baked = 0;
+    double bakeSeconds = 0;
+    for (const LevelProbeOutcome& p : r.probes)
+        if (p.baked) ++baked, bakeSeconds += p.seconds;
+    out << "level: " << r.probes.size() << " probes, " << baked << " baked (" << bakeSeconds
+        << " s";
+    if (baked > 0) out << ", " << bakeSeconds / double(baked) << " s per probe";
+    out << "), " << r.probes.size() - baked << " up to date, total " << r.seconds << " s -> "
+        << r.index << "\n";
+}
+
+// A level: the scene has several probes, or the command line gives several (--probe twice,
+// --probes FILE).
+bool isLevel(const BakeArgs& a, const ProbeScene& scene) {
+    return a.probeList || a.probes.size() > 1 || scene.markup.probes.size() > 1;
+}
+
 int runBake(const BakeArgs& a, std::ostream& out) {
     refuseOtherFlavoursOptions(a);
     const bool lightField = a.flavour == "lightfield";
@@ -234,7 +272,25 @@ int runBake(const BakeArgs& a, std::ostream& out) {
     }
     const SignalGuard guard; // first: a signal during the load and the plan is honoured too
     const auto start = std::chrono::steady_clock::now();
-    const CookResult r = cookProbe(options, &out);
+    ProbeScene scene(options.scene, options.sky);
+    throwIfCancelled(options.out);
+    if (isLevel(a, scene)) {
+        if (a.flavour == "pem")
+            throw UsageError("--flavour", "pem bakes one probe's camera path, not a level of " +
+                                              std::to_string(std::max<std::size_t>(
+                                                  a.probes.size(), scene.markup.probes.size())) +
+                                              " probes: give one --probe");
+        LevelCookOptions level;
+        level.cook = options;
+        level.cook.probeCentre.reset();
+        level.optionsText = optionsText(a);
+        for (const std::string& p : a.probes)
+            level.sources.positions.push_back(cli::parseVec3(p));
+        if (a.probeList) level.sources.file = *a.probeList;
+        printLevelSummary(cookLevel(scene, level, &out), out);
+        return cli::kExitOk;
+    }
+    const CookResult r = cookProbe(scene, options, &out);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (lightField)
@@ -271,8 +327,15 @@ void addBakeCommand(cli::ToolCli& tool) {
         ->check(cli::nonEmpty("a folder"));
     sub->add_option("--flavour", a->flavour, "probe flavour")
         ->check(CLI::IsMember({"distance", "lightfield", "pem"}));
-    sub->add_option("--probe", a->probe, "probe centre in world space (overrides the markup)")
+    sub->add_option("--probe", a->probes,
+                    "probe centre in world space (overrides the markup's); repeat it for a "
+                    "level of several probes")
         ->check(cli::vec3Text());
+    sub->add_option("--probes", a->probeList,
+                    "a probe list (JSON: {\"probes\": [{\"name\", \"position\", \"proxy\", "
+                    "\"influence\", \"blend_distance\", \"priority\", \"cell_size\"}]}): "
+                    "bakes a level")
+        ->check(CLI::ExistingFile);
     sub->add_option("--sky", a->sky,
                     "equirectangular panorama for the distant environment (default: black)");
 

@@ -37,7 +37,9 @@ auto bakeShared(const CookOptions& o, const std::string& label, BakeOptions& b, 
     b.cancelled = [] { return cancelRequested(); };
     b.warnings = &result.warnings;
     std::optional<ProgressBar> bar;
-    if (o.progress) {
+    if (o.progressHook) {
+        b.progress = o.progressHook;
+    } else if (o.progress) {
         bar.emplace(label + " " + std::filesystem::path(o.scene).filename().string());
         b.progress = [&](double f) { bar->update(f); };
     }
@@ -65,8 +67,9 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
                              : markupProbeCentre(scene.registry, scene.markup, scene.loaded);
     b.faceRes = s.faceRes;
     b.sky = scene.sky.empty() ? nullptr : &scene.sky;
-    b.reflectorReach =
-        markupReflectorReach(scene.registry, scene.markup, b.centre, markupCellSize(scene.markup));
+    b.reflectorReach = markupReflectorReach(scene.registry, scene.markup, b.centre,
+                                            o.cellSize.value_or(markupCellSize(scene.markup)));
+    b.proxy = o.proxy;
     std::string planJson;
     if (s.planned || s.recordPlan) {
         const EffectPlan plan =
@@ -91,7 +94,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const LightFieldCookSetti
     b.cellCentre = s.cellCentre    ? *s.cellCentre
                    : o.probeCentre ? *o.probeCentre
                                    : markupProbeCentre(scene.registry, scene.markup, scene.loaded);
-    b.cellSize = s.cellSize ? *s.cellSize : markupCellSize(scene.markup);
+    b.cellSize = s.cellSize ? *s.cellSize : o.cellSize.value_or(markupCellSize(scene.markup));
     b.cameras = s.cameras;
     b.res = s.imageRes;
     b.compression = s.compression;

@@ -10,6 +10,7 @@
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/probe_setup.h"
 
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -45,8 +46,15 @@ struct CookOptions {
     std::string sky;                      // equirectangular panorama; empty: a black sky
     std::string out;                      // the cooked folder
     std::optional<glm::vec3> probeCentre; // default: the markup's (markupProbeCentre)
+    // The cell reflectors move in (default: the markup's first probe's, markupCellSize) and
+    // the proxy box of the distance flavour's box projection (default: the environment's
+    // bounds); a level gives each probe its own.
+    std::optional<float> cellSize;
+    std::optional<Aabb> proxy;
     CookFlavour flavour;
     bool progress = true; // a progress bar on the terminal while tracing
+    // Called with the fraction done instead of drawing a bar (a level draws one bar for all).
+    std::function<void(double)> progressHook;
 };
 
 struct CookResult {

@@ -191,8 +191,9 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
     Aabb envBounds;
     for (const EnvironmentObject& o : markup.objects)
         envBounds.extend(o.bounds);
-    asset.boxMin = envBounds.min - opt.centre;
-    asset.boxMax = envBounds.max - opt.centre;
+    const Aabb& box = opt.proxy ? *opt.proxy : envBounds;
+    asset.boxMin = box.min - opt.centre;
+    asset.boxMax = box.max - opt.centre;
     composite.boxMin = asset.boxMin;
     composite.boxMax = asset.boxMax;
 

@@ -8,6 +8,7 @@
 #include "engine/ecs/registry.h"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ struct DistanceBakeOptions {
     const Image* sky = nullptr; // equirectangular; black when null
     // Reflectors move within this distance of the centre; D must reach past them.
     float reflectorReach = 1.f;
+    // World box the lookup's box projection assumes; default: the environment's bounds.
+    std::optional<Aabb> proxy;
     // A layer covering at least this solid angle is marked for per-pixel rectification, a
     // smaller one for the average-distance correction (DESIGN §4), unless `layers` says.
     float rectifySolidAngle = 0.379f;

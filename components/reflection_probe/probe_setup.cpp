@@ -4,23 +4,49 @@
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
 #include "engine/image/image_io.h"
+#include "engine/raytrace/embree_scene.h"
 #include "engine/scene/components.h"
+#include "engine/scene/mesh_bounds.h"
 #include "engine/scene/transform_system.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace specula {
 
-ProbeScene::ProbeScene(const std::string& gltfPath, const std::string& skyPath)
+CameraOrbit DefaultViewCache::get(const std::function<CameraOrbit()>& search) const {
+    const std::lock_guard<std::mutex> lock(state_->mutex);
+    if (state_->orbit) return *state_->orbit;
+    if (state_->error) throw *state_->error;
+    try {
+        state_->orbit = search();
+    } catch (const Error& e) {
+        state_->error = e;
+        throw;
+    }
+    return *state_->orbit;
+}
+
+void DefaultViewCache::forget() {
+    const std::lock_guard<std::mutex> lock(state_->mutex);
+    state_->orbit.reset();
+    state_->error.reset();
+}
+
+ProbeScene::ProbeScene(const std::string& gltfPath, const std::string& skyPath,
+                       const std::vector<AddedReflector>& added)
     : path(gltfPath), skyPath(skyPath) {
     loaded = loadGltf(gltfPath, registry);
     updateWorldTransforms(registry);
     markup = readSceneMarkup(registry, loaded, gltfPath);
+    for (const AddedReflector& r : added)
+        addReflector(*this, r);
     if (!skyPath.empty()) sky = readImage(skyPath);
 }
 
@@ -43,6 +69,166 @@ CameraView orbitCameraView(glm::vec3 centre, int width, int height, float angle,
     return CameraView::lookAt(eye, centre, glm::vec3(0, 1, 0), glm::radians(50.f), width, height);
 }
 
+namespace {
+
+// The old default camera (before the free-space search): from +Z, 3.5 m away, 0.6 m up.
+constexpr CameraOrbit kOldDefaultOrbit{0.f, 3.5f, 0.6f};
+
+// `n` unit directions spread evenly over the sphere (a Fibonacci spiral), fixed.
+std::vector<glm::vec3> spreadDirections(int n) {
+    std::vector<glm::vec3> dirs;
+    const float golden = glm::pi<float>() * (3.f - std::sqrt(5.f));
+    for (int i = 0; i < n; ++i) {
+        const float y = 1.f - 2.f * (float(i) + 0.5f) / float(n);
+        const float r = std::sqrt(std::max(0.f, 1.f - y * y));
+        const float phi = golden * float(i);
+        dirs.emplace_back(r * std::cos(phi), y, r * std::sin(phi));
+    }
+    return dirs;
+}
+
+// The candidates of DefaultViewpointRules, in order.
+std::vector<CameraOrbit> candidateOrbits(float radius) {
+    std::vector<CameraOrbit> out{kOldDefaultOrbit};
+    std::vector<float> distances;
+    for (const float f : {3.f, 2.f, 4.f, 1.5f, 6.f}) {
+        const float d = std::max(0.8f, f * radius);
+        if (std::find(distances.begin(), distances.end(), d) == distances.end())
+            distances.push_back(d);
+    }
+    for (const float d : distances)
+        for (const float h : {0.17f, 0.45f, 0.f, -0.25f})
+            for (int k = 0; k < 12; ++k) {
+                // 0, +30, -30, +60, -60, ... 180 degrees.
+                const float step = float((k + 1) / 2) * (k % 2 ? 1.f : -1.f);
+                out.push_back({glm::radians(30.f * step), d, h * d});
+            }
+    return out;
+}
+
+bool isBackFace(const Hit& hit, glm::vec3 dir) {
+    const bool doubleSided =
+        hit.primitive && hit.primitive->material && hit.primitive->material->doubleSided;
+    return !doubleSided && glm::dot(hit.geometricNormal, dir) > 0.f;
+}
+
+// The share of `dirs` from `eye` that meet no surface (how open to the sky it stands), or
+// nullopt when the eye is not in free space (DefaultViewpointRules).
+std::optional<float> freeSpaceOpenness(const EmbreeScene& s, glm::vec3 eye,
+                                       const std::vector<glm::vec3>& dirs) {
+    using R = DefaultViewpointRules;
+    int back = 0, open = 0;
+    for (const glm::vec3& d : dirs) {
+        const std::optional<Hit> hit = s.intersect(eye, d);
+        if (!hit) {
+            ++open;
+            continue;
+        }
+        if (hit->t < R::kClearance) return std::nullopt;
+        if (isBackFace(*hit, d) && ++back > R::kMaxBackFaceHits) return std::nullopt;
+    }
+    return float(open) / float(dirs.size());
+}
+
+std::string metres(float v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f", double(v));
+    return buf;
+}
+
+} // namespace
+
+CameraOrbit defaultViewpointOrbit(const ProbeScene& scene) {
+    using R = DefaultViewpointRules;
+    if (scene.markup.mirrorEntities.empty()) return kOldDefaultOrbit; // nothing to see
+    const glm::vec3 centre = markupProbeCentre(scene.registry, scene.markup, scene.loaded);
+    Aabb mirrors;
+    for (ecs::Entity e : scene.markup.mirrorEntities)
+        mirrors.extend(meshWorldBounds(scene.registry, e));
+    const float radius = mirrors.empty() ? 0.f : 0.5f * glm::length(mirrors.max - mirrors.min);
+
+    // EmbreeScene only reads the registry (its meshes and world transforms).
+    const EmbreeScene full(const_cast<ecs::Registry&>(scene.registry));
+    const auto& mirrorSet = scene.markup.mirrorEntities;
+    const EmbreeScene::Filter environment = [&](ecs::Entity e) { return !mirrorSet.count(e); };
+    const std::vector<glm::vec3> dirs = spreadDirections(R::kFreeSpaceRays);
+    constexpr int kW = 48, kH = 36;
+    const int minMirrorPixels = int(std::ceil(R::kMinMirrorShare * float(kW * kH)));
+
+    // How open the reflectors' surroundings are: the share of rays from the centre that meet
+    // no environment surface.
+    int centreOpen = 0;
+    for (const glm::vec3& d : dirs)
+        centreOpen +=
+            full.intersect(centre, d, 1e-4f, std::numeric_limits<float>::infinity(), &environment)
+                ? 0
+                : 1;
+    const float centreOpenness = float(centreOpen) / float(dirs.size());
+
+    // The eye of `o` in free space with the centre in sight: its openness, else nullopt.
+    auto standsFree = [&](const CameraOrbit& o) -> std::optional<float> {
+        const glm::vec3 eye = centre + glm::vec3(o.distance * std::sin(o.angle), o.height,
+                                                 o.distance * std::cos(o.angle));
+        const std::optional<float> openness = freeSpaceOpenness(full, eye, dirs);
+        if (!openness) return std::nullopt;
+        const glm::vec3 toCentre = centre - eye;
+        const float dist = glm::length(toCentre);
+        if (full.intersect(eye, toCentre / dist, 1e-4f, dist, &environment)) return std::nullopt;
+        return openness;
+    };
+    struct Verdict {
+        bool valid = false;   // free, the centre in sight, enough mirror pixels
+        bool swingOk = false; // the walk's swing ends free with the centre in sight too
+        bool asEnclosed = false;
+    };
+    auto judge = [&](const CameraOrbit& o) {
+        Verdict v;
+        const std::optional<float> openness = standsFree(o);
+        if (!openness) return v;
+        const CameraView view = orbitCameraView(centre, kW, kH, o.angle, o.distance, o.height);
+        int mirrorPixels = 0;
+        for (int y = 0; y < kH && mirrorPixels < minMirrorPixels; ++y)
+            for (int x = 0; x < kW; ++x) {
+                glm::vec3 origin, dir;
+                view.primaryRay(x, y, origin, dir);
+                const std::optional<Hit> hit = full.intersect(origin, dir);
+                mirrorPixels += hit && mirrorSet.count(hit->entity) ? 1 : 0;
+            }
+        v.valid = mirrorPixels >= minMirrorPixels;
+        v.asEnclosed = *openness <= centreOpenness + R::kMaxExtraOpenness;
+        v.swingOk = true;
+        for (const float swing :
+             {-R::kWalkSwing, -0.5f * R::kWalkSwing, 0.5f * R::kWalkSwing, R::kWalkSwing})
+            v.swingOk = v.swingOk && standsFree({o.angle + swing, o.distance, o.height});
+        return v;
+    };
+
+    const std::vector<CameraOrbit> candidates = candidateOrbits(radius);
+    std::vector<std::optional<Verdict>> verdicts(candidates.size());
+    for (int pass = 0; pass < 3; ++pass)
+        for (std::size_t i = 0; i < candidates.size(); ++i) {
+            if (!verdicts[i]) verdicts[i] = judge(candidates[i]);
+            const Verdict& v = *verdicts[i];
+            if (v.valid && (pass == 2 || v.swingOk) && (pass >= 1 || v.asEnclosed))
+                return candidates[i];
+        }
+    float nearest = candidates.front().distance, farthest = nearest;
+    for (const CameraOrbit& o : candidates) {
+        nearest = std::min(nearest, o.distance);
+        farthest = std::max(farthest, o.distance);
+    }
+    throw Error(scene.path, "camera",
+                "no free viewpoint around the reflectors sees them (centre " + metres(centre.x) +
+                    "," + metres(centre.y) + "," + metres(centre.z) + "; " +
+                    std::to_string(candidates.size()) + " viewpoints " + metres(nearest) + " to " +
+                    metres(farthest) +
+                    " m away: each stands inside geometry or behind a surface, or sees under " +
+                    std::to_string(int(R::kMinMirrorShare * 100.f)) +
+                    "% reflector pixels); give the scene a camera node in the glTF, or move the "
+                    "reflector into free space or add one there with --add-reflector "
+                    "sphere:x,y,z,r");
+}
+
 CameraView sceneCameraView(const ProbeScene& scene, int width, int height) {
     for (ecs::Entity e : scene.loaded.entities) {
         const Camera* cam = scene.registry.find<Camera>(e);
@@ -56,8 +242,9 @@ CameraView sceneCameraView(const ProbeScene& scene, int width, int height) {
         v.height = height;
         return v;
     }
+    const CameraOrbit o = scene.defaultView.get([&] { return defaultViewpointOrbit(scene); });
     return orbitCameraView(markupProbeCentre(scene.registry, scene.markup, scene.loaded), width,
-                           height, 0.f, 3.5f, 0.6f);
+                           height, o.angle, o.distance, o.height);
 }
 
 CameraOrbit sceneCameraOrbit(const ProbeScene& scene) {
@@ -68,9 +255,10 @@ CameraOrbit sceneCameraOrbit(const ProbeScene& scene) {
 
 CameraView walkOrbitCameraView(const ProbeScene& scene, int width, int height, float t) {
     const CameraOrbit o = sceneCameraOrbit(scene);
-    return orbitCameraView(markupProbeCentre(scene.registry, scene.markup, scene.loaded), width,
-                           height, o.angle + 0.4f * std::sin(glm::two_pi<float>() * t), o.distance,
-                           o.height);
+    return orbitCameraView(
+        markupProbeCentre(scene.registry, scene.markup, scene.loaded), width, height,
+        o.angle + DefaultViewpointRules::kWalkSwing * std::sin(glm::two_pi<float>() * t),
+        o.distance, o.height);
 }
 
 ReflectorRoots::ReflectorRoots(const ProbeScene& scene) {

@@ -5,24 +5,57 @@
 // needs of a cooked manifest before it loads the asset. Also what the sandbox and the
 // tests share on such a scene: edit the probe's settings, camera views, reflector offsets,
 // the ray-traced ground truth.
+#include "components/reflection_probe/added_reflector.h"
 #include "components/reflection_probe/reflection_probe.h"
 #include "components/reflection_probe/scene_markup.h"
+#include "engine/core/error.h"
 #include "engine/ecs/registry.h"
 #include "engine/image/image.h"
 #include "engine/math/camera.h"
 #include "engine/raytrace/ground_truth.h"
 #include "engine/scene/gltf_loader.h"
 
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace specula {
 
-// A glTF scene opened for probe work: loaded, world transforms up to date, markup read, sky
-// panorama loaded (empty skyPath: a black sky). Throws Error naming the file on bad input.
+// A camera orbit about the probe centre: the angle about +Y (0: from +Z), the horizontal
+// distance and the height above the centre.
+struct CameraOrbit {
+    float angle = 0.f, distance = 3.5f, height = 0.6f;
+};
+
+// The default camera of a scene without a camera node (see sceneCameraView), searched for
+// once on first use and kept (an orbit about the probe centre, or the error saying none was
+// found). Thread-safe; forget() makes the next use search again (addReflector calls it).
+class DefaultViewCache {
+public:
+    DefaultViewCache() : state_(std::make_unique<State>()) {}
+    // The kept orbit, else search()'s (its Error is kept and thrown again too).
+    CameraOrbit get(const std::function<CameraOrbit()>& search) const;
+    void forget();
+
+private:
+    struct State {
+        std::mutex mutex;
+        std::optional<CameraOrbit> orbit;
+        std::optional<Error> error;
+    };
+    std::unique_ptr<State> state_;
+};
+
+// A glTF scene opened for probe work: loaded, world transforms up to date, markup read, the
+// `added` test mirrors added to it (addReflector), sky panorama loaded (empty skyPath: a
+// black sky). Throws Error naming the file on bad input.
 struct ProbeScene {
-    ProbeScene(const std::string& gltfPath, const std::string& skyPath);
+    ProbeScene(const std::string& gltfPath, const std::string& skyPath,
+               const std::vector<AddedReflector>& added = {});
 
     std::string path;
     std::string skyPath; // as given (empty: a black sky)
@@ -30,6 +63,7 @@ struct ProbeScene {
     LoadedScene loaded;
     SceneMarkup markup;
     Image sky;
+    DefaultViewCache defaultView; // sceneCameraView's search, when the scene has no camera
 };
 
 // Creates an entity holding `probe` (named "reflection_probe") and gives every reflector
@@ -59,20 +93,49 @@ ecs::Entity setProbeComponents(ecs::Registry& registry, const SceneMarkup& marku
 
 // Views of an opened scene. orbitCameraView: `centre` seen from `distance` m away at
 // `angleRadians` about +Y (0: from +Z) and `heightAbove` m above it, 50 degree field.
-// sceneCameraView: the scene's first camera node, else the probe centre (markupProbeCentre)
-// from 3.5 m, 0.6 m above.
+// sceneCameraView: the scene's first camera node; else, when the scene has reflectors, the
+// probe centre (markupProbeCentre; the centre of the reflectors' bounds unless a probe node
+// says otherwise) seen from the first free viewpoint (defaultViewpointOrbit); else (nothing
+// to see) the probe centre from 3.5 m, 0.6 m above.
 CameraView orbitCameraView(glm::vec3 centre, int width, int height, float angleRadians,
                            float distance, float heightAbove);
 CameraView sceneCameraView(const ProbeScene& scene, int width, int height);
 
+// How the default camera is searched for, in a fixed order (deterministic): first the old
+// default (from +Z, 3.5 m, 0.6 m above the centre), then horizontal distances of
+// {3, 2, 4, 1.5, 6} x the reflectors' radius (half their bounds' diagonal; at least 0.8 m),
+// heights of {0.17, 0.45, 0, -0.25} x that distance, and 12 angles about +Y from +Z
+// alternating sides (0, +30, -30, ... 180 degrees). With Embree over every mesh:
+//  - a viewpoint stands free when, of kFreeSpaceRays rays spread over the sphere, none hits a
+//    surface nearer than kClearance m and at most kMaxBackFaceHits first hit the back of a
+//    single-sided surface (the inside of a solid, the outside of a room's walls), and no
+//    environment surface lies between it and the centre;
+//  - a candidate is valid when it stands free and at least kMinMirrorShare of a 48x36
+//    image's primary rays first hit a mirror.
+// The first valid candidate is taken whose walk swing (+-kWalkSwing and half that, as
+// walkOrbitCameraView swings it) stands free too and which is no more open to the sky (the
+// share of its rays that meet nothing) than the centre is (of rays meeting no environment
+// surface) plus kMaxExtraOpenness: inside the reflectors' room, not outside looking in
+// through a window. Failing that, the first valid one whose swing stands free; then the
+// first valid one. Throws Error (the scene's file, field "camera") when none is valid,
+// saying how to give a viewpoint: a camera node in the glTF, or a reflector in free space
+// (--add-reflector). The scene's reflectors must be where the camera should see them.
+struct DefaultViewpointRules {
+    static constexpr int kFreeSpaceRays = 128;
+    static constexpr int kMaxBackFaceHits = 2;
+    static constexpr float kClearance = 0.1f;
+    static constexpr float kMinMirrorShare = 0.01f;
+    static constexpr float kMaxExtraOpenness = 0.2f;
+    static constexpr float kWalkSwing = 0.4f; // radians (+-23 degrees)
+};
+CameraOrbit defaultViewpointOrbit(const ProbeScene& scene);
+
 // The walk's camera orbit about the probe centre: the scene camera's (sceneCameraView) angle
 // about +Y (0: from +Z), horizontal distance (at least 0.5 m) and height above the centre.
-struct CameraOrbit {
-    float angle = 0.f, distance = 3.5f, height = 0.6f;
-};
 CameraOrbit sceneCameraOrbit(const ProbeScene& scene);
 // The camera of walk frame t in [0, 1) (specula-sandbox walk, the PEM viewpoint parameter):
-// the scene camera's orbit swung by 0.4 sin(2 pi t) radians (+-23 degrees) about its angle.
+// the scene camera's orbit swung by kWalkSwing sin(2 pi t) radians (+-23 degrees) about its
+// angle.
 CameraView walkOrbitCameraView(const ProbeScene& scene, int width, int height, float t);
 
 // The reflector nodes of the markup (found by name) with their authored translations, to

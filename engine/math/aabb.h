@@ -24,6 +24,8 @@ struct Aabb {
         return b;
     }
 
+    bool operator==(const Aabb&) const = default;
+
     bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
 
     void extend(glm::vec3 p) {

@@ -217,6 +217,7 @@ void logBenchRow(std::ostream& log, const BenchRow& row) {
 }
 
 BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
+    const AddedReflectorsScope added(opt.addedReflectors);
     BenchReport report;
     report.width = opt.width ? opt.width : opt.quick ? 160 : 1024;
     report.height = opt.height ? opt.height : opt.quick ? 120 : 768;
@@ -242,7 +243,12 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
         const std::string name = fs::path(scenePath).stem().string();
         ReflectionScene scene(scenePath, sky);
         if (scene.markup().reflectors.empty())
-            throw Error(scenePath, "specula_reflector", "the scene has no reflector node");
+            throw Error(scenePath, "specula_reflector",
+                        "the scene has no reflector node (mark one with specula_reflector, or "
+                        "add one with --add-reflector sphere:x,y,z,r)");
+        if (!opt.addedReflectors.empty())
+            log << name << ": " << opt.addedReflectors.size()
+                << " reflector(s) added (--add-reflector)\n";
         const std::string probeDir = (fs::path(opt.outDir) / "probes" / name).string();
         log << name << ": baking the distance probe (" << report.faceRes << "^2 faces)\n"
             << std::flush;

@@ -2,6 +2,8 @@
 // specula-sandbox bench: every method and its accuracy sweep on several scenes, measured in
 // one run against the Embree ground truth. Writes bench.csv, bench.md, accuracy_vs_time.png
 // and strip_<scene>.png into the output folder.
+#include "components/reflection_probe/added_reflector.h"
+
 #include <ostream>
 #include <string>
 #include <vector>
@@ -17,6 +19,8 @@ struct BenchOptions {
     int maxFrames = 0;         // timed frames per row at most; 0: 64, quick 12
     std::string outDir = "bench-out";
     bool progress = true;
+    // Test mirrors added to every benched scene (--add-reflector).
+    std::vector<AddedReflector> addedReflectors;
 };
 
 struct BenchRow {

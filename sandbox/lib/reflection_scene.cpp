@@ -5,6 +5,7 @@
 #include "engine/scene/mesh_bounds.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace specula {
 
@@ -15,8 +16,30 @@ std::string defaultSkyPath() {
     return std::string(SPECULA_SOURCE_ROOT) + "/assets/scenes/env/field.jpg";
 }
 
+namespace {
+thread_local const AddedReflectorsScope* innermostScope = nullptr;
+} // namespace
+
+AddedReflectorsScope::AddedReflectorsScope(std::vector<AddedReflector> added)
+    : added_(std::move(added)), outer_(innermostScope) {
+    innermostScope = this;
+}
+
+AddedReflectorsScope::~AddedReflectorsScope() {
+    innermostScope = outer_;
+}
+
+const std::vector<AddedReflector>& AddedReflectorsScope::current() {
+    static const std::vector<AddedReflector> none;
+    return innermostScope ? innermostScope->added_ : none;
+}
+
 ReflectionScene::ReflectionScene(const std::string& gltfPath, const std::string& skyPath)
-    : scene_(gltfPath, skyPath), reflectors_(scene_) {}
+    : ReflectionScene(gltfPath, skyPath, AddedReflectorsScope::current()) {}
+
+ReflectionScene::ReflectionScene(const std::string& gltfPath, const std::string& skyPath,
+                                 const std::vector<AddedReflector>& added)
+    : scene_(gltfPath, skyPath, added), reflectors_(scene_) {}
 
 glm::vec3 ReflectionScene::probeCentre() const {
     return markupProbeCentre(scene_.registry, scene_.markup, scene_.loaded);

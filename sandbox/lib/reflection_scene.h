@@ -7,16 +7,39 @@
 #include "engine/raytrace/ground_truth.h"
 
 #include <string>
+#include <vector>
 
 namespace specula {
 
 std::string defaultScenePath(); // assets/room/room.gltf in the source tree
 std::string defaultSkyPath();   // assets/scenes/env/field.jpg
 
+// The test mirrors (specula-sandbox --add-reflector) every ReflectionScene opened on this
+// thread without its own list gets while the scope lives: walk and bench set it once, and
+// each place that opens their scene (the bake in resolveProbeSource, the headless and the
+// window walk, the bench) opens it with them. Scopes nest; the innermost wins.
+class AddedReflectorsScope {
+public:
+    explicit AddedReflectorsScope(std::vector<AddedReflector> added);
+    ~AddedReflectorsScope();
+    AddedReflectorsScope(const AddedReflectorsScope&) = delete;
+    AddedReflectorsScope& operator=(const AddedReflectorsScope&) = delete;
+    // The innermost scope's list; empty outside any.
+    static const std::vector<AddedReflector>& current();
+
+private:
+    std::vector<AddedReflector> added_;
+    const AddedReflectorsScope* outer_;
+};
+
 class ReflectionScene {
 public:
-    // Throws Error naming the file on bad input. An empty skyPath means a black sky.
+    // Throws Error naming the file on bad input. An empty skyPath means a black sky. The
+    // scene gets the reflectors of the current AddedReflectorsScope (none outside one).
     ReflectionScene(const std::string& gltfPath, const std::string& skyPath);
+    // The scene with `added` (addReflector), whatever the current scope says.
+    ReflectionScene(const std::string& gltfPath, const std::string& skyPath,
+                    const std::vector<AddedReflector>& added);
 
     ecs::Registry& registry() { return scene_.registry; }
     const LoadedScene& loaded() const { return scene_.loaded; }
@@ -39,7 +62,8 @@ public:
     // inside the cell: at most a fifth of the cell, never more than the room they have.
     float walkAmplitude() const;
 
-    // The scene's first camera node, or a view of the reflectors from 3.5 m.
+    // The scene's first camera node, else a free viewpoint that sees the reflectors
+    // (sceneCameraView; throws Error when there is none).
     CameraView camera(int width, int height) const;
     CameraView orbitCamera(int width, int height, float angleRadians, float distance,
                            float height_) const;

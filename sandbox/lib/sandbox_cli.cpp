@@ -3,8 +3,10 @@
 #include "assetcooker/lib/tool_cli.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
+#include "sandbox/lib/added_reflector_flag.h"
 #include "sandbox/lib/bench.h"
 #include "sandbox/lib/bench_methods.h"
+#include "sandbox/lib/level_walk.h"
 #include "sandbox/lib/walk.h"
 
 #include <exception>
@@ -101,10 +103,14 @@ struct WalkArgs {
     WalkOptions o;
     std::string path = "orbit", size, parameter = "viewpoint";
     std::optional<int> frames;
+    std::vector<std::string> addedReflectors;
 };
 
 int runWalk(WalkArgs& a, std::ostream& out) {
     WalkOptions& o = a.o;
+    o.addedReflectors = parseAddedReflectors(a.addedReflectors);
+    // The window walk opens its scene itself: it sees the reflectors through the scope.
+    const AddedReflectorsScope added(o.addedReflectors);
     parseWalkPath(a.path, o.path);
     o.pemByReflector = a.parameter == "reflector";
     if (!a.size.empty()) cli::parseSize(a.size, o.width, o.height);
@@ -159,16 +165,19 @@ void addWalkCommand(cli::ToolCli& tool) {
     sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
     sub->add_option("--face-res", o.faceRes, "cube face resolution when baking a scene")
         ->check(CLI::Range(8, 2048));
+    addReflectorOption(sub, a->addedReflectors);
 }
 
 struct BenchArgs {
     BenchOptions o;
     std::string size;
     std::optional<int> faceRes, maxFrames;
+    std::vector<std::string> addedReflectors;
 };
 
 int runBenchCommand(BenchArgs& a, std::ostream& out) {
     BenchOptions& o = a.o;
+    o.addedReflectors = parseAddedReflectors(a.addedReflectors);
     if (!a.size.empty()) cli::parseSize(a.size, o.width, o.height);
     o.faceRes = a.faceRes.value_or(0);
     o.maxFrames = a.maxFrames.value_or(0);
@@ -203,6 +212,7 @@ void addBenchCommand(cli::ToolCli& tool) {
                     "timed frames per row at most (default 64, quick 12)")
         ->check(CLI::Range(4, 1000));
     sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
+    addReflectorOption(sub, a->addedReflectors, " (added to every benched scene)");
 }
 
 } // namespace
@@ -211,6 +221,7 @@ int runCli(std::span<const std::string> args, std::ostream& out, std::ostream& e
     cli::ToolCli tool("specula-sandbox",
                       "Walks reflectors through a scene and measures what accuracy costs in time.");
     addWalkCommand(tool);
+    addLevelCommand(tool);
     addBenchCommand(tool);
     return tool.run(args, out, err);
 }

@@ -38,6 +38,16 @@ CameraView walkCamera(const ReflectionScene& scene, int width, int height, float
     return walkOrbitCameraView(scene.probeScene(), width, height, t);
 }
 
+void logAddedReflectors(const ReflectionScene& scene, int width, int height, std::ostream& out) {
+    if (AddedReflectorsScope::current().empty()) return;
+    std::size_t i = scene.markup().reflectors.size() - AddedReflectorsScope::current().size();
+    for (const AddedReflector& r : AddedReflectorsScope::current())
+        out << "added " << scene.markup().reflectors[i++].node << " (" << describeAddedReflector(r)
+            << ")\n";
+    const glm::vec3 eye = scene.camera(width, height).eye();
+    out << "camera at " << eye.x << "," << eye.y << "," << eye.z << '\n';
+}
+
 SourceBake walkSourceBake(const WalkOptions& o) {
     if (o.method == kLightFieldMethod.name) return SourceBake::LightField;
     for (const PemMethodInfo& row : kPemMethods)
@@ -77,6 +87,7 @@ ecs::Entity attachWalkProbe(ReflectionScene& scene, const ProbeSource& src, cons
 }
 
 int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
+    const AddedReflectorsScope added(o.addedReflectors);
     fs::create_directories(o.outDir);
     const ProbeSource src =
         resolveProbeSource(o.input, o.scene, o.sky, (fs::path(o.outDir) / "probe").string(),
@@ -86,6 +97,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     auto context = gpu::GlContext::createHeadless();
     ReflectionScene scene(src.scenePath, src.skyPath);
     attachWalkProbe(scene, src, o);
+    logAddedReflectors(scene, o.width, o.height, out);
 
     std::ostringstream csv;
     csv << "frame,reflector_x,reflector_y,reflector_z,camera_angle_deg,pass_ms"
@@ -113,8 +125,9 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
             if (motion.moveReflectors)
                 scene.setReflectorOffset(walkOffset(motion.path, t, scene.walkAmplitude()));
             setWalkParameter(scene, t);
-            const float swing =
-                motion.swingCamera ? 0.4f * std::sin(glm::two_pi<float>() * t) : 0.f;
+            const float swing = motion.swingCamera ? DefaultViewpointRules::kWalkSwing *
+                                                         std::sin(glm::two_pi<float>() * t)
+                                                   : 0.f;
             const float angle = angle0 + swing;
             const CameraView cam = walkCamera(scene, o.width, o.height, angle, dist, h);
             const Image img = fr.render(cam);

@@ -12,6 +12,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace specula {
 
@@ -31,6 +32,9 @@ struct WalkOptions {
     // viewpoint on the camera orbit).
     bool pemByReflector = false;
     bool progress = true;
+    // Test mirrors added to the scene wherever it is opened (--add-reflector; the walk
+    // functions open it inside an AddedReflectorsScope of these).
+    std::vector<AddedReflector> addedReflectors;
 };
 
 // What a walk frame moves: the reflectors along a path and/or the camera along its orbit. A
@@ -48,6 +52,10 @@ CameraView walkCamera(const ReflectionScene& scene, int width, int height, float
 CameraView walkCamera(const ReflectionScene& scene, int width, int height, float angle,
                       float distance, float height_);
 void walkCameraOrbit(const ReflectionScene& scene, float& angle, float& distance, float& height);
+
+// When the current AddedReflectorsScope adds reflectors: one line each (its node name and
+// spec) and one with the scene camera's eye, to `out`.
+void logAddedReflectors(const ReflectionScene& scene, int width, int height, std::ostream& out);
 
 // What a scene given to walk is baked into for the options' method.
 SourceBake walkSourceBake(const WalkOptions& options);

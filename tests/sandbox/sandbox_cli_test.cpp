@@ -3,6 +3,8 @@
 // and the window walk under Xvfb.
 #include "engine/image/image_io.h"
 
+#include "support/shell_tool.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,56 +26,21 @@ namespace {
 const fs::path kTool = fs::path(SPECULA_BIN_DIR) / "specula-sandbox";
 const fs::path kRoom = fs::path(SPECULA_SOURCE_DIR) / "assets/room/room.gltf";
 
-struct ToolRun {
-    int status = -1;
-    std::string out, err;
-};
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s)
-        q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
+using specula::test::shellQuote;
+using specula::test::ToolRun;
 
 ToolRun tool(const std::string& args, const std::string& prefix = "") {
-    const fs::path errFile =
-        fs::temp_directory_path() / ("specula_sandbox_test_" + std::to_string(::getpid()) + ".err");
-    ToolRun r;
-    const std::string cmd =
-        prefix + quote(kTool.string()) + " " + args + " 2>" + quote(errFile.string());
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0)
-        r.out.append(buf, n);
-    const int st = ::pclose(pipe);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    std::ifstream in(errFile);
-    r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    fs::remove(errFile);
-    return r;
+    return specula::test::runShellTool(kTool, args, prefix);
 }
 
 // specula-sandbox walk on the default room, headless, writing into `out`.
 ToolRun headlessRoomWalk(const std::string& flags, const fs::path& out) {
-    return tool("walk " + quote(kRoom.string()) + " --headless " + flags + " --out " +
-                quote(out.string()));
+    return tool("walk " + shellQuote(kRoom.string()) + " --headless " + flags + " --out " +
+                shellQuote(out.string()));
 }
 
-// A fresh folder under the temp directory, removed with the object.
-struct TempDir {
-    fs::path path;
-    explicit TempDir(const std::string& name)
-        : path(fs::temp_directory_path() /
-               ("specula-sandbox-" + name + "-" + std::to_string(::getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        if (!std::getenv("SPECULA_KEEP_TEST_OUT")) fs::remove_all(path);
-    }
+struct TempDir : specula::test::TempDir {
+    explicit TempDir(const std::string& name) : specula::test::TempDir("sandbox-" + name) {}
 };
 
 using Table = std::vector<std::map<std::string, std::string>>;
@@ -114,12 +81,7 @@ double num(const std::map<std::string, std::string>& row, const std::string& key
     return v;
 }
 
-std::size_t lines(const std::string& s) {
-    std::size_t n = 0;
-    for (char c : s)
-        n += c == '\n';
-    return n;
-}
+using specula::test::lineCount;
 
 } // namespace
 
@@ -137,7 +99,7 @@ TEST(SpeculaSandbox, HelpForToolAndEachSubcommand) {
 }
 
 TEST(SpeculaSandbox, CommandLineErrorsExitTwo) {
-    const std::string room = quote(kRoom.string());
+    const std::string room = shellQuote(kRoom.string());
     for (const std::string& args : std::vector<std::string>{
              std::string(""), std::string("nonsense"), std::string("--bogus"), std::string("walk"),
              "walk " + room + " " + room, "walk " + room + " --method nope",
@@ -162,16 +124,16 @@ TEST(SpeculaSandbox, BadInputExitsOneWithOneLineNamingTheFile) {
     const fs::path text = dir.path / "notes.txt";
     std::ofstream(text) << "hello";
     for (const fs::path& f : {missing, garbage, manifest, text}) {
-        const ToolRun r = tool("walk " + quote(f.string()) + " --headless --frames 1 --out " +
-                               quote((dir.path / "out").string()));
+        const ToolRun r = tool("walk " + shellQuote(f.string()) + " --headless --frames 1 --out " +
+                               shellQuote((dir.path / "out").string()));
         EXPECT_EQ(r.status, 1) << f << ": " << r.err;
-        EXPECT_EQ(lines(r.err), 1u) << r.err;
+        EXPECT_EQ(lineCount(r.err), 1u) << r.err;
         EXPECT_NE(r.err.find(f.string()), std::string::npos) << r.err;
     }
-    const ToolRun b = tool("bench --quick --scene " + quote(missing.string()) + " --out " +
-                           quote((dir.path / "bench").string()));
+    const ToolRun b = tool("bench --quick --scene " + shellQuote(missing.string()) + " --out " +
+                           shellQuote((dir.path / "bench").string()));
     EXPECT_EQ(b.status, 1) << b.err;
-    EXPECT_EQ(lines(b.err), 1u) << b.err;
+    EXPECT_EQ(lineCount(b.err), 1u) << b.err;
     EXPECT_NE(b.err.find(missing.string()), std::string::npos) << b.err;
 }
 
@@ -212,10 +174,10 @@ TEST(SpeculaSandbox, HeadlessWalkWritesFramesSheetAndCsvThenReplaysItsManifest) 
     const fs::path manifest = out / "probe" / "manifest.json";
     ASSERT_TRUE(fs::exists(manifest));
     const fs::path again = dir.path / "again";
-    const ToolRun m = tool("walk " + quote(manifest.string()) +
+    const ToolRun m = tool("walk " + shellQuote(manifest.string()) +
                            " --headless --frames 1 --size 96x72 --method envmap "
                            "--out " +
-                           quote(again.string()));
+                           shellQuote(again.string()));
     ASSERT_EQ(m.status, 0) << m.err;
     EXPECT_EQ(readCsv(again / "frames.csv").size(), 1u);
 }
@@ -246,9 +208,9 @@ TEST(SpeculaSandbox, HeadlessPemWalkBakesAndFollowsTheOrbit) {
         EXPECT_NEAR(num(row, "reflector_x"), -0.42, 1e-4);
         EXPECT_NEAR(num(row, "reflector_z"), 0.0, 1e-4);
     }
-    const ToolRun m =
-        tool("walk " + quote((out / "probe" / "manifest.json").string()) +
-             " --headless --frames 1 --size 96x72 --out " + quote((dir.path / "again").string()));
+    const ToolRun m = tool("walk " + shellQuote((out / "probe" / "manifest.json").string()) +
+                           " --headless --frames 1 --size 96x72 --out " +
+                           shellQuote((dir.path / "again").string()));
     ASSERT_EQ(m.status, 0) << m.err;
     EXPECT_NE(m.out.find("(pem,"), std::string::npos) << m.out; // not the default bisection
     EXPECT_EQ(readCsv(dir.path / "again" / "frames.csv").size(), 1u);
@@ -258,7 +220,7 @@ TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
     TempDir dir("bench");
     const fs::path out = dir.path / "bench";
     const ToolRun r = tool("bench --quick --size 96x72 --face-res 32 --max-frames 4 --out " +
-                           quote(out.string()));
+                           shellQuote(out.string()));
     ASSERT_EQ(r.status, 0) << r.err;
     const Table rows = readCsv(out / "bench.csv");
     std::map<std::string, int> perScene;
@@ -327,7 +289,7 @@ TEST(SpeculaSandbox, WindowWalkRunsUnderXvfb) {
         GTEST_SKIP() << "xvfb-run not installed";
     TempDir dir("window");
     const ToolRun r =
-        tool("walk " + quote(kRoom.string()) + " --frames 3 --size 96x72 --face-res 16",
+        tool("walk " + shellQuote(kRoom.string()) + " --frames 3 --size 96x72 --face-res 16",
              "xvfb-run -a -s '-screen 0 320x240x24' ");
     ASSERT_EQ(r.status, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("3 frames shown"), std::string::npos) << r.out;

@@ -1,4 +1,6 @@
 // Drives the specula-cook executable the way a user or a script does: through the shell.
+#include "support/shell_tool.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -16,49 +18,20 @@ namespace {
 const fs::path kCook = fs::path(SPECULA_BIN_DIR) / "specula-cook";
 const fs::path kScenes = SPECULA_TEST_SCENES;
 
-struct CookRun {
-    int status = -1;
-    std::string out, err;
-};
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s)
-        q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
+using CookRun = specula::test::ToolRun;
+using specula::test::shellQuote;
 
 CookRun cook(const std::string& args) {
-    const fs::path errFile =
-        fs::temp_directory_path() / ("specula_cook_test_" + std::to_string(::getpid()) + ".err");
-    CookRun r;
-    const std::string cmd = quote(kCook.string()) + " " + args + " 2>" + quote(errFile.string());
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0)
-        r.out.append(buf, n);
-    const int st = ::pclose(pipe);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    std::ifstream in(errFile);
-    r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    fs::remove(errFile);
-    return r;
+    return specula::test::runShellTool(kCook, args);
 }
 
-std::size_t lines(const std::string& s) {
-    std::size_t n = 0;
-    for (char c : s)
-        n += c == '\n';
-    return n;
-}
+using specula::test::lineCount;
 
 } // namespace
 
 TEST(SpeculaCook, InspectBoxGlbPrintsOneJsonObject) {
     ASSERT_TRUE(fs::exists(kCook)) << kCook;
-    const CookRun r = cook("inspect " + quote((kScenes / "box/Box.glb").string()));
+    const CookRun r = cook("inspect " + shellQuote((kScenes / "box/Box.glb").string()));
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
     const auto j = nlohmann::json::parse(r.out);
@@ -81,7 +54,7 @@ TEST(SpeculaCook, InspectBoxGlbPrintsOneJsonObject) {
 }
 
 TEST(SpeculaCook, InspectDracoReportsTheExtension) {
-    const CookRun r = cook("inspect " + quote((kScenes / "box/Box_Draco.glb").string()));
+    const CookRun r = cook("inspect " + shellQuote((kScenes / "box/Box_Draco.glb").string()));
     ASSERT_EQ(r.status, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["triangles"], 12);
@@ -92,11 +65,11 @@ TEST(SpeculaCook, BadFileFailsWithOneLineNamingIt) {
     const fs::path bad =
         fs::temp_directory_path() / ("specula_cook_bad_" + std::to_string(::getpid()) + ".glb");
     std::ofstream(bad) << "this is not a glTF file at all";
-    const CookRun r = cook("inspect " + quote(bad.string()));
+    const CookRun r = cook("inspect " + shellQuote(bad.string()));
     fs::remove(bad);
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(r.out.empty()) << r.out;
-    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find(bad.filename().string()), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("bad magic"), std::string::npos) << r.err;
 }
@@ -104,7 +77,7 @@ TEST(SpeculaCook, BadFileFailsWithOneLineNamingIt) {
 TEST(SpeculaCook, MissingFileFailsWithExitOne) {
     const CookRun r = cook("inspect /nonexistent/specula/missing.gltf");
     EXPECT_EQ(r.status, 1);
-    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find("missing.gltf"), std::string::npos) << r.err;
 }
 

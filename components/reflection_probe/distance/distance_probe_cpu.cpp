@@ -1,5 +1,8 @@
 #include "distance_probe_cpu.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
@@ -24,6 +27,18 @@ struct TwinFetches {
         vec2 uv;
         const Image& img = face(layer, dir, uv);
         return sampleNearest(img, uv, Wrap::Clamp).a;
+    }
+    // The 2 x 2 texels a bilinear fetch at dir weighs, clamped at the face edge (what
+    // textureGather returns; the order does not matter to its users).
+    vec4 fetchDistanceGather(int layer, vec3 dir) const {
+        vec2 uv;
+        const Image& img = face(layer, dir, uv);
+        const int x0 =
+            std::clamp(int(std::floor(uv.x * float(img.width) - 0.5f)), 0, img.width - 1);
+        const int y0 =
+            std::clamp(int(std::floor(uv.y * float(img.height) - 0.5f)), 0, img.height - 1);
+        const int x1 = std::min(x0 + 1, img.width - 1), y1 = std::min(y0 + 1, img.height - 1);
+        return vec4(img.at(x0, y0)[3], img.at(x1, y0)[3], img.at(x0, y1)[3], img.at(x1, y1)[3]);
     }
     vec3 fetchRadiance(int layer, vec3 dir) const {
         vec2 uv;
@@ -56,6 +71,7 @@ struct TwinFetches {
 #define HAS_LAYERS 0
 struct TwinSingle : TwinFetches {
 #include "components/reflection_probe/distance/shaders/distance_lookup.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_seen.glsl.h"
 };
 #undef HAS_LAYERS
 #undef SPECULA_DISTANCE_LOOKUP_GLSL_H
@@ -92,6 +108,11 @@ glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches,
                             : twin_->single.probeRadiance(x, lhat, config_.params, fetches);
     if (sawSky) *sawSky = f.skyFetched;
     return c;
+}
+
+CpuDistanceProbe::Seen CpuDistanceProbe::seenRadiance(glm::vec3 x, glm::vec3 lhat) const {
+    const auto s = twin_->single.probeSampleSeen(x, lhat, config_.params);
+    return {s.radiance, s.seen, s.fetches, s.t};
 }
 
 } // namespace specula

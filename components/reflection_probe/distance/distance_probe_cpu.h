@@ -19,6 +19,16 @@ public:
     // answered.
     glm::vec3 radiance(glm::vec3 x, glm::vec3 lhat, int& fetches, bool* sawSky = nullptr) const;
 
+    // The composite's single-layer lookup with whether the probe sees what it proposes
+    // (shaders/distance_seen.glsl.h): what blending probes by visibility weighs.
+    struct Seen {
+        glm::vec3 radiance{0.f};
+        bool seen = false;
+        int fetches = 0;
+        float t = 0.f; // along the ray to the hit it proposes (d_inf: the sky)
+    };
+    Seen seenRadiance(glm::vec3 x, glm::vec3 lhat) const;
+
     const DistanceLookupConfig& config() const { return config_; }
 
 private:

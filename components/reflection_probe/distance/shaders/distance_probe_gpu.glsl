@@ -19,6 +19,12 @@ float fetchDistance(int layer, vec3 dir) {
     return texelFetch(uLayers, ivec3(texel, layer * 6 + int(f.z)), 0).a;
 }
 
+// The 2 x 2 stored distances a bilinear fetch at dir weighs (distance_seen.glsl.h).
+vec4 fetchDistanceGather(int layer, vec3 dir) {
+    vec3 f = cubeFaceUv(dir);
+    return textureGather(uLayers, vec3(f.xy, float(layer * 6) + f.z), 3);
+}
+
 vec3 fetchRadiance(int layer, vec3 dir) {
     vec3 f = cubeFaceUv(dir);
     return textureLod(uLayers, vec3(f.xy, float(layer * 6) + f.z), 0.0).rgb;

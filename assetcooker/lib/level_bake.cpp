@@ -1,0 +1,400 @@
+#include "level_bake.h"
+
+#include "components/reflection_probe/manifest_fields.h"
+#include "components/reflection_probe/probe_folder.h"
+#include "engine/core/error.h"
+#include "engine/core/progress.h"
+#include "engine/raytrace/embree_scene.h"
+#include "engine/scene/components.h"
+#include "engine/scene/mesh_bounds.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace specula {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A probe being gathered, with the markup objects to apply onto it in order (later wins).
+struct PendingProbe {
+    ProbeVolume volume;
+    std::vector<std::tuple<json, std::string, std::string>> members; // (members, file, field)
+};
+
+glm::vec3 vec3Of(const json& a, const std::string& file, const std::string& field) {
+    if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() ||
+        !a[2].is_number())
+        throw Error(file, field, "expected [x, y, z], got " + a.dump());
+    const glm::vec3 v(a[0].get<float>(), a[1].get<float>(), a[2].get<float>());
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) ||
+        glm::any(glm::greaterThan(glm::abs(v), glm::vec3(kMaxCoordinate))))
+        throw Error(file, field, "expected finite coordinates within 1e7 m, got " + a.dump());
+    return v;
+}
+
+// The probe list file's entries merged into `probes` (see LevelProbeSources::file).
+void mergeProbeList(std::vector<PendingProbe>& probes, const std::string& file) {
+    const json doc = parseManifestJson(readManifestText(file), file);
+    const json& list = doc.is_object() && doc.contains("probes") ? doc["probes"] : doc;
+    if (!list.is_array()) throw Error(file, "probes", "expected an array of probes");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const json& p = list[i];
+        const std::string field = "probes[" + std::to_string(i) + "]";
+        if (!p.is_object()) throw Error(file, field, "expected an object");
+        std::string name = "probe_list_" + std::to_string(i);
+        if (p.contains("name")) {
+            if (!p["name"].is_string() || p["name"].get<std::string>().empty())
+                throw Error(file, field + ".name", "expected a non-empty string");
+            name = p["name"].get<std::string>();
+        }
+        PendingProbe* target = nullptr;
+        for (PendingProbe& q : probes)
+            if (q.volume.name == name) target = &q;
+        if (!target) {
+            if (!p.contains("position"))
+                throw Error(file, field + ".position", "missing (a new probe needs a position)");
+            probes.push_back({});
+            target = &probes.back();
+            target->volume.name = name;
+        }
+        if (p.contains("position"))
+            target->volume.position = vec3Of(p["position"], file, field + ".position");
+        json members = p;
+        members.erase("name");
+        members.erase("position");
+        target->members.emplace_back(std::move(members), file, field);
+    }
+}
+
+// The box the six axis rays from `p` reach; where a ray escapes, the scene's bounds.
+Aabb measuredProxy(const EmbreeScene& env, const Aabb& sceneBounds, glm::vec3 p) {
+    Aabb box{p, p};
+    for (int axis = 0; axis < 3; ++axis)
+        for (float sign : {-1.f, 1.f}) {
+            glm::vec3 dir(0.f);
+            dir[axis] = sign;
+            const std::optional<Hit> hit = env.intersect(p, dir);
+            const float bound = sign > 0 ? sceneBounds.max[axis] : sceneBounds.min[axis];
+            float reach = hit ? hit->t : std::abs(bound - p[axis]);
+            if (!std::isfinite(reach) || sceneBounds.empty()) reach = 0.75f;
+            reach = std::max(reach, 0.01f); // a probe against a wall still has a box
+            (sign > 0 ? box.max : box.min)[axis] = p[axis] + sign * reach;
+        }
+    return box;
+}
+
+// How many of 14 rays from `p` (axes and diagonals) first meet the inside of a one-sided
+// surface: most of them when `p` lies inside a solid.
+int raysFromInside(const EmbreeScene& env, glm::vec3 p) {
+    int inside = 0;
+    for (int i = 0; i < 14; ++i) {
+        glm::vec3 d(0.f);
+        if (i < 6)
+            d[i / 2] = i % 2 ? -1.f : 1.f;
+        else
+            d = glm::normalize(glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
+        const std::optional<Hit> hit = env.intersect(p, d);
+        if (hit && glm::dot(hit->geometricNormal, d) > 0.f &&
+            !(hit->primitive && hit->primitive->material && hit->primitive->material->doubleSided))
+            ++inside;
+    }
+    return inside;
+}
+
+template <class T> std::string checksumOf(const std::vector<T>& v) {
+    return bytesChecksum(v.data(), v.size() * sizeof(T));
+}
+
+// One mesh in world space with its materials, as text of checksums.
+std::string meshKey(const ecs::Registry& reg, ecs::Entity e) {
+    std::ostringstream key;
+    const Mesh& mesh = *reg.find<Mesh>(e);
+    const glm::mat4& world = reg.find<Transform>(e)->world;
+    key << mesh.name << ' ' << bytesChecksum(&world, sizeof world);
+    for (const Primitive& p : mesh.primitives) {
+        if (p.mesh)
+            key << ' ' << checksumOf(p.mesh->positions) << checksumOf(p.mesh->normals)
+                << checksumOf(p.mesh->uvs) << checksumOf(p.mesh->indices);
+        if (const MaterialData* m = p.material.get()) {
+            const float factors[] = {m->baseColorFactor.r,      m->baseColorFactor.g,
+                                     m->baseColorFactor.b,      m->baseColorFactor.a,
+                                     m->metallicFactor,         m->roughnessFactor,
+                                     m->doubleSided ? 1.f : 0.f};
+            key << ' ' << bytesChecksum(factors, sizeof factors);
+            if (m->baseColorTexture) key << checksumOf(m->baseColorTexture->pixels);
+        }
+    }
+    return key.str();
+}
+
+std::string folderNameFor(const std::string& name) {
+    std::string out;
+    for (char c : name)
+        out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+    return out.empty() || out == "level" ? "probe_" + out : out;
+}
+
+// The level folder may be written when it is missing, empty, or holds a level index.
+std::optional<LevelIndex> previousLevel(const std::string& dir, std::vector<std::string>& notes) {
+    std::error_code ec;
+    if (!fs::exists(dir, ec)) return std::nullopt;
+    if (!fs::is_directory(dir, ec)) throw Error(dir, "", "exists and is not a folder");
+    const fs::path index = fs::path(dir) / "level.json";
+    if (!fs::exists(index, ec)) {
+        if (fs::directory_iterator(dir, ec) != fs::directory_iterator())
+            throw Error(dir, "",
+                        "holds files but no level.json: a level is written only into a new, "
+                        "empty or level folder");
+        return std::nullopt;
+    }
+    try {
+        return readLevelIndex(index.string());
+    } catch (const Error& e) {
+        notes.push_back(std::string(e.what()) + ": every probe is re-baked");
+        return LevelIndex{};
+    }
+}
+
+std::string staleReason(const std::optional<LevelIndex>& previous, const fs::path& dir,
+                        const std::string& folder, const ProbeVolume& v,
+                        const LevelProbeInputs& inputs) {
+    const LevelProbeEntry* old = nullptr;
+    if (previous)
+        for (const LevelProbeEntry& e : previous->probes)
+            if (e.volume.name == v.name) old = &e;
+    if (!old) return "new";
+    const fs::path manifest = dir / folder / "manifest.json";
+    std::error_code ec;
+    if (old->folder != folder || !fs::is_regular_file(manifest, ec)) return "asset missing";
+    if (fileChecksum(manifest.string()) != old->manifestChecksum) return "asset altered on disk";
+    std::vector<std::string> why;
+    if (old->inputs.geometry != inputs.geometry) why.push_back("geometry changed");
+    if (old->inputs.options != inputs.options) why.push_back("options changed");
+    if (old->inputs.sky != inputs.sky) why.push_back("sky changed");
+    std::string joined;
+    for (const std::string& w : why)
+        joined += (joined.empty() ? "" : ", ") + w;
+    return joined;
+}
+
+} // namespace
+
+GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sources) {
+    const std::string& file = scene.path;
+    std::vector<PendingProbe> pending;
+    for (const ProbeMarkup& m : scene.markup.probes) {
+        PendingProbe p;
+        p.volume.name = m.node;
+        p.volume.position = m.position;
+        p.members.emplace_back(m.options, file, "nodes[" + m.node + "].extras.specula_probe");
+        pending.push_back(std::move(p));
+    }
+    for (std::size_t i = 0; i < sources.positions.size(); ++i) {
+        if (i >= pending.size()) {
+            pending.push_back({});
+            pending.back().volume.name = "probe_" + std::to_string(i);
+        }
+        pending[i].volume.position = sources.positions[i];
+    }
+    if (!sources.file.empty()) mergeProbeList(pending, sources.file);
+    if (pending.empty()) {
+        pending.push_back({});
+        pending.back().volume.name = "probe";
+        pending.back().volume.position =
+            markupProbeCentre(scene.registry, scene.markup, scene.loaded);
+    }
+
+    const EmbreeScene env(scene.registry,
+                          [&](ecs::Entity e) { return scene.markup.mirrorEntities.count(e) == 0; });
+    const Aabb sceneBounds{scene.loaded.boundsMin, scene.loaded.boundsMax};
+    GatheredProbes out;
+    for (PendingProbe& p : pending) {
+        ProbeVolume& v = p.volume;
+        v.proxy = Aabb{};
+        v.influence.box = Aabb{};
+        for (const auto& [members, from, field] : p.members)
+            applyProbeMarkup(v, members, from, field);
+        if (v.proxy.empty()) v.proxy = measuredProxy(env, sceneBounds, v.position);
+        if (v.influence.shape == ProbeInfluence::Shape::Box && v.influence.box.empty())
+            v.influence.box = v.proxy;
+        validateProbeVolume(v, file, "probe " + v.name);
+        if (const int inside = raysFromInside(env, v.position); inside > 7)
+            out.warnings.push_back("probe " + v.name + " lies inside solid geometry (" +
+                                   std::to_string(inside) +
+                                   " of 14 rays from it meet the back of a surface first)");
+        for (const ProbeVolume& q : out.probes) {
+            if (q.name == v.name) throw Error(file, "probe " + v.name, "two probes have this name");
+            if (q.priority == v.priority && q.proxy == v.proxy && q.influence == v.influence)
+                out.warnings.push_back("probes " + q.name + " and " + v.name +
+                                       " have equal priority and identical volumes: " +
+                                       std::min(q.name, v.name) + " is blended first (by name)");
+        }
+        out.probes.push_back(v);
+    }
+    return out;
+}
+
+LevelProbeInputs levelProbeInputs(ProbeScene& scene, const ProbeVolume& probe,
+                                  const std::string& options) {
+    const ecs::Registry& reg = scene.registry;
+    std::map<std::uint32_t, ecs::Entity> within; // by index: a deterministic order
+    for (ecs::Entity e : scene.markup.mirrorEntities)
+        within.emplace(e.index, e);
+    for (ecs::Entity e : scene.loaded.entities)
+        if (reg.has<Mesh>(e) && reg.has<Transform>(e) &&
+            meshWorldBounds(reg, e).overlaps(probe.proxy))
+            within.emplace(e.index, e);
+    const EmbreeScene env(scene.registry,
+                          [&](ecs::Entity e) { return scene.markup.mirrorEntities.count(e) == 0; });
+    constexpr int kSide = 32;
+    for (int axis = 0; axis < 3; ++axis)
+        for (float sign : {-1.f, 1.f})
+            for (int i = 0; i < kSide; ++i)
+                for (int j = 0; j < kSide; ++j) {
+                    glm::vec3 d(0.f);
+                    d[axis] = sign;
+                    d[(axis + 1) % 3] = 2.f * (float(i) + 0.5f) / kSide - 1.f;
+                    d[(axis + 2) % 3] = 2.f * (float(j) + 0.5f) / kSide - 1.f;
+                    if (const std::optional<Hit> hit = env.intersect(probe.position, d))
+                        within.emplace(hit->entity.index, hit->entity);
+                }
+    std::string geometry;
+    for (const auto& [index, e] : within)
+        geometry += meshKey(reg, e) + '\n';
+    const std::string opts = options + '\n' + toJson(probe).dump();
+    return {bytesChecksum(geometry.data(), geometry.size()),
+            bytesChecksum(opts.data(), opts.size()),
+            scene.skyPath.empty() ? "none" : fileChecksum(scene.skyPath)};
+}
+
+LevelCookResult cookLevel(const LevelCookOptions& options, std::ostream* log) {
+    ProbeScene scene(options.cook.scene, options.cook.sky);
+    return cookLevel(scene, options, log);
+}
+
+LevelCookResult cookLevel(ProbeScene& scene, const LevelCookOptions& options, std::ostream* log) {
+    const auto start = Clock::now();
+    if (std::holds_alternative<PemCookSettings>(options.cook.flavour))
+        throw Error(scene.path, "flavour",
+                    "a level bakes distance or lightfield probes; a PEM follows one camera "
+                    "path: bake it per probe with one --probe");
+    const fs::path dir = options.cook.out;
+    LevelCookResult result;
+    const std::optional<LevelIndex> previous = previousLevel(dir.string(), result.warnings);
+    GatheredProbes gathered = gatherLevelProbes(scene, options.sources);
+    result.warnings.insert(result.warnings.end(), gathered.warnings.begin(),
+                           gathered.warnings.end());
+    if (log)
+        for (const std::string& w : result.warnings)
+            *log << "warning: " << w << '\n';
+    fs::create_directories(dir);
+
+    LevelIndex index;
+    index.source = scene.path;
+    index.flavour = std::visit(
+        [](const auto& s) -> std::string {
+            using S = std::decay_t<decltype(s)>;
+            return std::is_same_v<S, LightFieldCookSettings> ? "lightfield" : "distance";
+        },
+        options.cook.flavour);
+    std::set<std::string> folders;
+    std::vector<std::pair<LevelProbeEntry, std::string>> plan; // (entry, reason; empty: fresh)
+    for (const ProbeVolume& v : gathered.probes) {
+        LevelProbeEntry e;
+        e.volume = v;
+        e.folder = folderNameFor(v.name);
+        for (int k = 2; folders.count(e.folder); ++k)
+            e.folder = folderNameFor(v.name) + "_" + std::to_string(k);
+        folders.insert(e.folder);
+        e.inputs = levelProbeInputs(scene, v, index.flavour + ' ' + options.optionsText);
+        std::string reason = staleReason(previous, dir, e.folder, v, e.inputs);
+        if (reason.empty() && previous)
+            for (const LevelProbeEntry& old : previous->probes)
+                if (old.volume.name == v.name) e.manifestChecksum = old.manifestChecksum;
+        plan.emplace_back(std::move(e), std::move(reason));
+    }
+    // The index as it stands: fresh probes keep their entries, stale ones their old entry
+    // until re-baked (or none), so an interrupted bake leaves a true index behind.
+    for (const auto& [e, reason] : plan) {
+        if (reason.empty()) {
+            index.probes.push_back(e);
+            continue;
+        }
+        if (previous)
+            for (const LevelProbeEntry& old : previous->probes)
+                if (old.volume.name == e.volume.name && old.folder == e.folder)
+                    index.probes.push_back(old);
+    }
+
+    std::size_t stale = 0;
+    for (const auto& item : plan)
+        stale += item.second.empty() ? 0 : 1;
+    std::optional<ProgressBar> bar;
+    if (options.cook.progress && stale > 0)
+        bar.emplace("baking " + std::to_string(stale) + " of " + std::to_string(plan.size()) +
+                    " probes of " + fs::path(scene.path).filename().string());
+    std::size_t done = 0;
+    for (auto& [entry, reason] : plan) {
+        LevelProbeOutcome outcome{entry.volume.name, entry.folder, !reason.empty(),
+                                  reason.empty() ? "up to date" : reason, 0.0};
+        if (!reason.empty()) {
+            const auto probeStart = Clock::now();
+            CookOptions o = options.cook;
+            o.scene = scene.path;
+            o.out = (dir / entry.folder).string();
+            o.probeCentre = entry.volume.position;
+            o.cellSize = entry.volume.cellSize;
+            o.proxy = entry.volume.proxy;
+            o.progress = false;
+            if (bar) o.progressHook = [&](double f) { bar->update((double(done) + f) / stale); };
+            const CookResult r = cookProbe(scene, o, log);
+            entry.manifestChecksum = fileChecksum(r.manifest);
+            outcome.seconds = std::chrono::duration<double>(Clock::now() - probeStart).count();
+            ++done;
+            // Replace this probe's entry (or add it) and commit the index now.
+            std::erase_if(index.probes, [&](const LevelProbeEntry& e) {
+                return e.volume.name == entry.volume.name;
+            });
+            index.probes.push_back(entry);
+            writeLevelIndex(index, (dir / "level.json").string());
+        }
+        result.probes.push_back(outcome);
+    }
+    bar.reset();
+    // The final index lists the probes in the scene's order.
+    index.probes.clear();
+    for (const auto& item : plan)
+        index.probes.push_back(item.first);
+    writeLevelIndex(index, (dir / "level.json").string());
+    if (previous)
+        for (const LevelProbeEntry& old : previous->probes)
+            if (!folders.count(old.folder)) {
+                result.warnings.push_back(
+                    "probe " + old.volume.name + " is no longer in the level: its folder " +
+                    (dir / old.folder).string() + " is left as it was (delete it by hand)");
+                if (log) *log << "warning: " << result.warnings.back() << '\n';
+            }
+    if (log) {
+        for (const LevelProbeOutcome& p : result.probes) {
+            *log << "probe " << p.name << ": ";
+            if (p.baked)
+                *log << "baked in " << p.seconds << " s (" << p.reason << ")\n";
+            else
+                *log << "up to date\n";
+        }
+    }
+    result.index = (dir / "level.json").string();
+    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return result;
+}
+
+} // namespace specula

@@ -1,0 +1,142 @@
+#include "distance_level_cpu.h"
+
+#include "engine/core/error.h"
+#include "engine/image/sampling.h"
+#include "engine/scene/shading.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <numeric>
+
+namespace specula {
+
+const char* toString(LevelBlend b) {
+    switch (b) {
+    case LevelBlend::Nearest:
+        return "nearest";
+    case LevelBlend::Engine:
+        return "engine";
+    case LevelBlend::Visibility:
+        return "visibility";
+    }
+    return "?";
+}
+
+CpuDistanceLevel::CpuDistanceLevel(const std::string& path, const DistanceProbe& settings) {
+    if (settings.method == DistanceMethod::Layered || settings.method == DistanceMethod::Planned ||
+        settings.method == DistanceMethod::AvgDist)
+        throw Error(path, "method",
+                    std::string("a level blends single-layer lookups: ") +
+                        toString(settings.method) +
+                        " is not one (envmap, boxproj, bisection, "
+                        "secant)");
+    const LevelIndex index = readLevelIndex(path);
+    if (index.flavour != "distance")
+        throw Error(path, "flavour", "expected \"distance\", got \"" + index.flavour + "\"");
+    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    for (const LevelProbeEntry& e : index.probes) {
+        volumes_.push_back(e.volume);
+        assets_.push_back(std::make_unique<DistanceProbeAsset>(
+            readDistanceProbe((dir / e.folder / "manifest.json").string())));
+        DistanceProbe s = settings;
+        twins_.push_back(std::make_unique<CpuDistanceProbe>(*assets_.back(),
+                                                            makeLookupConfig(s, *assets_.back())));
+    }
+}
+
+CpuDistanceLevel::~CpuDistanceLevel() = default;
+
+int CpuDistanceLevel::nearest(glm::vec3 p) const {
+    int best = -1;
+    for (int i = 0; i < int(volumes_.size()); ++i) {
+        if (best < 0) {
+            best = i;
+            continue;
+        }
+        const float di = glm::distance(p, volumes_[std::size_t(i)].position);
+        const float db = glm::distance(p, volumes_[std::size_t(best)].position);
+        if (di < db ||
+            (di == db && volumes_[std::size_t(i)].name < volumes_[std::size_t(best)].name))
+            best = i;
+    }
+    return best;
+}
+
+CpuDistanceProbe::Seen CpuDistanceLevel::seen(int i, glm::vec3 p, glm::vec3 lhat) const {
+    return twins_.at(std::size_t(i))->seenRadiance(p - volumes_.at(std::size_t(i)).position, lhat);
+}
+
+LevelSample CpuDistanceLevel::radiance(glm::vec3 p, glm::vec3 lhat, LevelBlend blend, int k) const {
+    LevelSample out;
+    if (volumes_.empty()) return out;
+    const auto local = [&](int i) { return p - volumes_[std::size_t(i)].position; };
+    const auto plain = [&](int i) {
+        int fetches = 0;
+        const glm::vec3 c = twins_[std::size_t(i)]->radiance(local(i), lhat, fetches);
+        out.fetches += fetches;
+        return c;
+    };
+    // The sky every probe shares (the level is baked under one sky): a direction lookup.
+    const auto sky = [&] {
+        const DistanceProbeAsset& a = *assets_.front();
+        if (a.sky.empty()) return glm::vec3(0.f);
+        ++out.fetches;
+        return glm::vec3(sampleBilinear(a.sky, glsl::equirectUv(lhat), Wrap::Repeat, Wrap::Clamp));
+    };
+    const ProbeBlend engine = blendProbes(volumes_, p, k);
+    if (blend == LevelBlend::Nearest || engine.weights.empty()) {
+        // Outside every influence volume: the nearest probe alone.
+        const int i = nearest(p);
+        out.weights = {{i, 1.f}};
+        out.radiance = plain(i);
+        out.fallback = blend != LevelBlend::Nearest;
+        return out;
+    }
+    if (blend == LevelBlend::Engine) {
+        for (const auto& [i, w] : engine.weights) {
+            out.radiance += w * plain(int(i));
+            out.weights.emplace_back(int(i), w);
+        }
+        out.sky = engine.sky;
+        if (out.sky > 0.f) out.radiance += out.sky * sky();
+        return out;
+    }
+    // Visibility: the engine's order and influences, each probe kept only where it sees.
+    float remaining = 1.f;
+    for (const auto& [i, w] : engine.weights) {
+        (void)w;
+        const ProbeVolume& v = volumes_[i];
+        const CpuDistanceProbe::Seen s = seen(int(i), p, lhat);
+        out.fetches += s.fetches;
+        if (!s.seen) {
+            ++out.hidden;
+            continue;
+        }
+        const float weight = influenceWeight(v, p) * remaining;
+        if (weight <= 0.f) continue;
+        out.radiance += weight * s.radiance;
+        out.weights.emplace_back(int(i), weight);
+        remaining -= weight;
+    }
+    if (out.weights.empty()) {
+        // No probe with influence here sees the hit: the engine's blend, flagged.
+        LevelSample e = radiance(p, lhat, LevelBlend::Engine, k);
+        e.hidden = out.hidden;
+        e.fallback = true;
+        e.fetches += out.fetches;
+        return e;
+    }
+    // What the probes that see it leave goes to them in proportion (not to the sky: the
+    // hidden probes' share is a wall's, not the sky's), then the engine's own sky share.
+    const float taken = 1.f - remaining;
+    const float skyShare = engine.sky;
+    const float scale = (1.f - skyShare) / taken;
+    out.radiance *= scale;
+    for (auto& [i, w] : out.weights)
+        w *= scale;
+    out.sky = skyShare;
+    if (skyShare > 0.f) out.radiance += skyShare * sky();
+    return out;
+}
+
+} // namespace specula

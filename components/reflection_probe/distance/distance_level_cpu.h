@@ -1,0 +1,55 @@
+#pragma once
+// A baked level of distance probes (level_index.h) looked up on the CPU, each reflector
+// point blending up to K probes three ways: the nearest probe alone; engine-style (the
+// influence volumes, blend distances and priorities of probe_volume.h, the rest from the
+// sky); and by visibility, where a probe counts only when it sees the reflector point and
+// the hit its lookup proposes (shaders/distance_seen.glsl.h), so a probe behind a wall adds
+// nothing. Every probe runs the single-layer twin of the shader with the given method.
+#include "components/reflection_probe/distance/distance_probe_cpu.h"
+#include "components/reflection_probe/level_index.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace specula {
+
+enum class LevelBlend { Nearest, Engine, Visibility };
+const char* toString(LevelBlend b);
+
+struct LevelSample {
+    glm::vec3 radiance{0.f};
+    std::vector<std::pair<int, float>> weights; // (probe index, weight) > 0
+    float sky = 0.f;                            // weight of the sky
+    int fetches = 0;
+    // Visibility: probes with influence here that did not see the hit; `fallback` when none
+    // did and the engine-style weights were used instead.
+    int hidden = 0;
+    bool fallback = false;
+};
+
+class CpuDistanceLevel {
+public:
+    // Reads DIR/level.json and every probe it lists (the distance flavour only); throws Error
+    // naming the file and field. `settings.method` must rectify or project the composite
+    // (envmap, boxproj, bisection, secant).
+    CpuDistanceLevel(const std::string& levelIndexPath, const DistanceProbe& settings);
+    ~CpuDistanceLevel();
+
+    // Radiance reflected at world point `p` along unit `lhat`.
+    LevelSample radiance(glm::vec3 p, glm::vec3 lhat, LevelBlend blend, int k) const;
+
+    // Probe i's own lookup of the ray from world point p along lhat, with its verdict.
+    CpuDistanceProbe::Seen seen(int i, glm::vec3 p, glm::vec3 lhat) const;
+
+    const std::vector<ProbeVolume>& volumes() const { return volumes_; }
+    // The probe whose position is nearest to p (ties: the first by name).
+    int nearest(glm::vec3 p) const;
+
+private:
+    std::vector<ProbeVolume> volumes_;
+    std::vector<std::unique_ptr<DistanceProbeAsset>> assets_;
+    std::vector<std::unique_ptr<CpuDistanceProbe>> twins_;
+};
+
+} // namespace specula

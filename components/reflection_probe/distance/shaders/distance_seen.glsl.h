@@ -1,0 +1,63 @@
+// Shared by GLSL and C++ (see engine/core/glsl_host.h): whether a distance probe actually
+// sees what its lookup proposes, for blending several probes by visibility (issue 13). A
+// probe in the next room proposes a hit on the far side of the wall between them; its
+// stored distances know the wall is there. Included after distance_lookup.glsl.h (uses
+// lookupLayer, makeSpan, fetchSky and fetchDistanceGather(layer, dir): the four stored
+// distances a bilinear fetch at dir would weigh, as textureGather returns them), with
+// HAS_LAYERS 0: the composite decides.
+#ifndef SPECULA_DISTANCE_SEEN_GLSL_H
+#define SPECULA_DISTANCE_SEEN_GLSL_H
+
+// Stored distances are the nearest texel's: across a texel, a surface seen at a grazing
+// angle changes its distance by a lot (a floor 8 m away seen 8 degrees down: 9% a texel at
+// 128^2). A point is judged against the 2 x 2 texels around its direction (one gather on the
+// GPU), which span that change, with a small relative slack for what lies between texel
+// centres.
+SHARED_CONST float kSeenRelativeSlack = 0.04f;
+
+struct SeenSample {
+    vec3 radiance;
+    bool seen;   // the probe sees the reflector point, and the hit agrees with its distances
+    int fetches; // texture fetches spent
+    float t;     // along the ray to the hit proposed (d_inf: the sky)
+};
+
+// q (probe-local) is not behind the probe's stored surface in its direction.
+bool probeSeesPoint(vec3 q, DistanceParams p) {
+    vec4 d = fetchDistanceGather(0, q);
+    float far = max(max(d.x, d.y), max(d.z, d.w));
+    return length(q) <= far * (1.0f + kSeenRelativeSlack) + p.tolerance;
+}
+
+// q lies on the probe's stored surface in its direction: between the nearest and farthest
+// of the texels around it.
+bool onStoredSurface(vec3 q, DistanceParams p) {
+    vec4 e = abs(fetchDistanceGather(0, q) - vec4(length(q)));
+    return min(min(e.x, e.y), min(e.z, e.w)) <= kSeenRelativeSlack * length(q) + p.tolerance;
+}
+
+// The probe's composite lookup of the ray x + t lhat (probe-local) with its verdict: seen
+// when the reflector point x lies in front of the stored surface, and, for a rectifying
+// method, when the stored distance at the hit the search ended on agrees with the hit's
+// own distance (a search that found no crossing ends where they disagree).
+SeenSample probeSampleSeen(vec3 x, vec3 lhat, DistanceParams p) {
+    SeenSample s;
+    s.seen = probeSeesPoint(x, p);
+    s.fetches = 1;
+    LayerHit h = lookupLayer(p.method, 0, x, lhat, p, makeSpan(0.0f, 2.0f * p.range, p.maxSteps));
+    s.fetches += h.fetches;
+    s.t = h.t;
+    if (!h.hit) {
+        s.radiance = fetchSky(lhat);
+        s.fetches += 1;
+        return s;
+    }
+    s.radiance = h.radiance;
+    if (p.method == kMethodBisection || p.method == kMethodSecant) {
+        s.seen = s.seen && onStoredSurface(x + h.t * lhat, p);
+        s.fetches += 1;
+    }
+    return s;
+}
+
+#endif

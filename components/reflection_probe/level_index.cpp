@@ -1,0 +1,83 @@
+#include "level_index.h"
+
+#include "components/reflection_probe/manifest_fields.h"
+#include "engine/core/error.h"
+#include "engine/core/file_write.h"
+
+#include <nlohmann/json.hpp>
+
+namespace specula {
+
+using nlohmann::json;
+
+namespace {
+
+std::string stringMember(const json& j, const char* key, const std::string& file,
+                         const std::string& field) {
+    if (!j.contains(key) || !j[key].is_string())
+        throw Error(file, field + key, "expected a string");
+    return j[key].get<std::string>();
+}
+
+} // namespace
+
+json toJson(const LevelIndex& index) {
+    json probes = json::array();
+    for (const LevelProbeEntry& e : index.probes) {
+        json p = toJson(e.volume);
+        p["folder"] = e.folder;
+        p["manifest_checksum"] = e.manifestChecksum;
+        p["inputs"] = {
+            {"geometry", e.inputs.geometry}, {"options", e.inputs.options}, {"sky", e.inputs.sky}};
+        probes.push_back(std::move(p));
+    }
+    return {{"format", "specula-level"},
+            {"version", kLevelFormatVersion},
+            {"source", index.source},
+            {"flavour", index.flavour},
+            {"probes", std::move(probes)}};
+}
+
+LevelIndex levelIndexFromJson(const json& j, const std::string& file) {
+    if (!j.is_object() || j.value("format", "") != "specula-level")
+        throw Error(file, "format", "expected \"specula-level\"");
+    if (!j.contains("version") || !j["version"].is_number_integer() ||
+        j["version"].get<int>() != kLevelFormatVersion)
+        throw Error(file, "version", "expected " + std::to_string(kLevelFormatVersion));
+    LevelIndex index;
+    index.source = stringMember(j, "source", file, "");
+    index.flavour = stringMember(j, "flavour", file, "");
+    if (!j.contains("probes") || !j["probes"].is_array())
+        throw Error(file, "probes", "expected an array");
+    for (std::size_t i = 0; i < j["probes"].size(); ++i) {
+        const json& p = j["probes"][i];
+        const std::string field = "probes[" + std::to_string(i) + "]";
+        LevelProbeEntry e;
+        e.volume = probeVolumeFromJson(p, file, field);
+        validateProbeVolume(e.volume, file, field);
+        e.folder = stringMember(p, "folder", file, field + ".");
+        // A folder is one plain name inside the level: never a path out of it.
+        if (e.folder.empty() || e.folder == "." || e.folder == ".." ||
+            e.folder.find('/') != std::string::npos || e.folder.find('\\') != std::string::npos)
+            throw Error(file, field + ".folder", "expected a folder name inside the level");
+        e.manifestChecksum = stringMember(p, "manifest_checksum", file, field + ".");
+        if (!p.contains("inputs") || !p["inputs"].is_object())
+            throw Error(file, field + ".inputs", "expected an object");
+        const std::string in = field + ".inputs.";
+        e.inputs.geometry = stringMember(p["inputs"], "geometry", file, in);
+        e.inputs.options = stringMember(p["inputs"], "options", file, in);
+        e.inputs.sky = stringMember(p["inputs"], "sky", file, in);
+        index.probes.push_back(std::move(e));
+    }
+    return index;
+}
+
+LevelIndex readLevelIndex(const std::string& path) {
+    return levelIndexFromJson(parseManifestJson(readManifestText(path), path), path);
+}
+
+void writeLevelIndex(const LevelIndex& index, const std::string& path) {
+    writeFileAtomically(path, toJson(index).dump(2) + "\n");
+}
+
+} // namespace specula

@@ -1,0 +1,298 @@
+#include "level_walk.h"
+
+#include "assetcooker/lib/level_bake.h"
+#include "components/reflection_probe/distance/distance_level_cpu.h"
+#include "components/reflection_probe/probe_setup.h"
+#include "engine/core/error.h"
+#include "engine/core/glsl_host.h"
+#include "engine/core/progress.h"
+#include "engine/image/compare.h"
+#include "engine/image/contact_sheet.h"
+#include "engine/image/image_io.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace specula {
+namespace glsl {
+#include "components/reflection_probe/shaders/reflector_common.glsl.h"
+} // namespace glsl
+
+namespace sandbox {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::array<LevelBlend, 3> kBlends{LevelBlend::Nearest, LevelBlend::Engine,
+                                            LevelBlend::Visibility};
+
+// Arc-length parameterised polyline.
+struct Polyline {
+    std::vector<glm::vec3> points;
+    std::vector<float> cumulative; // length up to each point
+
+    explicit Polyline(std::vector<glm::vec3> p) : points(std::move(p)) {
+        cumulative.push_back(0.f);
+        for (std::size_t i = 1; i < points.size(); ++i)
+            cumulative.push_back(cumulative.back() + glm::distance(points[i - 1], points[i]));
+    }
+    float length() const { return cumulative.back(); }
+    // Point and unit tangent at fraction u in [0, 1] of the length.
+    std::pair<glm::vec3, glm::vec3> at(float u) const {
+        const float s = std::clamp(u, 0.f, 1.f) * length();
+        std::size_t i = 1;
+        while (i + 1 < points.size() && cumulative[i] < s)
+            ++i;
+        const float span = cumulative[i] - cumulative[i - 1];
+        const float f = span > 0.f ? (s - cumulative[i - 1]) / span : 0.f;
+        const glm::vec3 d = points[i] - points[i - 1];
+        const float len = glm::length(d);
+        return {glm::mix(points[i - 1], points[i], f), len > 0.f ? d / len : glm::vec3(1, 0, 0)};
+    }
+};
+
+// The chase camera: beside the path at `side` (+1 or -1), slightly above, looking at p.
+CameraView chaseCamera(glm::vec3 p, glm::vec3 tangent, float side, int width, int height) {
+    glm::vec3 across = glm::cross(tangent, glm::vec3(0, 1, 0));
+    across = glm::length(across) > 1e-4f ? glm::normalize(across) : glm::vec3(0, 0, 1);
+    const glm::vec3 eye = p + side * 1.5f * across + glm::vec3(0, 0.35f, 0);
+    return CameraView::lookAt(eye, p, glm::vec3(0, 1, 0), glm::radians(50.f), width, height);
+}
+
+// Frames of the walk from which the camera on `side` sees the reflector centre unblocked.
+int unblockedFrames(const EmbreeScene& env, const Polyline& path, float side, int frames) {
+    int clear = 0;
+    for (int f = 0; f < frames; ++f) {
+        const auto [p, t] = path.at(frames > 1 ? float(f) / float(frames - 1) : 0.f);
+        const glm::vec3 eye = chaseCamera(p, t, side, 8, 8).eye();
+        const float d = glm::distance(eye, p);
+        if (!env.intersect(eye, (p - eye) / d, 1e-4f, d - 0.4f)) ++clear;
+    }
+    return clear;
+}
+
+double rmsChange(const Image& a, const Image& b, const Image& maskA, const Image& maskB) {
+    double sum = 0;
+    std::size_t n = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            if (maskA.at(x, y)[0] < 0.5f || maskB.at(x, y)[0] < 0.5f) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double d = double(a.at(x, y)[c]) - double(b.at(x, y)[c]);
+                sum += d * d;
+            }
+            n += 3;
+        }
+    return n ? std::sqrt(sum / double(n)) : 0.0;
+}
+
+std::string weightsText(const CpuDistanceLevel& level, const LevelSample& s) {
+    std::ostringstream t;
+    t << std::fixed << std::setprecision(3);
+    for (const auto& [i, w] : s.weights)
+        t << (t.tellp() > 0 ? " " : "") << level.volumes()[std::size_t(i)].name << ':' << w;
+    if (s.sky > 0.f) t << (t.tellp() > 0 ? " " : "") << "sky:" << s.sky;
+    return t.str();
+}
+
+struct FrameImages {
+    Image truth, mask;
+    std::array<Image, 3> blends;
+};
+
+} // namespace
+
+LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
+    ProbeScene scene(o.scene, o.sky, o.addedReflectors);
+    for (const AddedReflector& r : o.addedReflectors)
+        log << "added " << describeAddedReflector(r) << '\n';
+    fs::create_directories(o.out);
+    LevelWalkResult result;
+    std::string levelDir = o.level;
+    if (levelDir.empty()) {
+        levelDir = (fs::path(o.out) / "level").string();
+        LevelCookOptions lc;
+        lc.cook.scene = scene.path;
+        lc.cook.sky = scene.skyPath;
+        lc.cook.out = levelDir;
+        DistanceCookSettings d;
+        d.faceRes = o.faceRes;
+        d.planned = false;
+        lc.cook.flavour = d;
+        lc.cook.progress = o.progress;
+        lc.optionsText = "level walk face_res " + std::to_string(o.faceRes);
+        lc.sources.positions = o.probes;
+        const LevelCookResult r = cookLevel(scene, lc, &log);
+        for (const LevelProbeOutcome& p : r.probes)
+            result.bakeSeconds += p.seconds;
+    }
+    const DistanceMethodInfo* method = findDistanceMethod(o.method);
+    if (!method) throw UsageError("--method", "unknown method '" + o.method + "'");
+    DistanceProbe settings;
+    settings.method = method->method;
+    settings.errorTolerance = o.tolerance;
+    const CpuDistanceLevel level((fs::path(levelDir) / "level.json").string(), settings);
+
+    std::vector<glm::vec3> points = o.path;
+    if (points.empty())
+        for (const ProbeVolume& v : level.volumes())
+            points.push_back(v.position);
+    if (points.size() < 2)
+        throw UsageError("--path", "a walk needs two points at least: the level has " +
+                                       std::to_string(level.volumes().size()) +
+                                       " probe(s); give --path x,y,z;x,y,z;...");
+    const Polyline path(points);
+    ReflectorRoots roots(scene);
+    if (roots.roots().empty())
+        throw Error(scene.path, "specula_reflector", "the scene has no reflector node to walk");
+    const glm::vec3 anchor = roots.roots().front().second;
+
+    const int frames = std::max(2, o.frames);
+    float side = 1.f;
+    {
+        const EmbreeScene env(scene.registry, [&](ecs::Entity e) {
+            return scene.markup.mirrorEntities.count(e) == 0;
+        });
+        if (unblockedFrames(env, path, -1.f, frames) > unblockedFrames(env, path, 1.f, frames))
+            side = -1.f;
+    }
+
+    std::ofstream csv(fs::path(o.out) / "frames.csv");
+    csv << "frame,x,y,z,psnr_nearest,psnr_engine,psnr_visibility,probes_engine,"
+           "hidden_share,fallback_pixels,mirror_pixels\n";
+    std::array<std::vector<double>, 3> psnr, overlapPsnr;
+    std::array<double, 3> pop{}, popTruth{}, popExcess{};
+    std::array<int, 3> popFrame{};
+    std::optional<FrameImages> previous;
+    std::vector<Image> worstTiles;
+    std::vector<std::string> worstLabels;
+    double worstEngine = 1e9;
+    ProgressBar bar("level walk " + fs::path(o.scene).filename().string());
+    for (int f = 0; f < frames; ++f) {
+        const auto [centre, tangent] = path.at(float(f) / float(frames - 1));
+        roots.setOffset(scene.registry, centre - anchor);
+        const CameraView camera = chaseCamera(centre, tangent, side, o.width, o.height);
+        const GroundTruthTracer tracer(scene.registry, groundTruthOptions(scene, true));
+        FrameImages img;
+        const GroundTruthImage truth = tracer.render(camera);
+        img.truth = truth.color;
+        img.mask = erodedMask(truth.mirrorMask);
+        for (Image& b : img.blends)
+            b = truth.color;
+        long evaluated = 0, hidden = 0, fallback = 0, mirrorPixels = 0;
+        for (int y = 0; y < camera.height; ++y)
+            for (int x = 0; x < camera.width; ++x) {
+                if (truth.mirrorMask.at(x, y)[0] < 0.5f) continue;
+                glm::vec3 origin, dir;
+                camera.primaryRay(x, y, origin, dir);
+                const std::optional<Hit> hit = tracer.fullScene().intersect(origin, dir);
+                if (!hit) continue;
+                ++mirrorPixels;
+                const glm::vec3 v = glm::normalize(dir);
+                const glm::vec3 n = glsl::safeNormal(hit->normal, hit->geometricNormal);
+                const glm::vec3 lhat = glm::normalize(glsl::mirrorDirection(v, n));
+                for (std::size_t b = 0; b < kBlends.size(); ++b) {
+                    const LevelSample s = level.radiance(hit->position, lhat, kBlends[b], o.k);
+                    std::copy(&s.radiance[0], &s.radiance[0] + 3, img.blends[b].at(x, y));
+                    if (kBlends[b] == LevelBlend::Visibility) {
+                        evaluated += long(s.weights.size()) + s.hidden;
+                        hidden += s.hidden;
+                        fallback += s.fallback ? 1 : 0;
+                    }
+                }
+            }
+        const LevelSample atCentre =
+            level.radiance(centre, glm::vec3(1, 0, 0), LevelBlend::Engine, o.k);
+        const bool overlap = atCentre.weights.size() >= 2;
+        result.overlapFrames += overlap ? 1 : 0;
+        csv << f << ',' << centre.x << ',' << centre.y << ',' << centre.z;
+        for (std::size_t b = 0; b < kBlends.size(); ++b) {
+            const ImageStats st = compareImages(img.blends[b], img.truth, &img.mask);
+            const double p = st.hasPsnr ? std::min(st.psnr, 99.0) : 0.0;
+            psnr[b].push_back(p);
+            if (overlap) overlapPsnr[b].push_back(p);
+            csv << ',' << formatPsnr(p);
+        }
+        csv << ",\"" << weightsText(level, atCentre) << "\","
+            << (evaluated ? double(hidden) / double(evaluated) : 0.0) << ',' << fallback << ','
+            << mirrorPixels << '\n';
+        if (previous) {
+            const double truthChange =
+                rmsChange(img.truth, previous->truth, img.mask, previous->mask);
+            for (std::size_t b = 0; b < kBlends.size(); ++b) {
+                const double change =
+                    rmsChange(img.blends[b], previous->blends[b], img.mask, previous->mask);
+                if (change > pop[b]) {
+                    pop[b] = change;
+                    popTruth[b] = truthChange;
+                    popFrame[b] = f;
+                }
+                popExcess[b] = std::max(popExcess[b], change - truthChange);
+            }
+        }
+        // The picture: the frame where engine-style blending is worst.
+        if (psnr[1].back() < worstEngine) {
+            worstEngine = psnr[1].back();
+            const std::string at = "frame " + std::to_string(f) + " ";
+            worstTiles = {img.truth, img.blends[0], img.blends[1], img.blends[2], Image{}};
+            worstLabels = {at + "truth", at + "nearest", at + "engine", at + "visibility", ""};
+            for (std::size_t b = 0; b < kBlends.size(); ++b) {
+                worstTiles.push_back(errorHeatmap(img.blends[b], img.truth, &img.mask, 0.25f));
+                worstLabels.push_back(std::string("error ") + toString(kBlends[b]) + " " +
+                                      formatPsnr(psnr[b].back()) + " dB");
+            }
+        }
+        previous = std::move(img);
+        if (o.progress) bar.update(double(f + 1) / frames);
+    }
+    roots.setOffset(scene.registry, glm::vec3(0.f));
+
+    std::ofstream summary(fs::path(o.out) / "summary.csv");
+    summary << "blend,psnr_mean,psnr_worst,overlap_psnr_mean,overlap_psnr_worst,pop_rms,"
+               "truth_change_rms,pop_frame,pop_excess_rms\n";
+    const auto mean = [](const std::vector<double>& v) {
+        double s = 0;
+        for (double x : v)
+            s += x;
+        return v.empty() ? 0.0 : s / double(v.size());
+    };
+    const auto worst = [](const std::vector<double>& v) {
+        return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
+    };
+    for (std::size_t b = 0; b < kBlends.size(); ++b) {
+        LevelWalkBlendSummary s;
+        s.blend = toString(kBlends[b]);
+        s.meanPsnr = mean(psnr[b]);
+        s.worstPsnr = worst(psnr[b]);
+        s.overlapMeanPsnr = mean(overlapPsnr[b]);
+        s.overlapWorst = worst(overlapPsnr[b]);
+        s.pop = pop[b];
+        s.truthPop = popTruth[b];
+        s.popExcess = popExcess[b];
+        summary << s.blend << ',' << s.meanPsnr << ',' << s.worstPsnr << ',' << s.overlapMeanPsnr
+                << ',' << s.overlapWorst << ',' << s.pop << ',' << s.truthPop << ',' << popFrame[b]
+                << ',' << s.popExcess << '\n';
+        log << std::left << std::setw(11) << s.blend << " PSNR mean " << formatPsnr(s.meanPsnr)
+            << " worst " << formatPsnr(s.worstPsnr) << " | overlap frames mean "
+            << formatPsnr(s.overlapMeanPsnr) << " worst " << formatPsnr(s.overlapWorst)
+            << " | largest change " << s.pop << " RMS (truth " << s.truthPop
+            << "), worst excess over truth " << s.popExcess << '\n';
+        result.blends.push_back(s);
+    }
+    log << frames << " frames, " << result.overlapFrames
+        << " with two or more probes at the reflector -> " << o.out << "/frames.csv\n";
+    if (!worstTiles.empty())
+        writeImage((fs::path(o.out) / "level_walk.png").string(),
+                   contactSheet(worstTiles, worstLabels, 4, o.width));
+    return result;
+}
+
+} // namespace sandbox
+} // namespace specula

@@ -1,0 +1,64 @@
+#pragma once
+// specula-sandbox level: a reflector walked through a level's probes (issue 13). The level is
+// baked (or read), the reflectors move along a path through several probes' influence
+// volumes, a camera follows them, and every frame's reflector pixels are looked up three
+// ways (the nearest probe alone, engine-style blending, visibility-aware blending) on the CPU
+// twin of the distance lookup and compared with Embree's environment-only truth. Writes
+// frames.csv (per frame: position, PSNR per blend, the probes and weights at the reflector,
+// how often a probe was hidden), summary.csv (mean and worst PSNR, on all frames and on the
+// frames where probes overlap; the pop metric) and level_walk.png (truth and the three
+// blends where engine-style blending is worst, error maps below).
+#include "components/reflection_probe/added_reflector.h"
+
+#include <glm/vec3.hpp>
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace specula::sandbox {
+
+struct LevelWalkOptions {
+    std::string scene, sky, out;
+    std::string level;             // a baked level folder; empty: bake one into out/level
+    std::vector<glm::vec3> path;   // world points; empty: through every probe in order
+    std::vector<glm::vec3> probes; // baking: probe positions (--probe), else the markup's
+    std::vector<AddedReflector> addedReflectors; // dropped into the scene before anything
+    int frames = 40;
+    int width = 320, height = 240;
+    int faceRes = 128;             // when baking
+    int k = 4;                     // probes blended per pixel at most
+    std::string method = "secant"; // each probe's lookup
+    float tolerance = 0.01f;       // d_e
+    bool progress = true;
+};
+
+struct LevelWalkBlendSummary {
+    std::string blend;
+    double meanPsnr = 0, worstPsnr = 0;           // every frame
+    double overlapMeanPsnr = 0, overlapWorst = 0; // frames where 2+ probes have influence
+    double pop = 0;       // largest frame-to-frame RMS change of the reflector pixels
+    double truthPop = 0;  // the truth's own change over those two frames
+    double popExcess = 0; // largest (change - truth's change) over all frame pairs
+};
+
+struct LevelWalkResult {
+    std::vector<LevelWalkBlendSummary> blends; // nearest, engine, visibility
+    int overlapFrames = 0;
+    double bakeSeconds = 0; // 0 when the level was read
+};
+
+LevelWalkResult runLevelWalk(const LevelWalkOptions& options, std::ostream& log);
+
+} // namespace specula::sandbox
+
+namespace specula::cli {
+class ToolCli;
+}
+
+namespace specula::sandbox {
+
+// Registers `specula-sandbox level` (level_walk_cli.cpp).
+void addLevelCommand(cli::ToolCli& tool);
+
+} // namespace specula::sandbox

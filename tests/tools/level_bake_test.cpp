@@ -1,0 +1,224 @@
+// Baking a level (level_bake.h) on the bundled two-room scene (assets/two_rooms: rooms A and B
+// joined by a doorway in the wall x = 0, one probe each): every probe gets its folder and an
+// index entry; a re-run re-bakes nothing; moving an object only room B's probe can see
+// re-bakes that probe alone and says why; a failure half-way leaves the probes baked before
+// it intact and indexed; bad probe lists are errors naming the file and field.
+#include "assetcooker/lib/level_bake.h"
+#include "components/reflection_probe/manifest_fields.h"
+#include "engine/core/error.h"
+#include "engine/scene/components.h"
+#include "engine/scene/transform_system.h"
+#include "support/scratch_dir_test.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace specula {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kTwoRooms = std::string(SPECULA_SOURCE_DIR) + "/assets/two_rooms/two_rooms.gltf";
+
+// Room A's inner box (inside faces of its walls, floor and ceiling), as the scene's script
+// lays it out: x -5.95 .. -0.05, y 0 .. 3, z -2.95 .. 2.95.
+const Aabb kRoomA{glm::vec3(-5.95f, 0.f, -2.95f), glm::vec3(-0.05f, 3.f, 2.95f)};
+
+class LevelBake : public test::ScratchDirTest {
+protected:
+    LevelBake() : ScratchDirTest("specula-level") {}
+
+    LevelCookOptions options(int faceRes = 16) const {
+        LevelCookOptions o;
+        o.cook.scene = kTwoRooms;
+        o.cook.out = (root_ / "level").string();
+        DistanceCookSettings d;
+        d.faceRes = faceRes;
+        d.planned = false;
+        o.cook.flavour = d;
+        o.cook.progress = false;
+        o.optionsText = "face_res " + std::to_string(faceRes);
+        return o;
+    }
+
+    std::string writeProbeList(const std::string& text) const {
+        const std::string path = (root_ / "probes.json").string();
+        std::ofstream(path) << text;
+        return path;
+    }
+
+    static void moveNode(ProbeScene& scene, const std::string& name, glm::vec3 by) {
+        for (ecs::Entity e : scene.loaded.entities)
+            if (const Name* n = scene.registry.find<Name>(e); n && n->value == name)
+                scene.registry.get<Transform>(e).translation += by;
+        updateWorldTransforms(scene.registry);
+    }
+};
+
+void expectBoxNear(const Aabb& got, const Aabb& want, float tolerance) {
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(got.min[a], want.min[a], tolerance) << "min axis " << a;
+        EXPECT_NEAR(got.max[a], want.max[a], tolerance) << "max axis " << a;
+    }
+}
+
+TEST_F(LevelBake, GathersEveryProbeOfTheMarkupWithItsVolumes) {
+    ProbeScene scene(kTwoRooms, "");
+    const GatheredProbes g = gatherLevelProbes(scene, {});
+    ASSERT_EQ(g.probes.size(), 2u);
+    EXPECT_EQ(g.probes[0].name, "room_a_probe");
+    EXPECT_EQ(g.probes[1].name, "room_b_probe");
+    expectBoxNear(g.probes[0].proxy, kRoomA, 1e-4f);
+    // The influence reaches 0.5 m past the doorway wall into room B.
+    EXPECT_NEAR(g.probes[0].influence.box.max.x, 0.55f, 1e-4f);
+    EXPECT_NEAR(g.probes[1].influence.box.min.x, -0.55f, 1e-4f);
+    EXPECT_TRUE(g.warnings.empty()) << g.warnings.front();
+}
+
+TEST_F(LevelBake, AProbeWithoutAProxyGetsTheRoomItsAxisRaysReach) {
+    // A probe of the list with a position only, in room A off the doorway's line: its six
+    // axis rays meet room A's walls, floor and ceiling, the closed-form room box.
+    ProbeScene scene(kTwoRooms, "");
+    LevelProbeSources s;
+    s.file = writeProbeList(R"({"probes": [{"name": "extra", "position": [-2.5, 1.5, 1.2]}]})");
+    const GatheredProbes g = gatherLevelProbes(scene, s);
+    ASSERT_EQ(g.probes.size(), 3u);
+    const ProbeVolume& extra = g.probes[2];
+    EXPECT_EQ(extra.name, "extra");
+    expectBoxNear(extra.proxy, kRoomA, 2e-3f);
+    EXPECT_EQ(extra.influence.box, extra.proxy);
+}
+
+TEST_F(LevelBake, BakesEveryProbeThenOnlyWhatChangedAndSaysWhy) {
+    ProbeScene scene(kTwoRooms, "");
+    std::ostringstream log;
+    const LevelCookResult first = cookLevel(scene, options(), &log);
+    ASSERT_EQ(first.probes.size(), 2u);
+    for (const LevelProbeOutcome& p : first.probes) {
+        EXPECT_TRUE(p.baked);
+        EXPECT_EQ(p.reason, "new");
+    }
+    const LevelIndex index = readLevelIndex(first.index);
+    ASSERT_EQ(index.probes.size(), 2u);
+    EXPECT_EQ(index.flavour, "distance");
+    for (const LevelProbeEntry& e : index.probes) {
+        const fs::path manifest = root_ / "level" / e.folder / "manifest.json";
+        ASSERT_TRUE(fs::exists(manifest)) << manifest;
+        EXPECT_EQ(fileChecksum(manifest.string()), e.manifestChecksum);
+    }
+    // Each probe's asset is centred on its own room and boxes its own proxy.
+    const DistanceProbeAsset a =
+        readDistanceProbe((root_ / "level/room_b_probe/manifest.json").string());
+    EXPECT_NEAR(a.centre.x, 3.f, 1e-5f);
+    EXPECT_NEAR(a.boxMin.x + a.centre.x, 0.05f, 1e-4f);
+
+    // Nothing changed: nothing re-baked, the folders untouched.
+    const auto stamp = fs::last_write_time(root_ / "level/room_a_probe/manifest.json");
+    const LevelCookResult again = cookLevel(scene, options(), &log);
+    for (const LevelProbeOutcome& p : again.probes) {
+        EXPECT_FALSE(p.baked) << p.name;
+        EXPECT_EQ(p.reason, "up to date");
+    }
+    EXPECT_EQ(fs::last_write_time(root_ / "level/room_a_probe/manifest.json"), stamp);
+
+    // Room B's crate stands against the wall beside the doorway, where room A's probe cannot
+    // see it: moving it re-bakes room B's probe only.
+    moveNode(scene, "room_b_crate", glm::vec3(0.4f, 0.f, -0.3f));
+    const LevelCookResult moved = cookLevel(scene, options(), &log);
+    ASSERT_EQ(moved.probes.size(), 2u);
+    EXPECT_FALSE(moved.probes[0].baked) << moved.probes[0].reason;
+    EXPECT_TRUE(moved.probes[1].baked);
+    EXPECT_EQ(moved.probes[1].reason, "geometry changed");
+    EXPECT_EQ(fs::last_write_time(root_ / "level/room_a_probe/manifest.json"), stamp);
+    EXPECT_NE(log.str().find("probe room_b_probe: baked in"), std::string::npos) << log.str();
+
+    // Other options re-bake both, naming the options.
+    const LevelCookResult resized = cookLevel(scene, options(8), &log);
+    for (const LevelProbeOutcome& p : resized.probes) {
+        EXPECT_TRUE(p.baked);
+        EXPECT_EQ(p.reason, "options changed");
+    }
+}
+
+TEST_F(LevelBake, AFailureHalfWayLeavesTheProbesBakedBeforeItIndexed) {
+    ProbeScene scene(kTwoRooms, "");
+    // Room B's folder is taken by a file of the user's: its bake must refuse it, after room
+    // A's probe was baked and committed.
+    fs::create_directories(root_ / "level/room_b_probe");
+    std::ofstream(root_ / "level/room_b_probe/notes.txt") << "mine";
+    std::ofstream(root_ / "level/level.json")
+        << R"({"format": "specula-level", "version": 1, "source": "x", "flavour": "distance",
+              "probes": []})";
+    EXPECT_THROW(cookLevel(scene, options(), nullptr), Error);
+    EXPECT_TRUE(fs::exists(root_ / "level/room_b_probe/notes.txt"));
+    const LevelIndex index = readLevelIndex((root_ / "level/level.json").string());
+    ASSERT_EQ(index.probes.size(), 1u);
+    EXPECT_EQ(index.probes[0].volume.name, "room_a_probe");
+    EXPECT_EQ(fileChecksum((root_ / "level/room_a_probe/manifest.json").string()),
+              index.probes[0].manifestChecksum);
+}
+
+TEST_F(LevelBake, RefusesAFolderThatIsNeitherEmptyNorALevel) {
+    ProbeScene scene(kTwoRooms, "");
+    fs::create_directories(root_ / "level");
+    std::ofstream(root_ / "level/thesis.tex") << "mine";
+    try {
+        cookLevel(scene, options(), nullptr);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("no level.json"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(fs::exists(root_ / "level/thesis.tex"));
+}
+
+TEST_F(LevelBake, BadProbeListsAreErrorsNamingTheFileAndField) {
+    ProbeScene scene(kTwoRooms, "");
+    const auto errorOf = [&](const std::string& text) -> std::string {
+        LevelProbeSources s;
+        s.file = writeProbeList(text);
+        try {
+            gatherLevelProbes(scene, s);
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    const std::string list = (root_ / "probes.json").string();
+    EXPECT_EQ(errorOf(R"({"probes": [{"name": "x", "position": [0, 1, 0],
+                        "influence": {"box": {"min": [0, 0, 0], "max": [-1, 1, 1]}}}]})"),
+              list + ": probes[0].influence.box: zero-size or inverted box: every component "
+                     "of min must lie below max");
+    EXPECT_EQ(errorOf(R"({"probes": [{"name": "x"}]})"),
+              list + ": probes[0].position: missing (a new probe needs a position)");
+    EXPECT_NE(errorOf(R"({"probes": [{"name": "x", "position": [0, 1]}]})")
+                  .find("probes[0].position: expected [x, y, z]"),
+              std::string::npos);
+    EXPECT_NE(errorOf(R"({"probes": 3})").find("probes: expected an array"), std::string::npos);
+}
+
+TEST_F(LevelBake, WarnsOfTwinProbesAndOfAProbeInsideSolidGeometry) {
+    ProbeScene scene(kTwoRooms, "");
+    LevelProbeSources s;
+    // A twin of room A's probe (same volumes, same priority) and a probe inside room B's
+    // column (a closed box).
+    s.file = writeProbeList(R"({"probes": [
+        {"name": "twin", "position": [-3, 1.2, 0], "proxy": {"min": [-2.95, -1.2, -2.95],
+         "max": [2.95, 1.8, 2.95]}, "influence": {"box": {"min": [-2.95, -1.2, -2.95],
+         "max": [3.55, 1.8, 2.95]}}},
+        {"name": "buried", "position": [4.2, 1.0, -0.8]}]})");
+    const GatheredProbes g = gatherLevelProbes(scene, s);
+    std::string all;
+    for (const std::string& w : g.warnings)
+        all += w + "\n";
+    EXPECT_NE(all.find("probes room_a_probe and twin have equal priority and identical volumes: "
+                       "room_a_probe is blended first"),
+              std::string::npos)
+        << all;
+    EXPECT_NE(all.find("probe buried lies inside solid geometry"), std::string::npos) << all;
+    EXPECT_EQ(all.find("probe room_b_probe lies inside"), std::string::npos) << all;
+}
+
+} // namespace
+} // namespace specula
