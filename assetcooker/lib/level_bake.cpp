@@ -217,6 +217,7 @@ GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sou
                           [&](ecs::Entity e) { return scene.markup.mirrorEntities.count(e) == 0; });
     const Aabb sceneBounds{scene.loaded.boundsMin, scene.loaded.boundsMax};
     GatheredProbes out;
+    std::vector<bool> influenceDefaulted;
     for (PendingProbe& p : pending) {
         ProbeVolume& v = p.volume;
         v.proxy = Aabb{};
@@ -224,8 +225,36 @@ GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sou
         for (const auto& [members, from, field] : p.members)
             applyProbeMarkup(v, members, from, field);
         if (v.proxy.empty()) v.proxy = measuredProxy(env, sceneBounds, v.position);
-        if (v.influence.shape == ProbeInfluence::Shape::Box && v.influence.box.empty())
-            v.influence.box = v.proxy;
+        influenceDefaulted.push_back(v.influence.shape == ProbeInfluence::Shape::Box &&
+                                     v.influence.box.empty());
+        if (influenceDefaulted.back()) v.influence.box = v.proxy;
+    }
+    // Probes in one room (a row along a hall) would share one proxy and so one influence:
+    // a defaulted influence is cut half-way to every other probe inside its proxy, on the
+    // axis that separates them most, reaching one blend distance past the half-way point:
+    // neighbours overlap by twice the blend distance, so wherever one fades out the other
+    // still weighs 1 and no sky shows between them (engine-style blending leaves to the sky
+    // what the probes' weights do not cover).
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+        if (!influenceDefaulted[i]) continue;
+        ProbeVolume& v = pending[i].volume;
+        for (std::size_t j = 0; j < pending.size(); ++j) {
+            const glm::vec3 d = pending[j].volume.position - v.position;
+            if (j == i || !v.proxy.contains(pending[j].volume.position)) continue;
+            const glm::vec3 a = glm::abs(d);
+            const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+            if (a[axis] <= 0.f) continue;
+            const float mid = v.position[axis] + 0.5f * d[axis];
+            if (d[axis] > 0.f)
+                v.influence.box.max[axis] =
+                    std::min(v.influence.box.max[axis], mid + v.blendDistance);
+            else
+                v.influence.box.min[axis] =
+                    std::max(v.influence.box.min[axis], mid - v.blendDistance);
+        }
+    }
+    for (PendingProbe& p : pending) {
+        ProbeVolume& v = p.volume;
         validateProbeVolume(v, file, "probe " + v.name);
         if (const int inside = raysFromInside(env, v.position); inside > 7)
             out.warnings.push_back("probe " + v.name + " lies inside solid geometry (" +

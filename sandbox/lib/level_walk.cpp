@@ -129,6 +129,7 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
         lc.cook.progress = o.progress;
         lc.optionsText = "level walk face_res " + std::to_string(o.faceRes);
         lc.sources.positions = o.probes;
+        lc.sources.file = o.probeList;
         const LevelCookResult r = cookLevel(scene, lc, &log);
         for (const LevelProbeOutcome& p : r.probes)
             result.bakeSeconds += p.seconds;
@@ -174,6 +175,12 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
     std::vector<Image> worstTiles;
     std::vector<std::string> worstLabels;
     double worstEngine = 1e9;
+    // Texture fetches per reflector pixel: [blend][K = 1, 2, 4]; and how often each case of
+    // the visibility blend occurs.
+    constexpr std::array<int, 3> kKs{1, 2, 4};
+    std::array<std::array<double, 3>, 3> fetchSum{};
+    double pixelSum = 0, lookupSum = 0, hiddenSum = 0, fallbackSum = 0, outsideSum = 0;
+    int firstOutsideFrame = -1;
     ProgressBar bar("level walk " + fs::path(o.scene).filename().string());
     for (int f = 0; f < frames; ++f) {
         const auto [centre, tangent] = path.at(float(f) / float(frames - 1));
@@ -204,10 +211,21 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
                     if (kBlends[b] == LevelBlend::Visibility) {
                         evaluated += long(s.weights.size()) + s.hidden;
                         hidden += s.hidden;
-                        fallback += s.fallback ? 1 : 0;
+                        fallback += s.fallback && !s.outside ? 1 : 0;
+                        outsideSum += s.outside ? 1 : 0;
+                        if (s.outside && firstOutsideFrame < 0) firstOutsideFrame = f;
                     }
+                    for (std::size_t k = 0; k < kKs.size(); ++k)
+                        fetchSum[b][k] +=
+                            kKs[k] == o.k
+                                ? s.fetches
+                                : level.radiance(hit->position, lhat, kBlends[b], kKs[k]).fetches;
                 }
             }
+        pixelSum += double(mirrorPixels);
+        lookupSum += double(evaluated);
+        hiddenSum += double(hidden);
+        fallbackSum += double(fallback);
         const LevelSample atCentre =
             level.radiance(centre, glm::vec3(1, 0, 0), LevelBlend::Engine, o.k);
         const bool overlap = atCentre.weights.size() >= 2;
@@ -286,6 +304,32 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
             << "), worst excess over truth " << s.popExcess << '\n';
         result.blends.push_back(s);
     }
+    summary << "\nfetches_per_pixel,k=1,k=2,k=4\n";
+    for (std::size_t b = 0; b < kBlends.size(); ++b) {
+        summary << toString(kBlends[b]);
+        log << "fetches per reflector pixel, " << toString(kBlends[b]) << ":";
+        for (std::size_t k = 0; k < kKs.size(); ++k) {
+            const double perPixel = pixelSum > 0 ? fetchSum[b][k] / pixelSum : 0.0;
+            summary << ',' << perPixel;
+            log << " K=" << kKs[k] << " " << perPixel;
+            result.fetchesPerPixel[b][k] = perPixel;
+        }
+        summary << '\n';
+        log << " (an envmap lookup: 1)\n";
+    }
+    result.hiddenShare = lookupSum > 0 ? hiddenSum / lookupSum : 0.0;
+    result.fallbackShare = pixelSum > 0 ? fallbackSum / pixelSum : 0.0;
+    result.outsideShare = pixelSum > 0 ? outsideSum / pixelSum : 0.0;
+    summary << "\ncase,share\nprobe lookups hidden from their probe," << result.hiddenShare
+            << "\npixels no probe with influence sees (engine blend instead),"
+            << result.fallbackShare << "\npixels outside every influence (nearest probe),"
+            << result.outsideShare << '\n';
+    log << "visibility: " << 100.0 * result.hiddenShare << "% of probe lookups hidden, "
+        << 100.0 * result.fallbackShare << "% of pixels seen by no probe (engine blend), "
+        << 100.0 * result.outsideShare << "% outside every influence (nearest probe)\n";
+    if (firstOutsideFrame >= 0)
+        log << "warning: the reflector leaves every influence volume (first at frame "
+            << firstOutsideFrame << "): the nearest probe answers there\n";
     log << frames << " frames, " << result.overlapFrames
         << " with two or more probes at the reflector -> " << o.out << "/frames.csv\n";
     if (!worstTiles.empty())

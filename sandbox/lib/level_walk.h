@@ -12,6 +12,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -23,6 +24,7 @@ struct LevelWalkOptions {
     std::string level;             // a baked level folder; empty: bake one into out/level
     std::vector<glm::vec3> path;   // world points; empty: through every probe in order
     std::vector<glm::vec3> probes; // baking: probe positions (--probe), else the markup's
+    std::string probeList;         // baking: --probes FILE.json (level_bake.h)
     std::vector<AddedReflector> addedReflectors; // dropped into the scene before anything
     int frames = 40;
     int width = 320, height = 240;
@@ -45,7 +47,13 @@ struct LevelWalkBlendSummary {
 struct LevelWalkResult {
     std::vector<LevelWalkBlendSummary> blends; // nearest, engine, visibility
     int overlapFrames = 0;
-    double bakeSeconds = 0; // 0 when the level was read
+    // Mean texture fetches per reflector pixel, [nearest, engine, visibility][K = 1, 2, 4]
+    // (the CPU twin's count; an envmap lookup is 1).
+    std::array<std::array<double, 3>, 3> fetchesPerPixel{};
+    double hiddenShare = 0;   // visibility: probe lookups whose probe did not see the hit
+    double fallbackShare = 0; // pixels that no probe with influence sees (engine blend used)
+    double outsideShare = 0;  // pixels outside every influence volume (nearest probe)
+    double bakeSeconds = 0;   // 0 when the level was read
 };
 
 LevelWalkResult runLevelWalk(const LevelWalkOptions& options, std::ostream& log);

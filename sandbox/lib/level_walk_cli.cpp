@@ -89,6 +89,9 @@ void addLevelCommand(cli::ToolCli& tool) {
     sub->add_option("--probe", a->probes,
                     "baking: a probe at x,y,z (repeatable; the i-th moves the markup's i-th)")
         ->check(cli::vec3Text());
+    sub->add_option("--probes", o.probeList,
+                    "baking: a probe list (JSON, as specula-cook bake --probes takes)")
+        ->check(CLI::ExistingFile);
     addReflectorOption(sub, a->addedReflectors);
 }
 

@@ -88,7 +88,40 @@ TEST_F(LevelBake, AProbeWithoutAProxyGetsTheRoomItsAxisRaysReach) {
     const ProbeVolume& extra = g.probes[2];
     EXPECT_EQ(extra.name, "extra");
     expectBoxNear(extra.proxy, kRoomA, 2e-3f);
-    EXPECT_EQ(extra.influence.box, extra.proxy);
+    // Its influence (not stated) is the proxy cut half-way to room A's probe at (-3, 1.2, 0),
+    // inside the same room: they lie furthest apart along z (1.2 m), so the cut is at
+    // z = 0.6, less the blend distance (0.5 m).
+    Aabb cut = extra.proxy;
+    cut.min.z = 0.1f;
+    expectBoxNear(extra.influence.box, cut, 1e-5f);
+}
+
+TEST_F(LevelBake, ARowOfProbesInOneRoomSharesItsInfluenceOut) {
+    // Three probes along x in room A, stated by position only: each influence ends one blend
+    // distance (1 m, stated) past the half-way point to its neighbours.
+    ProbeScene scene(kTwoRooms, "");
+    LevelProbeSources s;
+    s.file = writeProbeList(R"({"probes": [
+        {"name": "west", "position": [-5, 1.5, -1.2], "blend_distance": 1},
+        {"name": "middle", "position": [-3, 1.5, -1.2], "blend_distance": 1},
+        {"name": "east", "position": [-1, 1.5, -1.2], "blend_distance": 1}]})");
+    const GatheredProbes g = gatherLevelProbes(scene, s);
+    ASSERT_EQ(g.probes.size(), 5u);
+    const ProbeVolume &west = g.probes[2], &middle = g.probes[3], &east = g.probes[4];
+    EXPECT_NEAR(west.influence.box.max.x, -4.f + 1.f, 1e-5f);
+    EXPECT_NEAR(middle.influence.box.min.x, -4.f - 1.f, 1e-5f);
+    EXPECT_NEAR(middle.influence.box.max.x, -2.f + 1.f, 1e-5f);
+    EXPECT_NEAR(east.influence.box.min.x, -2.f - 1.f, 1e-5f);
+    // Along the row, more than a blend distance from the room's walls (room A's own probe
+    // stands 1.2 m off the row and keeps its stated influence; the row is clear of furniture,
+    // which the axis rays would take for the room's floor), the engine's blend of the three
+    // leaves nothing to the sky: wherever one probe fades, its neighbour weighs 1.
+    const std::vector<ProbeVolume> row{west, middle, east};
+    for (float x = -4.75f; x <= -1.25f; x += 0.125f) {
+        const ProbeBlend b = blendProbes(row, glm::vec3(x, 1.5f, -1.2f), 4);
+        EXPECT_NEAR(b.sky, 0.f, 1e-6f) << "x = " << x;
+    }
+    EXPECT_EQ(influenceWeight(west, glm::vec3(-1, 1.5f, -1.2f)), 0.f);
 }
 
 TEST_F(LevelBake, BakesEveryProbeThenOnlyWhatChangedAndSaysWhy) {

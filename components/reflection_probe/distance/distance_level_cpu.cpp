@@ -90,6 +90,7 @@ LevelSample CpuDistanceLevel::radiance(glm::vec3 p, glm::vec3 lhat, LevelBlend b
         out.weights = {{i, 1.f}};
         out.radiance = plain(i);
         out.fallback = blend != LevelBlend::Nearest;
+        out.outside = engine.weights.empty();
         return out;
     }
     if (blend == LevelBlend::Engine) {

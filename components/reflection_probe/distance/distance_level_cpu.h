@@ -26,6 +26,7 @@ struct LevelSample {
     // did and the engine-style weights were used instead.
     int hidden = 0;
     bool fallback = false;
+    bool outside = false; // p lies in no influence volume: the nearest probe answered
 };
 
 class CpuDistanceLevel {
