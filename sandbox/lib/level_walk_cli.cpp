@@ -1,6 +1,7 @@
 // specula-sandbox level: the command line of runLevelWalk (level_walk.h).
 #include "assetcooker/lib/tool_cli.h"
 #include "sandbox/lib/added_reflector_flag.h"
+#include "sandbox/lib/created_output_folder.h"
 #include "sandbox/lib/level_walk.h"
 #include "sandbox/lib/reflection_scene.h"
 
@@ -67,7 +68,9 @@ void addLevelCommand(cli::ToolCli& tool) {
             for (const std::string& p : a->probes)
                 a->o.probes.push_back(cli::parseVec3(p));
             a->o.addedReflectors = parseAddedReflectors(a->addedReflectors);
+            CreatedOutputFolder created(a->o.out);
             runLevelWalk(a->o, out);
+            created.keep();
             return cli::kExitOk;
         });
     sub->add_option("SCENE", o.scene, "the glTF/GLB scene")->required();

@@ -6,6 +6,7 @@
 #include "sandbox/lib/added_reflector_flag.h"
 #include "sandbox/lib/bench.h"
 #include "sandbox/lib/bench_methods.h"
+#include "sandbox/lib/created_output_folder.h"
 #include "sandbox/lib/level_walk.h"
 #include "sandbox/lib/walk.h"
 
@@ -58,45 +59,6 @@ constexpr const char* kBenchDescription =
     "(PSNR against time, one line per method, Pareto front ringed), DIR/strip_<scene>.png\n"
     "(ground truth | envmap | boxproj | distance cubemap | light field, error maps below) and\n"
     "DIR/pem_<scene>.png (full truth | PEM at a sample and half-way, error maps below).\n";
-
-// What walk and bench write into --out, partial outputs and temporaries included.
-bool isOwnOutput(const std::string& name) {
-    static const std::regex own(R"(((frame_\d+|contact_sheet|accuracy_vs_time|strip_.+)\.png)"
-                                R"(|frames\.csv|bench\.(csv|md))(\.tmp-\d+)?)"
-                                R"(|probes?(\.(tmp|old)-\d+)?)");
-    return std::regex_match(name, own);
-}
-
-// A walk or bench that fails leaves no output folder it created: unless kept, the guard
-// removes the folders --out made (create_directories may make several) on the way out,
-// provided they hold nothing but this tool's own partial outputs.
-class CreatedOutputFolder {
-public:
-    explicit CreatedOutputFolder(std::string dir)
-        : dir_(std::move(dir)), created_(outermostMissingFolder(dir_)) {}
-    CreatedOutputFolder(const CreatedOutputFolder&) = delete;
-    CreatedOutputFolder& operator=(const CreatedOutputFolder&) = delete;
-    void keep() { created_.clear(); }
-    ~CreatedOutputFolder() {
-        namespace fs = std::filesystem;
-        if (created_.empty()) return;
-        try {
-            const std::vector<fs::directory_entry> entries(fs::directory_iterator(dir_),
-                                                           fs::directory_iterator{});
-            for (const fs::directory_entry& e : entries)
-                if (!isOwnOutput(e.path().filename().string())) return;
-            for (const fs::directory_entry& e : entries)
-                fs::remove_all(e.path());
-            removeEmptyFoldersUpTo(dir_, created_);
-        } catch (const std::exception&) {
-            // Leaving a folder behind is the lesser harm; the run's own error is reported.
-        }
-    }
-
-private:
-    std::string dir_;
-    std::filesystem::path created_;
-};
 
 // What walk's flags set; --size and --frames are resolved once the mode is known.
 struct WalkArgs {

@@ -1,0 +1,84 @@
+// specula-sandbox level through the shell, on the bundled two-room scene (a probe per room,
+// influences overlapping at the doorway): it bakes the level, walks the mirror sphere from
+// one probe to the other and writes a frame row per frame with a PSNR per blend, and a
+// summary row per blend; bad paths are usage errors naming the flag and leave no folder.
+#include "support/shell_tool.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kTool = fs::path(SPECULA_BIN_DIR) / "specula-sandbox";
+const fs::path kTwoRooms = fs::path(SPECULA_SOURCE_DIR) / "assets/two_rooms/two_rooms.gltf";
+const fs::path kRoom = fs::path(SPECULA_SOURCE_DIR) / "assets/room/room.gltf";
+
+using specula::test::shellQuote;
+using specula::test::TempDir;
+using specula::test::ToolRun;
+
+ToolRun level(const std::string& args) {
+    return specula::test::runShellTool(kTool, "level " + args);
+}
+
+std::vector<std::string> linesOf(const fs::path& file) {
+    std::ifstream in(file);
+    std::vector<std::string> out;
+    for (std::string line; std::getline(in, line);)
+        out.push_back(line);
+    return out;
+}
+
+TEST(SandboxLevel, WalksThroughBothRoomsAndWritesAFrameRowPerFrame) {
+    TempDir dir("level-walk");
+    const fs::path out = dir.path / "out";
+    const ToolRun r = level(shellQuote(kTwoRooms.string()) + " --frames 5 --size 64x48 " +
+                            "--face-res 32 --sky '' --out " + shellQuote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out / "level/level.json"));
+    EXPECT_TRUE(fs::exists(out / "level/room_a_probe/manifest.json"));
+    EXPECT_TRUE(fs::exists(out / "level/room_b_probe/manifest.json"));
+    const std::vector<std::string> frames = linesOf(out / "frames.csv");
+    ASSERT_EQ(frames.size(), 6u);
+    EXPECT_EQ(frames[0].rfind("frame,x,y,z,psnr_nearest,psnr_engine,psnr_visibility", 0), 0u);
+    // The walk starts at room A's probe (x = -3) and ends at room B's (x = 3).
+    EXPECT_EQ(frames[1].rfind("0,-3,1.2,0,", 0), 0u) << frames[1];
+    EXPECT_EQ(frames[5].rfind("4,3,1.2,0,", 0), 0u) << frames[5];
+    EXPECT_NE(frames[1].find("room_a_probe:1.000"), std::string::npos) << frames[1];
+    EXPECT_NE(frames[5].find("room_b_probe:1.000"), std::string::npos) << frames[5];
+    const std::vector<std::string> summary = linesOf(out / "summary.csv");
+    ASSERT_GE(summary.size(), 4u);
+    EXPECT_EQ(summary[1].rfind("nearest,", 0), 0u);
+    EXPECT_EQ(summary[2].rfind("engine,", 0), 0u);
+    EXPECT_EQ(summary[3].rfind("visibility,", 0), 0u);
+    EXPECT_NE(r.out.find("visibility"), std::string::npos);
+}
+
+TEST(SandboxLevel, BadPathsAreUsageErrorsNamingTheFlagAndLeaveNoFolder) {
+    TempDir dir("level-bad");
+    for (const std::string& args :
+         {std::string("--path '1,2;3,4,5'"), std::string("--k 0"), std::string("--frames 1")}) {
+        const fs::path out = dir.path / "out";
+        const ToolRun r = level(shellQuote(kTwoRooms.string()) + " " + args + " --out " +
+                                shellQuote(out.string()));
+        EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+        const std::string flag = args.substr(0, args.find(' '));
+        EXPECT_NE(r.err.find("error: " + flag + ":"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(out)) << args;
+    }
+    // The room has one probe: a walk through "every probe" needs a path.
+    const fs::path out = dir.path / "one";
+    const ToolRun r = level(shellQuote(kRoom.string()) + " --frames 2 --size 32x24 --face-res 8 " +
+                            "--out " + shellQuote(out.string()));
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("--path"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+} // namespace
