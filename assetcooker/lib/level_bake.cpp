@@ -140,7 +140,7 @@ std::string folderNameFor(const std::string& name) {
     std::string out;
     for (char c : name)
         out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-    return out.empty() || out == "level" ? "probe_" + out : out;
+    return out.empty() ? "probe" : out;
 }
 
 // The level folder may be written when it is missing, empty, or holds a level index.

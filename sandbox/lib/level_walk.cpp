@@ -4,6 +4,7 @@
 #include "components/reflection_probe/distance/distance_level_cpu.h"
 #include "components/reflection_probe/probe_setup.h"
 #include "engine/core/error.h"
+#include "engine/core/file_write.h"
 #include "engine/core/glsl_host.h"
 #include "engine/core/progress.h"
 #include "engine/image/compare.h"
@@ -15,7 +16,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -165,7 +165,8 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
             side = -1.f;
     }
 
-    std::ofstream csv(fs::path(o.out) / "frames.csv");
+    // Both tables are written once, complete and checked (writeFileAtomically), at the end.
+    std::ostringstream csv;
     csv << "frame,x,y,z,psnr_nearest,psnr_engine,psnr_visibility,probes_engine,"
            "hidden_share,fallback_pixels,mirror_pixels\n";
     std::array<std::vector<double>, 3> psnr, overlapPsnr;
@@ -272,7 +273,7 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
     }
     roots.setOffset(scene.registry, glm::vec3(0.f));
 
-    std::ofstream summary(fs::path(o.out) / "summary.csv");
+    std::ostringstream summary;
     summary << "blend,psnr_mean,psnr_worst,overlap_psnr_mean,overlap_psnr_worst,pop_rms,"
                "truth_change_rms,pop_frame,pop_excess_rms\n";
     const auto mean = [](const std::vector<double>& v) {
@@ -330,6 +331,8 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
     if (firstOutsideFrame >= 0)
         log << "warning: the reflector leaves every influence volume (first at frame "
             << firstOutsideFrame << "): the nearest probe answers there\n";
+    writeFileAtomically((fs::path(o.out) / "frames.csv").string(), csv.str());
+    writeFileAtomically((fs::path(o.out) / "summary.csv").string(), summary.str());
     log << frames << " frames, " << result.overlapFrames
         << " with two or more probes at the reflector -> " << o.out << "/frames.csv\n";
     if (!worstTiles.empty())
