@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include <nlohmann/json.hpp>
 
@@ -91,17 +90,23 @@ bool blendsBefore(const ProbeVolume& a, const ProbeVolume& b) {
     return a.name < b.name;
 }
 
-ProbeBlend blendProbes(std::span<const ProbeVolume> probes, glm::vec3 p, int k) {
-    std::vector<std::size_t> order(probes.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
+std::vector<std::size_t> influencingProbes(std::span<const ProbeVolume> probes, glm::vec3 p,
+                                           int k) {
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < probes.size(); ++i)
+        if (influenceWeight(probes[i], p) > 0.f) order.push_back(i);
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         return blendsBefore(probes[a], probes[b]);
     });
+    if (order.size() > std::size_t(std::max(k, 0))) order.resize(std::size_t(std::max(k, 0)));
+    return order;
+}
+
+ProbeBlend blendProbes(std::span<const ProbeVolume> probes, glm::vec3 p, int k) {
     ProbeBlend blend;
-    for (std::size_t i : order) {
-        if (int(blend.weights.size()) >= k || blend.sky <= 0.f) break;
+    for (std::size_t i : influencingProbes(probes, p, k)) {
+        if (blend.sky <= 0.f) break;
         const float w = influenceWeight(probes[i], p) * blend.sky;
-        if (w <= 0.f) continue;
         blend.weights.emplace_back(i, w);
         blend.sky -= w;
     }

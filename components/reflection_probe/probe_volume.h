@@ -61,6 +61,9 @@ struct ProbeBlend {
     float sky = 1.f;                                    // 1 - sum of the weights
 };
 ProbeBlend blendProbes(std::span<const ProbeVolume> probes, glm::vec3 p, int k);
+// The probes whose influence reaches p, in blend order, at most k: what a blend that may
+// drop some of them (by visibility) walks, past where the engine's weights already sum to 1.
+std::vector<std::size_t> influencingProbes(std::span<const ProbeVolume> probes, glm::vec3 p, int k);
 
 // The volume's members as JSON (world space, the level index's form) and back.
 nlohmann::json toJson(const ProbeVolume& v);

@@ -102,18 +102,18 @@ LevelSample CpuDistanceLevel::radiance(glm::vec3 p, glm::vec3 lhat, LevelBlend b
         if (out.sky > 0.f) out.radiance += out.sky * sky();
         return out;
     }
-    // Visibility: the engine's order and influences, each probe kept only where it sees.
-    float remaining = 1.f;
-    for (const auto& [i, w] : engine.weights) {
-        (void)w;
+    // Visibility: the engine's order and influences, each probe weighed by how surely it
+    // sees what it proposes (shaders/distance_seen.glsl.h); every probe with influence here,
+    // not only those the engine's weights reached before summing to 1, so a hidden first
+    // probe leaves its share to the next ones.
+    float remaining = 1.f, confidence = 0.f;
+    for (const std::size_t i : influencingProbes(volumes_, p, k)) {
         const ProbeVolume& v = volumes_[i];
         const CpuDistanceProbe::Seen s = seen(int(i), p, lhat);
         out.fetches += s.fetches;
-        if (!s.seen) {
-            ++out.hidden;
-            continue;
-        }
-        const float weight = influenceWeight(v, p) * remaining;
+        if (!s.seen) ++out.hidden;
+        confidence = std::min(1.f, confidence + influenceWeight(v, p) * s.visibility);
+        const float weight = influenceWeight(v, p) * s.visibility * remaining;
         if (weight <= 0.f) continue;
         out.radiance += weight * s.radiance;
         out.weights.emplace_back(int(i), weight);
@@ -137,6 +137,24 @@ LevelSample CpuDistanceLevel::radiance(glm::vec3 p, glm::vec3 lhat, LevelBlend b
         w *= scale;
     out.sky = skyShare;
     if (skyShare > 0.f) out.radiance += skyShare * sky();
+    out.confidence = confidence;
+    if (confidence >= 1.f) return out;
+    // Confidence: the seen probes' influence, the sum of influence x visibility (at most 1).
+    // Below 1 the result fades towards the engine's blend, so a probe entering over its blend
+    // distance, or a verdict near its edge, changes the pixel gradually, never in one frame.
+    const LevelSample e = radiance(p, lhat, LevelBlend::Engine, k);
+    out.radiance = confidence * out.radiance + (1.f - confidence) * e.radiance;
+    for (auto& [i, w] : out.weights)
+        w *= confidence;
+    for (const auto& [i, w] : e.weights) {
+        auto same = std::find_if(out.weights.begin(), out.weights.end(),
+                                 [&](const auto& q) { return q.first == i; });
+        if (same != out.weights.end())
+            same->second += (1.f - confidence) * w;
+        else
+            out.weights.emplace_back(i, (1.f - confidence) * w);
+    }
+    out.fetches += e.fetches;
     return out;
 }
 

@@ -27,6 +27,9 @@ struct LevelSample {
     int hidden = 0;
     bool fallback = false;
     bool outside = false; // p lies in no influence volume: the nearest probe answered
+    // Visibility: the seen probes' influence x visibility, summed (at most 1); below 1 the
+    // answer is that share of the seen probes' blend and the rest the engine's.
+    float confidence = 0.f;
 };
 
 class CpuDistanceLevel {

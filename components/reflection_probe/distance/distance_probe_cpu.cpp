@@ -112,7 +112,7 @@ glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches,
 
 CpuDistanceProbe::Seen CpuDistanceProbe::seenRadiance(glm::vec3 x, glm::vec3 lhat) const {
     const auto s = twin_->single.probeSampleSeen(x, lhat, config_.params);
-    return {s.radiance, s.seen, s.fetches, s.t};
+    return {s.radiance, s.visibility, s.seen, s.fetches, s.t};
 }
 
 } // namespace specula

@@ -23,7 +23,8 @@ public:
     // (shaders/distance_seen.glsl.h): what blending probes by visibility weighs.
     struct Seen {
         glm::vec3 radiance{0.f};
-        bool seen = false;
+        float visibility = 0.f; // in [0, 1]
+        bool seen = false;      // visibility >= 0.5
         int fetches = 0;
         float t = 0.f; // along the ray to the hit it proposes (d_inf: the sky)
     };

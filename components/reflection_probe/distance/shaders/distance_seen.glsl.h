@@ -17,32 +17,44 @@ SHARED_CONST float kSeenRelativeSlack = 0.04f;
 
 struct SeenSample {
     vec3 radiance;
-    bool seen;   // the probe sees the reflector point, and the hit agrees with its distances
+    // How surely the probe sees what it proposes, in [0, 1]: 1 when the reflector point lies
+    // in front of its stored surface and (rectifying methods) the hit agrees with its stored
+    // distances within a band of kSeenRelativeSlack |q| + d_e; falling linearly to 0 at
+    // twice the band, so a verdict near the edge fades instead of flipping between frames.
+    float visibility;
+    bool seen;   // visibility >= 0.5
     int fetches; // texture fetches spent
     float t;     // along the ray to the hit proposed (d_inf: the sky)
 };
 
-// q (probe-local) is not behind the probe's stored surface in its direction.
-bool probeSeesPoint(vec3 q, DistanceParams p) {
+float seenBand(vec3 q, DistanceParams p) {
+    return kSeenRelativeSlack * length(q) + p.tolerance;
+}
+
+// 1 while q (probe-local) is not behind the farthest of the texels around its direction by
+// more than the band, 0 beyond twice the band.
+float pointVisibility(vec3 q, DistanceParams p) {
     vec4 d = fetchDistanceGather(0, q);
     float far = max(max(d.x, d.y), max(d.z, d.w));
-    return length(q) <= far * (1.0f + kSeenRelativeSlack) + p.tolerance;
+    float band = seenBand(q, p);
+    return clamp(2.0f - (length(q) - far) / band, 0.0f, 1.0f);
 }
 
-// q lies on the probe's stored surface in its direction: between the nearest and farthest
-// of the texels around it.
-bool onStoredSurface(vec3 q, DistanceParams p) {
+// 1 while q lies on the probe's stored surface (the nearest of the texels around its
+// direction within the band), 0 beyond twice the band.
+float surfaceAgreement(vec3 q, DistanceParams p) {
     vec4 e = abs(fetchDistanceGather(0, q) - vec4(length(q)));
-    return min(min(e.x, e.y), min(e.z, e.w)) <= kSeenRelativeSlack * length(q) + p.tolerance;
+    float band = seenBand(q, p);
+    return clamp(2.0f - min(min(e.x, e.y), min(e.z, e.w)) / band, 0.0f, 1.0f);
 }
 
-// The probe's composite lookup of the ray x + t lhat (probe-local) with its verdict: seen
-// when the reflector point x lies in front of the stored surface, and, for a rectifying
-// method, when the stored distance at the hit the search ended on agrees with the hit's
-// own distance (a search that found no crossing ends where they disagree).
+// The probe's composite lookup of the ray x + t lhat (probe-local) with its verdict: the
+// reflector point's visibility, times, for a rectifying method, the agreement of the stored
+// distance at the hit the search ended on with the hit's own distance (a search that found
+// no crossing ends where they disagree).
 SeenSample probeSampleSeen(vec3 x, vec3 lhat, DistanceParams p) {
     SeenSample s;
-    s.seen = probeSeesPoint(x, p);
+    s.visibility = pointVisibility(x, p);
     s.fetches = 1;
     LayerHit h = lookupLayer(p.method, 0, x, lhat, p, makeSpan(0.0f, 2.0f * p.range, p.maxSteps));
     s.fetches += h.fetches;
@@ -50,13 +62,14 @@ SeenSample probeSampleSeen(vec3 x, vec3 lhat, DistanceParams p) {
     if (!h.hit) {
         s.radiance = fetchSky(lhat);
         s.fetches += 1;
-        return s;
+    } else {
+        s.radiance = h.radiance;
+        if (p.method == kMethodBisection || p.method == kMethodSecant) {
+            s.visibility *= surfaceAgreement(x + h.t * lhat, p);
+            s.fetches += 1;
+        }
     }
-    s.radiance = h.radiance;
-    if (p.method == kMethodBisection || p.method == kMethodSecant) {
-        s.seen = s.seen && onStoredSurface(x + h.t * lhat, p);
-        s.fetches += 1;
-    }
+    s.seen = s.visibility >= 0.5f;
     return s;
 }
 
