@@ -1,5 +1,6 @@
 #include "level_bake.h"
 
+#include "assetcooker/lib/probe_sanity.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
@@ -30,17 +31,6 @@ struct PendingProbe {
     std::vector<std::tuple<json, std::string, std::string>> members; // (members, file, field)
 };
 
-glm::vec3 vec3Of(const json& a, const std::string& file, const std::string& field) {
-    if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() ||
-        !a[2].is_number())
-        throw Error(file, field, "expected [x, y, z], got " + a.dump());
-    const glm::vec3 v(a[0].get<float>(), a[1].get<float>(), a[2].get<float>());
-    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) ||
-        glm::any(glm::greaterThan(glm::abs(v), glm::vec3(kMaxCoordinate))))
-        throw Error(file, field, "expected finite coordinates within 1e7 m, got " + a.dump());
-    return v;
-}
-
 // The probe list file's entries merged into `probes` (see LevelProbeSources::file).
 void mergeProbeList(std::vector<PendingProbe>& probes, const std::string& file) {
     const json doc = parseManifestJson(readManifestText(file), file);
@@ -67,7 +57,7 @@ void mergeProbeList(std::vector<PendingProbe>& probes, const std::string& file) 
             target->volume.name = name;
         }
         if (p.contains("position"))
-            target->volume.position = vec3Of(p["position"], file, field + ".position");
+            target->volume.position = probeVec3(p["position"], file, field + ".position");
         json members = p;
         members.erase("name");
         members.erase("position");
@@ -90,24 +80,6 @@ Aabb measuredProxy(const EmbreeScene& env, const Aabb& sceneBounds, glm::vec3 p)
             (sign > 0 ? box.max : box.min)[axis] = p[axis] + sign * reach;
         }
     return box;
-}
-
-// How many of 14 rays from `p` (axes and diagonals) first meet the inside of a one-sided
-// surface: most of them when `p` lies inside a solid.
-int raysFromInside(const EmbreeScene& env, glm::vec3 p) {
-    int inside = 0;
-    for (int i = 0; i < 14; ++i) {
-        glm::vec3 d(0.f);
-        if (i < 6)
-            d[i / 2] = i % 2 ? -1.f : 1.f;
-        else
-            d = glm::normalize(glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
-        const std::optional<Hit> hit = env.intersect(p, d);
-        if (hit && glm::dot(hit->geometricNormal, d) > 0.f &&
-            !(hit->primitive && hit->primitive->material && hit->primitive->material->doubleSided))
-            ++inside;
-    }
-    return inside;
 }
 
 template <class T> std::string checksumOf(const std::vector<T>& v) {
@@ -256,10 +228,15 @@ GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sou
     for (PendingProbe& p : pending) {
         ProbeVolume& v = p.volume;
         validateProbeVolume(v, file, "probe " + v.name);
-        if (const int inside = raysFromInside(env, v.position); inside > 7)
+        // The bake's own placement measurement (probe_sanity.h), at a coarser sampling: the
+        // bake itself refuses such a probe later, this names it before any work.
+        const ProbePlacement placed =
+            measureProbePlacement(scene.registry, scene.markup, v.position, 256);
+        if (placed.hits > 0 && 2 * placed.backHits > placed.hits)
             out.warnings.push_back("probe " + v.name + " lies inside solid geometry (" +
-                                   std::to_string(inside) +
-                                   " of 14 rays from it meet the back of a surface first)");
+                                   std::to_string(placed.backHits) + " of " +
+                                   std::to_string(placed.hits) +
+                                   " rays from it meet the back of a surface first)");
         for (const ProbeVolume& q : out.probes) {
             if (q.name == v.name) throw Error(file, "probe " + v.name, "two probes have this name");
             if (q.priority == v.priority && q.proxy == v.proxy && q.influence == v.influence)
@@ -272,8 +249,8 @@ GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sou
     return out;
 }
 
-LevelProbeInputs levelProbeInputs(ProbeScene& scene, const ProbeVolume& probe,
-                                  const std::string& options) {
+LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& env,
+                                  const ProbeVolume& probe, const std::string& options) {
     const ecs::Registry& reg = scene.registry;
     std::map<std::uint32_t, ecs::Entity> within; // by index: a deterministic order
     for (ecs::Entity e : scene.markup.mirrorEntities)
@@ -282,8 +259,6 @@ LevelProbeInputs levelProbeInputs(ProbeScene& scene, const ProbeVolume& probe,
         if (reg.has<Mesh>(e) && reg.has<Transform>(e) &&
             meshWorldBounds(reg, e).overlaps(probe.proxy))
             within.emplace(e.index, e);
-    const EmbreeScene env(scene.registry,
-                          [&](ecs::Entity e) { return scene.markup.mirrorEntities.count(e) == 0; });
     constexpr int kSide = 32;
     for (int axis = 0; axis < 3; ++axis)
         for (float sign : {-1.f, 1.f})
@@ -337,6 +312,8 @@ LevelCookResult cookLevel(ProbeScene& scene, const LevelCookOptions& options, st
         options.cook.flavour);
     std::set<std::string> folders;
     std::vector<std::pair<LevelProbeEntry, std::string>> plan; // (entry, reason; empty: fresh)
+    const EmbreeScene env(scene.registry,
+                          [&](ecs::Entity e) { return scene.markup.mirrorEntities.count(e) == 0; });
     for (const ProbeVolume& v : gathered.probes) {
         LevelProbeEntry e;
         e.volume = v;
@@ -344,7 +321,7 @@ LevelCookResult cookLevel(ProbeScene& scene, const LevelCookOptions& options, st
         for (int k = 2; folders.count(e.folder); ++k)
             e.folder = folderNameFor(v.name) + "_" + std::to_string(k);
         folders.insert(e.folder);
-        e.inputs = levelProbeInputs(scene, v, index.flavour + ' ' + options.optionsText);
+        e.inputs = levelProbeInputs(scene, env, v, index.flavour + ' ' + options.optionsText);
         std::string reason = staleReason(previous, dir, e.folder, v, e.inputs);
         if (reason.empty() && previous)
             for (const LevelProbeEntry& old : previous->probes)

@@ -6,6 +6,7 @@
 // before it intact (each probe folder is replaced atomically, the index after each probe).
 #include "assetcooker/lib/cook.h"
 #include "components/reflection_probe/level_index.h"
+#include "engine/raytrace/embree_scene.h"
 
 #include <ostream>
 #include <string>
@@ -43,9 +44,10 @@ GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sou
 // The checksums a probe is baked from: the meshes within its reach (the environment meshes
 // the probe sees along 6 x 32 x 32 directions, those overlapping its proxy, and every
 // reflector), each in world space with its material; `options` (the flavour's settings,
-// as text) with the volume; the sky file's bytes.
-LevelProbeInputs levelProbeInputs(ProbeScene& scene, const ProbeVolume& probe,
-                                  const std::string& options);
+// as text) with the volume; the sky file's bytes. `environment`: the scene's Embree BVH
+// without the reflectors, built once for all probes of a level.
+LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& environment,
+                                  const ProbeVolume& probe, const std::string& options);
 
 struct LevelCookOptions {
     CookOptions cook;        // scene, sky, out (the level folder), flavour, progress

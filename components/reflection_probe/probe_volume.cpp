@@ -1,5 +1,6 @@
 #include "probe_volume.h"
 
+#include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 
@@ -26,13 +27,7 @@ glm::vec3 vec3Member(const json& obj, const char* key, const std::string& file,
                      const std::string& field) {
     const std::string where = field + "." + key;
     if (!obj.is_object() || !obj.contains(key)) throw Error(file, where, "missing");
-    const json& a = obj[key];
-    if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() ||
-        !a[2].is_number())
-        throw Error(file, where, "expected [x, y, z], got " + a.dump());
-    const glm::vec3 v(a[0].get<float>(), a[1].get<float>(), a[2].get<float>());
-    if (!finite(v)) throw Error(file, where, "expected finite numbers, got " + a.dump());
-    return v;
+    return probeVec3(obj[key], file, where);
 }
 
 float numberMember(const json& obj, const char* key, const std::string& file,
@@ -72,6 +67,16 @@ float volumeOf(const ProbeInfluence& i) {
 }
 
 } // namespace
+
+glm::vec3 probeVec3(const json& a, const std::string& file, const std::string& field) {
+    if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() ||
+        !a[2].is_number())
+        throw Error(file, field, "expected [x, y, z], got " + a.dump());
+    const glm::vec3 v(a[0].get<float>(), a[1].get<float>(), a[2].get<float>());
+    if (!finite(v) || glm::any(glm::greaterThan(glm::abs(v), glm::vec3(kMaxCoordinate))))
+        throw Error(file, field, "expected finite coordinates within 1e7 m, got " + a.dump());
+    return v;
+}
 
 float influenceDepth(const ProbeInfluence& i, glm::vec3 p) {
     const bool sphere = i.shape == ProbeInfluence::Shape::Sphere;

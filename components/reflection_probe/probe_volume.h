@@ -65,6 +65,10 @@ ProbeBlend blendProbes(std::span<const ProbeVolume> probes, glm::vec3 p, int k);
 // drop some of them (by visibility) walks, past where the engine's weights already sum to 1.
 std::vector<std::size_t> influencingProbes(std::span<const ProbeVolume> probes, glm::vec3 p, int k);
 
+// [x, y, z] of finite numbers within kMaxCoordinate (manifest_fields.h); throws Error naming
+// `file` and `field`.
+glm::vec3 probeVec3(const nlohmann::json& a, const std::string& file, const std::string& field);
+
 // The volume's members as JSON (world space, the level index's form) and back.
 nlohmann::json toJson(const ProbeVolume& v);
 // Reads the level index's form; throws Error naming `file` and `field` + the member.

@@ -1,8 +1,6 @@
 #include "distance_level_cpu.h"
 
 #include "engine/core/error.h"
-#include "engine/image/sampling.h"
-#include "engine/scene/shading.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -78,10 +76,8 @@ LevelSample CpuDistanceLevel::radiance(glm::vec3 p, glm::vec3 lhat, LevelBlend b
     };
     // The sky every probe shares (the level is baked under one sky): a direction lookup.
     const auto sky = [&] {
-        const DistanceProbeAsset& a = *assets_.front();
-        if (a.sky.empty()) return glm::vec3(0.f);
         ++out.fetches;
-        return glm::vec3(sampleBilinear(a.sky, glsl::equirectUv(lhat), Wrap::Repeat, Wrap::Clamp));
+        return twins_.front()->sky(lhat);
     };
     const ProbeBlend engine = blendProbes(volumes_, p, k);
     if (blend == LevelBlend::Nearest || engine.weights.empty()) {

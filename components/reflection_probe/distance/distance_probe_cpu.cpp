@@ -110,6 +110,10 @@ glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches,
     return c;
 }
 
+glm::vec3 CpuDistanceProbe::sky(glm::vec3 dir) const {
+    return twin_->single.fetchSky(dir);
+}
+
 CpuDistanceProbe::Seen CpuDistanceProbe::seenRadiance(glm::vec3 x, glm::vec3 lhat) const {
     const auto s = twin_->single.probeSampleSeen(x, lhat, config_.params);
     return {s.radiance, s.visibility, s.seen, s.fetches, s.t};

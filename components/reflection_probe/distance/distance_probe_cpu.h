@@ -30,6 +30,9 @@ public:
     };
     Seen seenRadiance(glm::vec3 x, glm::vec3 lhat) const;
 
+    // The asset's sky along dir, as the shader's fetchSky reads it (black without one).
+    glm::vec3 sky(glm::vec3 dir) const;
+
     const DistanceLookupConfig& config() const { return config_; }
 
 private:
