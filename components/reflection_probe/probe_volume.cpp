@@ -78,10 +78,13 @@ glm::vec3 probeVec3(const json& a, const std::string& file, const std::string& f
     return v;
 }
 
+int influenceShapeCode(const ProbeInfluence& i) {
+    return i.shape == ProbeInfluence::Shape::Sphere ? glsl::kInfluenceSphere : glsl::kInfluenceBox;
+}
+
 float influenceDepth(const ProbeInfluence& i, glm::vec3 p) {
-    const bool sphere = i.shape == ProbeInfluence::Shape::Sphere;
-    return glsl::influenceDepthOf(sphere ? glsl::kInfluenceSphere : glsl::kInfluenceBox, i.box.min,
-                                  i.box.max, i.centre, i.radius, p);
+    return glsl::influenceDepthOf(influenceShapeCode(i), i.box.min, i.box.max, i.centre, i.radius,
+                                  p);
 }
 
 float influenceWeight(const ProbeVolume& v, glm::vec3 p) {

@@ -45,6 +45,8 @@ struct ProbeVolume {
 
 // How far `p` lies inside the influence volume, in metres: the distance to its nearest
 // boundary face (box) or to its surface (sphere); negative outside.
+// The shape as shaders/probe_influence.glsl.h codes it (kInfluenceBox, kInfluenceSphere).
+int influenceShapeCode(const ProbeInfluence& influence);
 float influenceDepth(const ProbeInfluence& influence, glm::vec3 p);
 // The probe's own weight at `p` before blending: 0 outside the influence, rising linearly
 // over the blend distance from the boundary to 1 (1 everywhere inside when the blend

@@ -1,6 +1,8 @@
 #include "reflection_probe_system.h"
 
+#include "components/reflection_probe/distance/distance_level_store.h"
 #include "components/reflection_probe/distance/distance_store.h"
+#include "components/reflection_probe/level_index.h"
 #include "components/reflection_probe/lightfield/lightfield_store.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/pem/pem_store.h"
@@ -17,6 +19,7 @@ void ProbeFrameStats::drew(const std::string& variantName) {
 
 ReflectionProbeSystem::ReflectionProbeSystem() : timer_(std::make_unique<gpu::GpuTimer>()) {
     addFlavour(std::make_unique<DistanceStore>());
+    addFlavour(std::make_unique<DistanceLevelStore>());
     addFlavour(std::make_unique<LightFieldStore>());
     addFlavour(std::make_unique<PemStore>());
 }
@@ -32,8 +35,12 @@ void ReflectionProbeSystem::addFlavour(std::unique_ptr<ProbeFlavourStore> store)
 }
 
 ProbeFlavourStore& ReflectionProbeSystem::storeFor(const ProbeManifest& manifest) const {
+    // A level index (level_index.h) goes to its flavour's level store ("distance-level").
+    const bool level = manifest.json.is_object() && manifest.json.contains("format") &&
+                       manifest.json["format"] == "specula-level";
     const std::string flavour =
-        ManifestFields{manifest.path}.probeFlavour(manifest.json, kProbeFormatVersion);
+        level ? levelIndexFromJson(manifest.json, manifest.path).flavour + "-level"
+              : ManifestFields{manifest.path}.probeFlavour(manifest.json, kProbeFormatVersion);
     std::string known;
     for (const auto& s : stores_) {
         if (s->flavour() == flavour) return *s;

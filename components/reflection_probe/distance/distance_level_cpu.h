@@ -1,10 +1,13 @@
 #pragma once
-// A baked level of distance probes (level_index.h) looked up on the CPU, each reflector
-// point blending up to K probes three ways: the nearest probe alone; engine-style (the
-// influence volumes, blend distances and priorities of probe_volume.h, the rest from the
-// sky); and by visibility, where a probe counts only when it sees the reflector point and
-// the hit its lookup proposes (shaders/distance_seen.glsl.h), so a probe behind a wall adds
-// nothing. Every probe runs the single-layer twin of the shader with the given method.
+// A baked level of distance probes (level_index.h) looked up on the CPU: the twin of the
+// level shader (DistanceLevelStore), running the same blend code
+// (shaders/distance_level_blend.glsl.h). Each reflector point blends up to K probes three
+// ways: the nearest probe alone; engine-style (the influence volumes, blend distances and
+// priorities of probe_volume.h, the rest from the sky); and by visibility, where a probe
+// counts only when it sees the reflector point and the hit its lookup proposes
+// (shaders/distance_seen.glsl.h), so a probe behind a wall adds nothing. Every probe runs
+// the single-layer twin of the shader with the given method.
+#include "components/reflection_probe/distance/distance_level.h"
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "components/reflection_probe/level_index.h"
 
@@ -13,9 +16,6 @@
 #include <vector>
 
 namespace specula {
-
-enum class LevelBlend { Nearest, Engine, Visibility };
-const char* toString(LevelBlend b);
 
 struct LevelSample {
     glm::vec3 radiance{0.f};
@@ -40,18 +40,21 @@ public:
     CpuDistanceLevel(const std::string& levelIndexPath, const DistanceProbe& settings);
     ~CpuDistanceLevel();
 
-    // Radiance reflected at world point `p` along unit `lhat`.
+    // Radiance reflected at world point `p` along unit `lhat`; k in 1 .. kMaxLevelK.
     LevelSample radiance(glm::vec3 p, glm::vec3 lhat, LevelBlend blend, int k) const;
 
     // Probe i's own lookup of the ray from world point p along lhat, with its verdict.
     CpuDistanceProbe::Seen seen(int i, glm::vec3 p, glm::vec3 lhat) const;
 
     const std::vector<ProbeVolume>& volumes() const { return volumes_; }
-    // The probe whose position is nearest to p (ties: the first by name).
+    // The probe whose position is nearest to p (ties: the first in blend order).
     int nearest(glm::vec3 p) const;
+    // Probe indices in blend order (probe_volume.h blendsBefore), as the shader walks them.
+    const std::vector<int>& blendOrder() const { return order_; }
 
 private:
     std::vector<ProbeVolume> volumes_;
+    std::vector<int> order_;
     std::vector<std::unique_ptr<DistanceProbeAsset>> assets_;
     std::vector<std::unique_ptr<CpuDistanceProbe>> twins_;
 };

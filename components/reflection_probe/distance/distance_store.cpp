@@ -1,57 +1,11 @@
 #include "distance_store.h"
 
+#include "components/reflection_probe/distance/distance_textures.h"
 #include "engine/gpu/shader.h"
 
 #include <algorithm>
 
 namespace specula {
-
-namespace {
-
-std::size_t layerTextureBytes(const DistanceProbeAsset& a, int layerCount) {
-    return std::size_t(a.faceRes) * std::size_t(a.faceRes) * 6 * std::size_t(layerCount) * 16;
-}
-
-std::size_t skyTextureBytes(const DistanceProbeAsset& a) {
-    return std::size_t(a.sky.width) * std::size_t(a.sky.height) * 4 * sizeof(float);
-}
-
-// Layers 0 .. layerCount-1 of the asset as one RGBA32F array, six faces per layer.
-gpu::Texture uploadLayers(const DistanceProbeAsset& a, int layerCount) {
-    const int n = a.faceRes;
-    gpu::Texture layers = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
-    const GLuint tex = layers.id();
-    glTextureStorage3D(tex, 1, GL_RGBA32F, n, n, 6 * layerCount);
-    for (int L = 0; L < layerCount; ++L)
-        for (int f = 0; f < 6; ++f)
-            glTextureSubImage3D(tex, 0, 0, 0, 6 * L + f, n, n, 1, GL_RGBA, GL_FLOAT,
-                                a.layers[std::size_t(L)].faces[std::size_t(f)].pixels.data());
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return layers;
-}
-
-gpu::Texture uploadSky(const DistanceProbeAsset& a) {
-    gpu::Texture sky = gpu::Texture::create(GL_TEXTURE_2D);
-    const GLuint s = sky.id();
-    std::vector<float> rgba(std::size_t(a.sky.width) * a.sky.height * 4);
-    for (int y = 0; y < a.sky.height; ++y)
-        for (int x = 0; x < a.sky.width; ++x) {
-            const glm::vec4 v = a.sky.rgba(x, y);
-            std::copy(&v[0], &v[0] + 4, &rgba[(std::size_t(y) * a.sky.width + x) * 4]);
-        }
-    glTextureStorage2D(s, 1, GL_RGBA32F, a.sky.width, a.sky.height);
-    glTextureSubImage2D(s, 0, 0, 0, a.sky.width, a.sky.height, GL_RGBA, GL_FLOAT, rgba.data());
-    glTextureParameteri(s, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(s, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(s, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return sky;
-}
-
-} // namespace
 
 DistanceVariant DistanceVariant::filter() const {
     DistanceVariant v = *this;
@@ -77,7 +31,7 @@ gpu::Program DistanceVariant::build() const {
 DistanceProbeGpu DistanceStore::loadProbe(const ProbeManifest& manifest, ProbeFrameStats&) {
     DistanceProbeGpu g;
     g.asset = assets_.get(manifest.path, [&] { return readDistanceProbe(manifest); });
-    if (!g.asset->sky.empty()) g.sky = uploadSky(*g.asset);
+    if (!g.asset->sky.empty()) g.sky = uploadSkyTexture(g.asset->sky);
     return g;
 }
 
@@ -89,7 +43,9 @@ void DistanceStore::applySettings(DistanceProbeGpu& g, const DistanceProbe& sett
     // texture that already holds them is kept, so a method edit re-uploads only to grow.
     const int needed = (config.features & kFeatureLayers) ? int(a.layers.size()) : 1;
     if (needed > g.layersUploaded) {
-        g.layers = uploadLayers(a, needed);
+        g.layers = createCubeArray(a.faceRes, needed);
+        for (int L = 0; L < needed; ++L)
+            uploadCube(g.layers, L, a.layers[std::size_t(L)]);
         g.layersUploaded = needed;
         ++stats.textureUploads;
     }
@@ -100,7 +56,7 @@ void DistanceStore::applySettings(DistanceProbeGpu& g, const DistanceProbe& sett
 
 std::size_t DistanceStore::gpuBytesOf(const DistanceProbeGpu& g) const {
     const DistanceProbeAsset& a = *g.asset;
-    return layerTextureBytes(a, g.layersUploaded) + (a.sky.empty() ? 0 : skyTextureBytes(a));
+    return cubeArrayBytes(a.faceRes, g.layersUploaded) + (a.sky.empty() ? 0 : skyTextureBytes(a.sky));
 }
 
 void DistanceStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector,

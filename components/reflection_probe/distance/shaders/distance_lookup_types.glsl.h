@@ -18,4 +18,18 @@ struct LayerHit {
     float t;     // distance along the ray to the surface found (layers compete on it)
 };
 
+// A probe's lookup with its verdict on whether it sees what it proposes
+// (distance_seen.glsl.h), what a level blends (distance_level_blend.glsl.h).
+struct SeenSample {
+    vec3 radiance;
+    // How surely the probe sees what it proposes, in [0, 1]: 1 when the reflector point lies
+    // in front of its stored surface and (rectifying methods) the hit agrees with its stored
+    // distances within a band of kSeenRelativeSlack |q| + d_e; falling linearly to 0 at
+    // twice the band, so a verdict near the edge fades instead of flipping between frames.
+    float visibility;
+    bool seen;   // visibility >= 0.5
+    int fetches; // texture fetches spent
+    float t;     // along the ray to the hit proposed (d_inf: the sky)
+};
+
 #endif

@@ -15,18 +15,6 @@
 // centres.
 SHARED_CONST float kSeenRelativeSlack = 0.04f;
 
-struct SeenSample {
-    vec3 radiance;
-    // How surely the probe sees what it proposes, in [0, 1]: 1 when the reflector point lies
-    // in front of its stored surface and (rectifying methods) the hit agrees with its stored
-    // distances within a band of kSeenRelativeSlack |q| + d_e; falling linearly to 0 at
-    // twice the band, so a verdict near the edge fades instead of flipping between frames.
-    float visibility;
-    bool seen;   // visibility >= 0.5
-    int fetches; // texture fetches spent
-    float t;     // along the ray to the hit proposed (d_inf: the sky)
-};
-
 float seenBand(vec3 q, DistanceParams p) {
     return kSeenRelativeSlack * length(q) + p.tolerance;
 }

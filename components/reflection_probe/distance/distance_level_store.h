@@ -1,0 +1,69 @@
+#pragma once
+// The GPU side of levels of distance probes (distance_level.h): a level's probes' composites
+// in one texture array, their lookups and volumes in one uniform block, one shader variant
+// per method, K, blend and output. Each reflector draw passes the probes whose influence
+// volume meets the reflector's bounds; each pixel blends up to K of them
+// (shaders/distance_level_reflector.frag).
+#include "components/reflection_probe/distance/distance_level.h"
+#include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "components/reflection_probe/flavour_store_base.h"
+#include "components/reflection_probe/probe_volume.h"
+#include "components/reflection_probe/shader_variants.h"
+#include "engine/core/glsl_host.h"
+#include "engine/gpu/gl_objects.h"
+
+#include <memory>
+#include <unordered_set>
+#include <string>
+#include <vector>
+
+namespace specula {
+namespace glsl {
+#include "components/reflection_probe/distance/shaders/distance_level_params.glsl.h"
+} // namespace glsl
+
+struct DistanceLevelGpu {
+    std::string indexPath;
+    std::vector<ProbeVolume> volumes; // blend order (probe_volume.h blendsBefore)
+    std::vector<std::shared_ptr<const DistanceProbeAsset>> assets; // (the same order)
+    gpu::Texture composites; // probe i's faces are layers 6i .. 6i+5
+    gpu::Texture sky;
+    gpu::UniformBuffer<glsl::LevelParamsBlock> params;
+    std::uint32_t methodFeature = 0; // the permutation bit of the settings' method
+};
+
+struct DistanceLevelVariant {
+    std::uint32_t features = 0; // the method's bit and kFeatureFresnel
+    int k = 4;
+    int blend = 2;
+    int output = 0;
+
+    auto operator<=>(const DistanceLevelVariant&) const = default;
+    DistanceLevelVariant filter() const;
+    std::string name() const;
+    gpu::Program build() const;
+};
+
+// The most probes one level may hold on this GL context: the uniform block's
+// kMaxLevelProbes, and GL_MAX_ARRAY_TEXTURE_LAYERS / 6.
+int maxLevelProbes();
+
+class DistanceLevelStore final : public FlavourStoreBase<DistanceLevel, DistanceLevelGpu> {
+public:
+    std::string_view flavour() const override { return "distance-level"; }
+    std::string_view settingsName() const override { return "DistanceLevel"; }
+
+private:
+    DistanceLevelGpu loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) override;
+    void applySettings(DistanceLevelGpu& level, const DistanceLevel& settings,
+                       ProbeFrameStats& stats) override;
+    std::size_t gpuBytesOf(const DistanceLevelGpu& level) const override;
+    void drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector, const Reflector& r,
+                       const DistanceLevelGpu& level, const DistanceLevel& settings) override;
+
+    SharedAssets<DistanceProbeAsset> assets_;
+    ShaderVariants<DistanceLevelVariant> variants_;
+    std::unordered_set<ecs::Entity> warnedOutside_;
+};
+
+} // namespace specula
