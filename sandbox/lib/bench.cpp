@@ -64,32 +64,6 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// Median reflector-pass time over enough frames: batches until the median moves by less than
-// 2 % (after minFrames), or maxFrames. The first frames after a probe change are warm-up
-// (shader compile, texture upload; llvmpipe's first timer query can be garbage) and dropped.
-double timeReflectorPass(FrameRenderer& fr, const CameraView& cam, int minFrames, int maxFrames,
-                         int& frames) {
-    for (int i = 0; i < 2; ++i)
-        fr.draw(cam);
-    std::vector<double> samples;
-    double previous = std::numeric_limits<double>::quiet_NaN();
-    const int batch = std::max(2, minFrames / 2);
-    while (int(samples.size()) < maxFrames) {
-        for (int i = 0; i < batch && int(samples.size()) < maxFrames; ++i) {
-            fr.draw(cam);
-            samples.push_back(fr.passMs());
-        }
-        const double m = gpu::medianMs(samples);
-        if (int(samples.size()) >= minFrames && std::isfinite(m) && std::isfinite(previous) &&
-            std::abs(m - previous) <= 0.02 * m)
-            break;
-        previous = m;
-    }
-    frames = int(
-        std::count_if(samples.begin(), samples.end(), [](double s) { return std::isfinite(s); }));
-    return gpu::medianMs(samples);
-}
-
 // Texture fetches per reflector pixel, counted by the CPU twin on the shader's own inputs
 // (probe-local position and reflected direction read back from the GPU).
 double countFetches(FrameRenderer& fr, ReflectionScene& scene, const CameraView& cam,

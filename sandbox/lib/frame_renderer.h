@@ -42,6 +42,12 @@ private:
     double wallMs_ = 0.0;
 };
 
+// Median reflector-pass time over enough frames: batches until the median moves by less than
+// 2 % (after minFrames), or maxFrames; `frames` gets the samples it rests on. The first
+// frames after a probe change are warm-up (shader compile, texture upload) and dropped.
+double timeReflectorPass(FrameRenderer& fr, const CameraView& cam, int minFrames, int maxFrames,
+                         int& frames);
+
 // GL_RENDERER names a CPU rasteriser (llvmpipe, softpipe, SwiftShader).
 bool softwareRasteriser();
 

@@ -1,15 +1,19 @@
 #include "level_walk.h"
 
 #include "assetcooker/lib/level_bake.h"
+#include "components/reflection_probe/distance/distance_level.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
 #include "components/reflection_probe/probe_setup.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/glsl_host.h"
 #include "engine/core/progress.h"
+#include "engine/gpu/context.h"
 #include "engine/image/compare.h"
 #include "engine/image/contact_sheet.h"
 #include "engine/image/image_io.h"
+#include "sandbox/lib/frame_renderer.h"
+#include "sandbox/lib/reflection_scene.h"
 
 #include <algorithm>
 #include <array>
@@ -102,6 +106,40 @@ std::string weightsText(const CpuDistanceLevel& level, const LevelSample& s) {
     return t.str();
 }
 
+// The level shader's reflector pass for every blend and K = 1, 2, 4 against one probe's
+// envmap pass (the probe nearest to the reflector), all from `camera` with the reflector
+// where it is now.
+std::vector<LevelPassTime> timeLevelPasses(ReflectionScene& rs, const std::string& levelDir,
+                                           const DistanceProbe& lookup, const CameraView& camera,
+                                           glm::vec3 reflector, std::string& timer) {
+    const std::string index = (fs::path(levelDir) / "level.json").string();
+    const LevelIndex level = readLevelIndex(index);
+    const auto nearest = std::min_element(level.probes.begin(), level.probes.end(),
+                                          [&](const auto& a, const auto& b) {
+                                              return glm::distance(a.volume.position, reflector) <
+                                                     glm::distance(b.volume.position, reflector);
+                                          });
+    FrameRenderer fr(rs, camera.width, camera.height);
+    timer = fr.timerSource();
+    constexpr int kMinFrames = 6, kMaxFrames = 12;
+    DistanceProbe envmap = lookup;
+    envmap.method = DistanceMethod::Envmap;
+    rs.setProbe((fs::path(levelDir) / nearest->folder / "manifest.json").string(), envmap);
+    int frames = 0;
+    const double envmapMs = timeReflectorPass(fr, camera, kMinFrames, kMaxFrames, frames);
+    std::vector<LevelPassTime> times{{"envmap (one probe)", 1, envmapMs, 1.0, frames}};
+    for (const LevelBlend blend : kBlends)
+        for (const int k : {1, 2, 4}) {
+            if (blend == LevelBlend::Nearest && k > 1) continue; // K does not change it
+            rs.setProbe(index, DistanceLevel{lookup, blend, k});
+            LevelPassTime t{toString(blend), k, 0, 0, 0};
+            t.ms = timeReflectorPass(fr, camera, kMinFrames, kMaxFrames, t.frames);
+            t.ratioToEnvmap = envmapMs > 0 ? t.ms / envmapMs : 0.0;
+            times.push_back(t);
+        }
+    return times;
+}
+
 struct FrameImages {
     Image truth, mask;
     std::array<Image, 3> blends;
@@ -110,7 +148,8 @@ struct FrameImages {
 } // namespace
 
 LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
-    ProbeScene scene(o.scene, o.sky, o.addedReflectors);
+    ReflectionScene reflectionScene(o.scene, o.sky, o.addedReflectors);
+    ProbeScene& scene = reflectionScene.probeScene();
     for (const AddedReflector& r : o.addedReflectors)
         log << "added " << describeAddedReflector(r) << '\n';
     fs::create_directories(o.out);
@@ -271,6 +310,17 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
         previous = std::move(img);
         if (o.progress) bar.update(double(f + 1) / frames);
     }
+    if (o.timing) {
+        // The middle frame: on a path through the probes, between two of them.
+        const int f = frames / 2;
+        const auto [centre, tangent] = path.at(float(f) / float(frames - 1));
+        roots.setOffset(scene.registry, centre - anchor);
+        const auto context = gpu::GlContext::createHeadless();
+        result.passTimes = timeLevelPasses(reflectionScene, levelDir, settings,
+                                           chaseCamera(centre, tangent, side, o.width, o.height),
+                                           centre, result.timer);
+        result.timedFrame = f;
+    }
     roots.setOffset(scene.registry, glm::vec3(0.f));
 
     std::ostringstream summary;
@@ -331,6 +381,19 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
     if (firstOutsideFrame >= 0)
         log << "warning: the reflector leaves every influence volume (first at frame "
             << firstOutsideFrame << "): the nearest probe answers there\n";
+    if (!result.passTimes.empty()) {
+        std::ostringstream timing;
+        timing << "blend,k,ms_median,ratio_to_envmap,frames,walk_frame,timer\n";
+        log << "reflector pass at frame " << result.timedFrame << " (" << result.timer << "):\n";
+        for (const LevelPassTime& t : result.passTimes) {
+            timing << t.blend << ',' << t.k << ',' << t.ms << ',' << t.ratioToEnvmap << ','
+                   << t.frames << ',' << result.timedFrame << ",\"" << result.timer << "\"\n";
+            log << "  " << std::left << std::setw(19) << t.blend << " K=" << t.k << "  "
+                << std::fixed << std::setprecision(3) << t.ms << " ms  x" << std::setprecision(2)
+                << t.ratioToEnvmap << std::defaultfloat << std::setprecision(6) << '\n';
+        }
+        writeFileAtomically((fs::path(o.out) / "timing.csv").string(), timing.str());
+    }
     writeFileAtomically((fs::path(o.out) / "frames.csv").string(), csv.str());
     writeFileAtomically((fs::path(o.out) / "summary.csv").string(), summary.str());
     log << frames << " frames, " << result.overlapFrames

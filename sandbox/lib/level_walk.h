@@ -7,7 +7,9 @@
 // frames.csv (per frame: position, PSNR per blend, the probes and weights at the reflector,
 // how often a probe was hidden), summary.csv (mean and worst PSNR, on all frames and on the
 // frames where probes overlap; the pop metric) and level_walk.png (truth and the three
-// blends where engine-style blending is worst, error maps below).
+// blends where engine-style blending is worst, error maps below). With timing, the level is
+// also drawn on the GPU (DistanceLevelStore) at the walk's middle frame for every blend and K
+// = 1, 2, 4, and its reflector pass timed against one probe's envmap (timing.csv).
 #include "components/reflection_probe/added_reflector.h"
 
 #include <glm/vec3.hpp>
@@ -33,6 +35,7 @@ struct LevelWalkOptions {
     std::string method = "secant"; // each probe's lookup
     float tolerance = 0.01f;       // d_e
     bool progress = true;
+    bool timing = true; // the GPU reflector pass per blend and K, against envmap
 };
 
 struct LevelWalkBlendSummary {
@@ -42,6 +45,15 @@ struct LevelWalkBlendSummary {
     double pop = 0;       // largest frame-to-frame RMS change of the reflector pixels
     double truthPop = 0;  // the truth's own change over those two frames
     double popExcess = 0; // largest (change - truth's change) over all frame pairs
+};
+
+// The level shader's reflector pass at one frame of the walk, against one probe's envmap
+// pass drawn the same way (ratios only on a software rasteriser: FrameRenderer::passMs).
+struct LevelPassTime {
+    std::string blend;
+    int k = 0;
+    double ms = 0, ratioToEnvmap = 0;
+    int frames = 0; // timed frames the median rests on
 };
 
 struct LevelWalkResult {
@@ -54,6 +66,9 @@ struct LevelWalkResult {
     double fallbackShare = 0; // pixels that no probe with influence sees (engine blend used)
     double outsideShare = 0;  // pixels outside every influence volume (nearest probe)
     double bakeSeconds = 0;   // 0 when the level was read
+    std::vector<LevelPassTime> passTimes; // empty without --timing
+    int timedFrame = -1;                  // the walk frame they were taken at
+    std::string timer;                    // what clock measured them
 };
 
 LevelWalkResult runLevelWalk(const LevelWalkOptions& options, std::ostream& log);

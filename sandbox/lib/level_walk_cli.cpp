@@ -5,6 +5,7 @@
 #include "sandbox/lib/level_walk.h"
 #include "sandbox/lib/reflection_scene.h"
 
+#include <fstream>
 #include <memory>
 #include <sstream>
 
@@ -24,7 +25,8 @@ constexpr const char* kLevelDescription =
     "pixels.\n"
     "\n"
     "The level is baked into DIR/level first unless --level names a baked one. The path runs\n"
-    "through every probe in order unless --path gives points.\n"
+    "through every probe in order (--path through, the default) unless --path gives points,\n"
+    "inline or as @FILE.\n"
     "\n"
     "Writes DIR/frames.csv (per frame: reflector position, PSNR per blend, the engine's\n"
     "probes and weights at the reflector, the share of probe lookups hidden from their probe,\n"
@@ -32,7 +34,12 @@ constexpr const char* kLevelDescription =
     "frames and on the frames where two or more probes overlap; the pop metric: the largest\n"
     "frame-to-frame RMS change of the reflector pixels beside the truth's own change) and\n"
     "DIR/level_walk.png (truth and the three blends at the frame where engine-style blending\n"
-    "is worst, error maps below).\n";
+    "is worst, error maps below).\n"
+    "\n"
+    "Unless --no-timing, the level is also drawn on the GPU at the walk's middle frame for\n"
+    "every blend and K = 1, 2, 4 (the level shader), and its reflector pass is timed against\n"
+    "one probe's envmap pass: DIR/timing.csv (ms and ratio_to_envmap; on a software\n"
+    "rasteriser only the ratios mean something).\n";
 
 struct LevelArgs {
     LevelWalkOptions o;
@@ -40,13 +47,31 @@ struct LevelArgs {
     std::vector<std::string> probes, addedReflectors;
 };
 
+// "x,y,z;x,y,z;..." ("through" or nothing: every probe in order), or "@FILE" with one
+// x,y,z per line ('#' starts a comment line).
 std::vector<glm::vec3> parsePath(const std::string& text) {
     std::vector<glm::vec3> points;
-    std::stringstream in(text);
-    for (std::string point; std::getline(in, point, ';');) {
-        if (point.empty()) continue;
+    if (text.empty() || text == "through") return points;
+    const bool file = text.front() == '@';
+    std::stringstream in;
+    if (file) {
+        std::ifstream f(text.substr(1));
+        if (!f) throw UsageError("--path", "cannot read the path file '" + text.substr(1) + "'");
+        in << f.rdbuf();
+    } else {
+        in << text;
+    }
+    int line = 0;
+    for (std::string point; std::getline(in, point, file ? '\n' : ';');) {
+        ++line;
+        point.erase(0, point.find_first_not_of(" \t\r"));
+        point.erase(point.find_last_not_of(" \t\r") + 1);
+        if (point.empty() || point.front() == '#') continue;
         if (!cli::vec3Text()(point).empty())
-            throw UsageError("--path", "expected x,y,z;x,y,z;... got '" + point + "'");
+            throw UsageError("--path", (file ? text.substr(1) + " line " + std::to_string(line) +
+                                                   ": expected x,y,z"
+                                             : std::string("expected x,y,z;x,y,z;...")) +
+                                           ", got '" + point + "'");
         points.push_back(cli::parseVec3(point));
     }
     return points;
@@ -76,7 +101,9 @@ void addLevelCommand(cli::ToolCli& tool) {
     sub->add_option("SCENE", o.scene, "the glTF/GLB scene")->required();
     sub->add_option("--out", o.out, "output folder")->required()->check(cli::nonEmpty("a folder"));
     sub->add_option("--level", o.level, "a level folder baked by specula-cook bake (level.json)");
-    sub->add_option("--path", a->path, "the reflector's path: x,y,z;x,y,z;... (world space)");
+    sub->add_option("--path", a->path,
+                    "the reflector's path: x,y,z;x,y,z;... (world space), @FILE (one x,y,z a "
+                    "line), or through (default: every probe in order)");
     sub->add_option("--frames", o.frames, "frames along the path (default 40)")
         ->check(CLI::Range(2, 100000));
     sub->add_option("--size", a->size, "frame size (default 320x240)")->check(cli::sizeText());
@@ -96,6 +123,7 @@ void addLevelCommand(cli::ToolCli& tool) {
                     "baking: a probe list (JSON, as specula-cook bake --probes takes)")
         ->check(CLI::ExistingFile);
     addReflectorOption(sub, a->addedReflectors);
+    sub->add_flag("!--no-timing", o.timing, "skip the GPU pass timing (timing.csv)");
 }
 
 } // namespace specula::sandbox

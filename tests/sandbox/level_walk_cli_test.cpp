@@ -58,6 +58,38 @@ TEST(SandboxLevel, WalksThroughBothRoomsAndWritesAFrameRowPerFrame) {
     EXPECT_EQ(summary[2].rfind("engine,", 0), 0u);
     EXPECT_EQ(summary[3].rfind("visibility,", 0), 0u);
     EXPECT_NE(r.out.find("visibility"), std::string::npos);
+    // The GPU pass of every blend and K, against envmap: a header and 1 + 1 + 3 + 3 rows, the
+    // envmap row the unit of the ratios.
+    const std::vector<std::string> timing = linesOf(out / "timing.csv");
+    ASSERT_EQ(timing.size(), 9u);
+    EXPECT_EQ(timing[0].rfind("blend,k,ms_median,ratio_to_envmap", 0), 0u);
+    EXPECT_EQ(timing[1].rfind("envmap (one probe),1,", 0), 0u) << timing[1];
+    EXPECT_NE(timing[1].find(",1,"), std::string::npos) << timing[1];
+    EXPECT_EQ(timing[8].rfind("visibility,4,", 0), 0u) << timing[8];
+}
+
+TEST(SandboxLevel, APathFileGivesThePointsAndNoTimingLeavesOutTheGpuPass) {
+    TempDir dir("level-path-file");
+    const fs::path out = dir.path / "out";
+    const fs::path pathFile = dir.path / "path.txt";
+    std::ofstream(pathFile) << "# along room A\n-3,1.2,0\n\n  -1,1.2,0.5  \n";
+    const ToolRun r = level(shellQuote(kTwoRooms.string()) + " --frames 2 --size 32x24 " +
+                            "--face-res 16 --sky '' --no-timing --path @" +
+                            shellQuote(pathFile.string()) + " --out " + shellQuote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<std::string> frames = linesOf(out / "frames.csv");
+    ASSERT_EQ(frames.size(), 3u);
+    EXPECT_EQ(frames[1].rfind("0,-3,1.2,0,", 0), 0u) << frames[1];
+    EXPECT_EQ(frames[2].rfind("1,-1,1.2,0.5,", 0), 0u) << frames[2];
+    EXPECT_FALSE(fs::exists(out / "timing.csv"));
+    // A bad line is a usage error naming the file and the line.
+    std::ofstream(pathFile) << "-3,1.2,0\n1,2\n";
+    const ToolRun bad =
+        level(shellQuote(kTwoRooms.string()) + " --path @" + shellQuote(pathFile.string()) +
+              " --out " + shellQuote((dir.path / "bad").string()));
+    EXPECT_EQ(bad.status, 2) << bad.err;
+    EXPECT_NE(bad.err.find("path.txt line 2"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(dir.path / "bad"));
 }
 
 TEST(SandboxLevel, BadPathsAreUsageErrorsNamingTheFlagAndLeaveNoFolder) {

@@ -98,7 +98,8 @@ LevelSample CpuDistanceLevel::radiance(glm::vec3 p, glm::vec3 lhat, LevelBlend b
     if (volumes_.empty()) return out;
     // The shared blend's functions are the struct's (non-const) members, as in every twin.
     glsl::LevelTwinHooks hooks{volumes_, order_, twins_};
-    const glsl::LevelTwinHooks::LevelBlendSample s = hooks.blendLevel(p, lhat, int(blend), std::clamp(k, 1, glsl::kMaxLevelK));
+    const glsl::LevelTwinHooks::LevelBlendSample s =
+        hooks.blendLevel(p, lhat, int(blend), std::clamp(k, 1, glsl::kMaxLevelK));
     out.radiance = s.radiance;
     for (int i = 0; i < s.count; ++i)
         if (s.weight[i] > 0.f) out.weights.emplace_back(s.probe[i], s.weight[i]);

@@ -13,8 +13,8 @@
 #include "engine/gpu/gl_objects.h"
 
 #include <memory>
-#include <unordered_set>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace specula {

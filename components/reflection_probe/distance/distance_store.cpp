@@ -56,7 +56,8 @@ void DistanceStore::applySettings(DistanceProbeGpu& g, const DistanceProbe& sett
 
 std::size_t DistanceStore::gpuBytesOf(const DistanceProbeGpu& g) const {
     const DistanceProbeAsset& a = *g.asset;
-    return cubeArrayBytes(a.faceRes, g.layersUploaded) + (a.sky.empty() ? 0 : skyTextureBytes(a.sky));
+    return cubeArrayBytes(a.faceRes, g.layersUploaded) +
+           (a.sky.empty() ? 0 : skyTextureBytes(a.sky));
 }
 
 void DistanceStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector,

@@ -19,8 +19,8 @@ gpu::Texture createCubeArray(int faceRes, int cubes) {
 void uploadCube(const gpu::Texture& array, int cube, const DistanceProbeLayer& layer) {
     for (int f = 0; f < 6; ++f) {
         const Image& face = layer.faces[std::size_t(f)];
-        glTextureSubImage3D(array.id(), 0, 0, 0, 6 * cube + f, face.width, face.height, 1,
-                            GL_RGBA, GL_FLOAT, face.pixels.data());
+        glTextureSubImage3D(array.id(), 0, 0, 0, 6 * cube + f, face.width, face.height, 1, GL_RGBA,
+                            GL_FLOAT, face.pixels.data());
     }
 }
 

@@ -27,9 +27,9 @@ struct LevelProbeParams {
     vec3 influenceMin;             // box influence, world space
     int influenceShape;            // kInfluenceBox or kInfluenceSphere
     vec3 influenceMax;
-    float influenceRadius;  // sphere influence
-    vec3 influenceCentre;   // (its centre, world space)
-    float blendDistance;    // metres over which the influence rises from 0 to 1
+    float influenceRadius; // sphere influence
+    vec3 influenceCentre;  // (its centre, world space)
+    float blendDistance;   // metres over which the influence rises from 0 to 1
 };
 
 struct LevelParamsBlock {
