@@ -73,7 +73,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
     std::string planJson;
     if (s.planned || s.recordPlan) {
         const EffectPlan plan =
-            planEffects(scene.registry, scene.markup, b.centre, b.reflectorReach);
+            planEffects(scene.registry, scene.markup, b.centre, b.reflectorReach, {}, o.markupProbe);
         if (s.planned) applyPlan(plan, b);
         if (s.recordPlan) planJson = plan.toJson().dump();
     }

@@ -51,6 +51,9 @@ struct CookOptions {
     // bounds); a level gives each probe its own.
     std::optional<float> cellSize;
     std::optional<Aabb> proxy;
+    // The `specula_probe` node whose members the effect plan reads (index into the markup's
+    // probes; a level gives each probe its own, -1 to one no node holds).
+    int markupProbe = 0;
     CookFlavour flavour;
     bool progress = true; // a progress bar on the terminal while tracing
     // Called with the fraction done instead of drawing a bar (a level draws one bar for all).

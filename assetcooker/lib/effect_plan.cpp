@@ -30,13 +30,14 @@ std::string fmt(float v, int digits = 2) {
 } // namespace
 
 EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::vec3 centre,
-                       float reach, PlanThresholds t) {
+                       float reach, PlanThresholds t, int markupProbe) {
     EffectPlan plan;
-    // The user's needs, from the probe markup.
+    // The user's needs, from the markup of the probe being planned.
     std::optional<std::string> forcedFlavour;
     std::optional<bool> forcedFresnel, forcedBackground;
-    if (!markup.probes.empty()) {
-        const nlohmann::json& o = markup.probes.front().options;
+    if (markupProbe >= 0 && markupProbe < int(markup.probes.size())) {
+        const ProbeMarkup& probe = markup.probes[std::size_t(markupProbe)];
+        const nlohmann::json& o = probe.options;
         if (o.contains("max_error_deg") && o["max_error_deg"].is_number()) {
             t.maxErrorDeg = std::clamp(o["max_error_deg"].get<float>(), 1e-3f, 45.f);
             plan.userNeeds.push_back("max_error_deg = " + fmt(t.maxErrorDeg, 3));
@@ -49,7 +50,7 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
         if (o.contains("flavour") && o["flavour"].is_string()) {
             forcedFlavour = o["flavour"].get<std::string>();
             if (*forcedFlavour != "distance" && *forcedFlavour != "lightfield")
-                throw Error(markup.probes.front().node, "specula_probe.flavour",
+                throw Error(probe.node, "specula_probe.flavour",
                             "expected \"distance\" or \"lightfield\"");
             plan.userNeeds.push_back("flavour = " + *forcedFlavour);
         }

@@ -71,7 +71,9 @@ void applyPlan(const EffectPlan& plan, DistanceBakeOptions& bake);
 // the environment, per object the rays of the analysis texels inside its bounding cone, and
 // the occlusion test per texel: O(objects x analysis texels), linear in the node count (20,000
 // nodes plan in about a second; tests/bench/plan_bench.cpp).
+// `markupProbe`: the `specula_probe` node (index into markup.probes) whose members state
+// the user's needs (a level plans each probe with its own; -1: a probe no node holds).
 EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::vec3 centre,
-                       float reach, PlanThresholds thresholds = {});
+                       float reach, PlanThresholds thresholds = {}, int markupProbe = 0);
 
 } // namespace specula

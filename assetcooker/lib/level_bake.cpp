@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <span>
 #include <sstream>
 
 namespace specula {
@@ -67,18 +68,21 @@ void mergeProbeList(std::vector<PendingProbe>& probes, const std::string& file) 
     }
 }
 
-// The default proxy: the room the probe stands in. Each side of the box casts a 16 x 16 grid
-// of rays over its face of the cube about the probe and lies on the farthest plane across the
-// axis on which a good share of them end (at least 4 rays, and a quarter of the most any such
-// plane holds, within 5 cm), at the median of those hits: a planar wall's own coordinate, so
-// an empty box room gets its box exactly. Why: one axis ray (the rule before) stops at the
-// first table or cupboard in its way; a high percentile of all the hits runs out through any
-// doorway or window filling a tenth of the face; the wall is the farthest surface across the
-// axis that still fills a good part of the view. Only hits on surfaces facing along the axis
-// count (a floor or side wall met at a slant is no wall of this side) and, in a second round,
-// only those inside the first round's box on the other two axes (a wall seen through a window
-// or past a jamb lies outside it). No such plane (open sky, walls at a slant to the axes): the
-// 90th percentile of all the hits, an escaping ray counting as the scene's bound.
+// The default proxy: the room the probe stands in, measured so that furniture does not shrink
+// it. Each side of the box reaches as far as the axis ray from the probe (the scene's bound
+// where it escapes), and farther when a 16 x 16 grid of rays over that face of the cube about
+// the probe sees a farther plane across the axis on which a good share of them end (at least
+// 4 rays, and a quarter of the most any such plane holds, within 5 cm): the side lies on the
+// median of those hits, a planar wall's own coordinate, so an empty box room gets its box
+// exactly. Why: the axis ray alone stops at the first table or cupboard in its way, while the
+// wall behind still fills a good part of the view; a high percentile of all the hits would run
+// out through any doorway or window filling a tenth of the face; and the axis ray keeps a long
+// hall past its pillars and arches one room (a row of probes along it shares its influences
+// out only within one proxy). Only hits on surfaces facing along the axis count (a floor or
+// side wall met at a slant is no wall of this side) and, in a second round, only those inside
+// the first round's box on the other two axes (a wall seen through a window or past a jamb
+// lies outside it; that first box takes an axis ray only where it finds no plane, for axis
+// rays run out through windows).
 Aabb measuredProxy(const EmbreeScene& env, const Aabb& sceneBounds, glm::vec3 p) {
     if (sceneBounds.empty()) return Aabb::cube(p, 0.75f);
     constexpr int kGrid = 16;
@@ -88,15 +92,17 @@ Aabb measuredProxy(const EmbreeScene& env, const Aabb& sceneBounds, glm::vec3 p)
         bool across;  // on a surface facing along the axis
         glm::vec3 at; // the hit point
     };
-    std::array<std::vector<Ray>, 6> rays; // per side: -x, +x, -y, +y, -z, +z
+    std::array<std::vector<Ray>, 6> rays; // per side: -x, +x, -y, +y, -z, +z; the axis ray first
     for (int side = 0; side < 6; ++side) {
         const int axis = side / 2;
         const float sign = side % 2 ? 1.f : -1.f;
-        for (int i = 0; i < kGrid * kGrid; ++i) {
+        for (int i = -1; i < kGrid * kGrid; ++i) {
             glm::vec3 dir(0.f);
             dir[axis] = sign;
-            dir[(axis + 1) % 3] = (2.f * float(i % kGrid) + 1.f) / kGrid - 1.f;
-            dir[(axis + 2) % 3] = (2.f * float(i / kGrid) + 1.f) / kGrid - 1.f;
+            if (i >= 0) {
+                dir[(axis + 1) % 3] = (2.f * float(i % kGrid) + 1.f) / kGrid - 1.f;
+                dir[(axis + 2) % 3] = (2.f * float(i / kGrid) + 1.f) / kGrid - 1.f;
+            }
             const float bound = sign > 0 ? sceneBounds.max[axis] : sceneBounds.min[axis];
             if (const std::optional<Hit> hit = env.intersect(p, dir))
                 rays[side].push_back({sign * p[axis] + hit->t,
@@ -111,9 +117,8 @@ Aabb measuredProxy(const EmbreeScene& env, const Aabb& sceneBounds, glm::vec3 p)
         for (int side = 0; side < 6; ++side) {
             const int axis = side / 2;
             const float sign = side % 2 ? 1.f : -1.f;
-            std::vector<float> all, walls;
-            for (const Ray& r : rays[side]) {
-                all.push_back(r.along);
+            std::vector<float> walls;
+            for (const Ray& r : std::span(rays[side]).subspan(1)) {
                 bool wall = r.across;
                 for (int k = 1; k < 3; ++k) {
                     const int o = (axis + k) % 3;
@@ -130,14 +135,12 @@ Aabb measuredProxy(const EmbreeScene& env, const Aabb& sceneBounds, glm::vec3 p)
             const std::size_t need = std::max<std::size_t>(4, (most + 3) / 4);
             const auto found =
                 std::ranges::find_if(plane, [&](std::size_t n) { return n >= need; });
-            float along;
+            const float axisRay = rays[side][0].along;
+            float along = axisRay;
             if (found != plane.end()) {
                 const std::size_t i = std::size_t(found - plane.begin());
-                along = walls[i + plane[i] / 2];
-            } else {
-                const auto q = all.begin() + std::ptrdiff_t(all.size() * 9 / 10);
-                std::nth_element(all.begin(), q, all.end());
-                along = *q;
+                along = walls[i + plane[i] / 2]; // the median of the plane's hits
+                if (round == 1) along = std::max(along, axisRay);
             }
             const float bound = sign > 0 ? sceneBounds.max[axis] : sceneBounds.min[axis];
             const float reach = std::clamp(along - sign * p[axis], 0.01f, // never a flat box
@@ -427,6 +430,10 @@ LevelCookResult cookLevel(ProbeScene& scene, const LevelCookOptions& options, st
             o.probeCentre = entry.volume.position;
             o.cellSize = entry.volume.cellSize;
             o.proxy = entry.volume.proxy;
+            // The plan reads this probe's own markup (none for a probe no node holds).
+            o.markupProbe = -1;
+            for (std::size_t m = 0; m < scene.markup.probes.size(); ++m)
+                if (scene.markup.probes[m].node == entry.volume.name) o.markupProbe = int(m);
             o.progress = false;
             if (bar) o.progressHook = [&](double f) { bar->update((double(done) + f) / stale); };
             const CookResult r = cookProbe(scene, o, log);

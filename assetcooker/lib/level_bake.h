@@ -31,14 +31,16 @@ struct GatheredProbes {
 };
 
 // Every probe of the scene with its volumes, validated. Members nobody states take defaults:
-// the proxy is the box the six axis rays from the probe reach (the environment's bounds where
-// a ray escapes: a measured room, not a guess), the influence is the proxy cut half-way to
-// every other probe inside it (on the axis separating them most, reaching one blend
-// distance past the half-way point: a row of probes along one hall shares it out), the blend
-// distance 0.5 m, the priority 0, the cell 1.5 m. A scene with no probe anywhere gets one at
-// markupProbeCentre named "probe". Throws Error naming the file and field on bad input;
-// warns (names both nodes) when two probes have equal priority and identical volumes, and
-// (names the node) when a probe lies inside solid geometry.
+// the proxy is the room the probe stands in, measured with rays (each side as far as the
+// axis ray from the probe reaches, the environment's bounds where it escapes, or farther to
+// the wall that a grid of rays sees behind furniture in the ray's way: a measured room, not
+// a guess), the influence is the proxy cut half-way to every other probe inside it (on the
+// axis separating them most, reaching one blend distance past the half-way point: a row of
+// probes along one hall shares it out), the blend distance 0.5 m, the priority 0, the cell
+// 1.5 m. A scene with no probe anywhere gets one at markupProbeCentre named "probe". Throws
+// Error naming the file and field on bad input; warns (names both nodes) when two probes
+// have equal priority and identical volumes, and (names the node) when a probe lies inside
+// solid geometry.
 GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sources);
 
 // The checksums a probe is baked from: the meshes within its reach (the environment meshes

@@ -208,6 +208,28 @@ TEST(EffectPlan, UserNeedsAreHonouredAndReported) {
     EXPECT_NE(p.toText().find("user need"), std::string::npos);
 }
 
+TEST(EffectPlan, EachProbeOfALevelIsPlannedWithItsOwnNeeds) {
+    SceneBuilder s;
+    s.reflectorAndProbe("{\"specula_probe\": {\"flavour\": \"lightfield\"}}");
+    s.node("probe_2", glm::vec3(4, 0, 0), nullptr, "{\"specula_probe\": {\"fresnel\": true}}");
+    s.node("ball", glm::vec3(0, 0, -8), SceneBuilder::sphere(0.3f));
+    updateWorldTransforms(s.reg);
+    const SceneMarkup m = readSceneMarkup(s.reg, s.scene, "test.gltf");
+    ASSERT_EQ(m.probes.size(), 2u);
+    const auto planOf = [&](int probe) {
+        const glm::vec3 c = probe >= 0 ? m.probes[std::size_t(probe)].position : glm::vec3(0.f);
+        return planEffects(s.reg, m, c, markupReflectorReach(s.reg, m, c, 1.5f), {}, probe);
+    };
+    const EffectPlan first = planOf(0), second = planOf(1), none = planOf(-1);
+    EXPECT_EQ(first.flavour, "lightfield");
+    ASSERT_EQ(first.userNeeds.size(), 1u);
+    EXPECT_EQ(first.userNeeds[0], "flavour = lightfield");
+    ASSERT_EQ(second.userNeeds.size(), 1u);
+    EXPECT_EQ(second.userNeeds[0], "fresnel = true");
+    EXPECT_TRUE(second.fresnel);
+    EXPECT_TRUE(none.userNeeds.empty());
+}
+
 TEST(EffectPlan, FresnelOnlyWhereAMaterialAsks) {
     SceneBuilder a;
     a.reflectorAndProbe("{\"specula_probe\": {}}", "{\"specula_reflector\": {\"f0\": 0.04}}");

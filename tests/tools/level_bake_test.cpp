@@ -2,7 +2,9 @@
 // joined by a doorway in the wall x = 0, one probe each): every probe gets its folder and an
 // index entry; a re-run re-bakes nothing; moving an object only room B's probe can see
 // re-bakes that probe alone and says why; a failure half-way leaves the probes baked before
-// it intact and indexed; bad probe lists are errors naming the file and field.
+// it intact and indexed; bad probe lists are errors naming the file and field. The default
+// proxy is the room a probe stands in, also on a box room written here with a cupboard in
+// front of the probe.
 #include "assetcooker/lib/level_bake.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
@@ -12,8 +14,12 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include <array>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 namespace specula {
 namespace {
@@ -64,6 +70,67 @@ void expectBoxNear(const Aabb& got, const Aabb& want, float tolerance) {
     }
 }
 
+// The unit cube centred at the origin as 36 vertices, counter-clockwise seen from outside
+// (outward: a solid box) or from inside (inward: a room's walls, floor and ceiling).
+std::vector<glm::vec3> unitCube(bool outward) {
+    std::vector<glm::vec3> v;
+    for (int axis = 0; axis < 3; ++axis)
+        for (const float sign : {1.f, -1.f}) {
+            std::array<glm::vec3, 4> c{};
+            const float uv[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+            for (int i = 0; i < 4; ++i) {
+                c[i][axis] = 0.5f * sign;
+                c[i][(axis + 1) % 3] = 0.5f * uv[i][0];
+                c[i][(axis + 2) % 3] = 0.5f * uv[i][1];
+            }
+            for (const std::array<int, 3> t : {std::array<int, 3>{0, 1, 2}, {0, 2, 3}}) {
+                glm::vec3 a = c[t[0]], b = c[t[1]], d = c[t[2]];
+                if ((glm::dot(glm::cross(b - a, d - a), a + b + d) > 0.f) != outward)
+                    std::swap(b, d);
+                v.insert(v.end(), {a, b, d});
+            }
+        }
+    return v;
+}
+
+// DIR/room.gltf: the closed room `room` (faces inward) holding the solid boxes `solids`, each
+// a node stretching the unit cube over its box; no markup.
+std::string writeBoxRoom(const fs::path& dir, const Aabb& room, const std::vector<Aabb>& solids) {
+    std::vector<glm::vec3> positions = unitCube(false);
+    const std::vector<glm::vec3> outward = unitCube(true);
+    positions.insert(positions.end(), outward.begin(), outward.end());
+    const std::size_t bytes = positions.size() * sizeof(glm::vec3);
+    std::ofstream(dir / "room.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(positions.data()), std::streamsize(bytes));
+    using nlohmann::json;
+    json nodes = json::array(), roots = json::array();
+    for (std::size_t i = 0; i <= solids.size(); ++i) {
+        const Aabb& b = i == 0 ? room : solids[i - 1];
+        const glm::vec3 c = b.centre(), e = b.extent();
+        nodes.push_back({{"name", i == 0 ? "room" : "solid_" + std::to_string(i)},
+                         {"mesh", i == 0 ? 0 : 1},
+                         {"translation", {c.x, c.y, c.z}},
+                         {"scale", {e.x, e.y, e.z}}});
+        roots.push_back(i);
+    }
+    auto accessor = [](std::size_t offset) {
+        return json{{"bufferView", 0},       {"byteOffset", offset}, {"componentType", 5126},
+                    {"count", 36},           {"type", "VEC3"},       {"min", {-0.5, -0.5, -0.5}},
+                    {"max", {0.5, 0.5, 0.5}}};
+    };
+    auto mesh = [](int a) { return json{{"primitives", {{{"attributes", {{"POSITION", a}}}}}}}; };
+    const json gltf = {{"asset", {{"version", "2.0"}}},
+                       {"scene", 0},
+                       {"scenes", {{{"nodes", roots}}}},
+                       {"nodes", nodes},
+                       {"meshes", {mesh(0), mesh(1)}},
+                       {"buffers", {{{"uri", "room.bin"}, {"byteLength", bytes}}}},
+                       {"bufferViews", {{{"buffer", 0}, {"byteLength", bytes}}}},
+                       {"accessors", {accessor(0), accessor(36 * sizeof(glm::vec3))}}};
+    std::ofstream(dir / "room.gltf") << gltf.dump();
+    return (dir / "room.gltf").string();
+}
+
 TEST_F(LevelBake, GathersEveryProbeOfTheMarkupWithItsVolumes) {
     ProbeScene scene(kTwoRooms, "");
     const GatheredProbes g = gatherLevelProbes(scene, {});
@@ -77,9 +144,10 @@ TEST_F(LevelBake, GathersEveryProbeOfTheMarkupWithItsVolumes) {
     EXPECT_TRUE(g.warnings.empty()) << g.warnings.front();
 }
 
-TEST_F(LevelBake, AProbeWithoutAProxyGetsTheRoomItsAxisRaysReach) {
-    // A probe of the list with a position only, in room A off the doorway's line: its six
-    // axis rays meet room A's walls, floor and ceiling, the closed-form room box.
+TEST_F(LevelBake, AProbeWithoutAProxyGetsTheRoomItStandsIn) {
+    // A probe of the list with a position only, in room A: its proxy is room A's closed-form
+    // inside box, though a tenth of its rays towards +x pass the doorway into room B and
+    // room A's table fills part of its view down.
     ProbeScene scene(kTwoRooms, "");
     LevelProbeSources s;
     s.file = writeProbeList(R"({"probes": [{"name": "extra", "position": [-2.5, 1.5, 1.2]}]})");
@@ -94,6 +162,28 @@ TEST_F(LevelBake, AProbeWithoutAProxyGetsTheRoomItsAxisRaysReach) {
     Aabb cut = extra.proxy;
     cut.min.z = 0.1f;
     expectBoxNear(extra.influence.box, cut, 1e-5f);
+}
+
+TEST_F(LevelBake, FurnitureInFrontOfAProbeLeavesItsProxyTheRoom) {
+    // A 6 x 3 x 6 m room and a probe 1.5 m up in its middle, a cupboard 1 m in front of it
+    // along +x (x 1 .. 1.6, up to 1.7 m, 1 m wide): the axis ray towards +x meets the
+    // cupboard, yet the proxy reaches the room's wall at x = 3 on that side as on the others
+    // (the wall fills a good part of the view past the cupboard), each side on its wall's
+    // plane up to float precision.
+    const Aabb room{glm::vec3(-3.f, 0.f, -3.f), glm::vec3(3.f, 3.f, 3.f)};
+    const Aabb cupboard{glm::vec3(1.f, 0.f, -0.5f), glm::vec3(1.6f, 1.7f, 0.5f)};
+    ProbeScene scene(writeBoxRoom(root_, room, {cupboard}), "");
+    LevelProbeSources s;
+    s.file = writeProbeList(R"({"probes": [{"name": "middle", "position": [0, 1.5, 0]}]})");
+    const GatheredProbes g = gatherLevelProbes(scene, s);
+    ASSERT_EQ(g.probes.size(), 1u);
+    expectBoxNear(g.probes[0].proxy, room, 1e-5f);
+    EXPECT_EQ(g.probes[0].influence.box, g.probes[0].proxy);
+    EXPECT_TRUE(g.warnings.empty()) << g.warnings.front();
+
+    // The same probe in the empty room gets the room's box.
+    ProbeScene empty(writeBoxRoom(root_, room, {}), "");
+    expectBoxNear(gatherLevelProbes(empty, s).probes[0].proxy, room, 1e-5f);
 }
 
 TEST_F(LevelBake, ARowOfProbesInOneRoomSharesItsInfluenceOut) {
@@ -113,8 +203,7 @@ TEST_F(LevelBake, ARowOfProbesInOneRoomSharesItsInfluenceOut) {
     EXPECT_NEAR(middle.influence.box.max.x, -2.f + 1.f, 1e-5f);
     EXPECT_NEAR(east.influence.box.min.x, -2.f - 1.f, 1e-5f);
     // Along the row, more than a blend distance from the room's walls (room A's own probe
-    // stands 1.2 m off the row and keeps its stated influence; the row is clear of furniture,
-    // which the axis rays would take for the room's floor), the engine's blend of the three
+    // stands 1.2 m off the row and keeps its stated influence), the engine's blend of the three
     // leaves nothing to the sky: wherever one probe fades, its neighbour weighs 1.
     const std::vector<ProbeVolume> row{west, middle, east};
     for (float x = -4.75f; x <= -1.25f; x += 0.125f) {
