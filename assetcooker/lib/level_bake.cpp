@@ -269,7 +269,12 @@ GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sou
         if (v.proxy.empty()) v.proxy = measuredProxy(env, sceneBounds, v.position);
         influenceDefaulted.push_back(v.influence.shape == ProbeInfluence::Shape::Box &&
                                      v.influence.box.empty());
-        if (influenceDefaulted.back()) v.influence.box = v.proxy;
+        // A defaulted influence is the proxy grown by one blend distance: the weight is 1
+        // throughout the room the probe owns and fades outside it. Fading inside would hand
+        // the sky a share of every reflector near a wall, floor or table top of a closed room.
+        if (influenceDefaulted.back())
+            v.influence.box = Aabb{v.proxy.min - glm::vec3(v.blendDistance),
+                                   v.proxy.max + glm::vec3(v.blendDistance)};
     }
     // Probes in one room (a row along a hall) would share one proxy and so one influence:
     // a defaulted influence is cut half-way to every other probe inside its proxy, on the

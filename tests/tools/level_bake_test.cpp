@@ -156,10 +156,10 @@ TEST_F(LevelBake, AProbeWithoutAProxyGetsTheRoomItStandsIn) {
     const ProbeVolume& extra = g.probes[2];
     EXPECT_EQ(extra.name, "extra");
     expectBoxNear(extra.proxy, kRoomA, 2e-3f);
-    // Its influence (not stated) is the proxy cut half-way to room A's probe at (-3, 1.2, 0),
-    // inside the same room: they lie furthest apart along z (1.2 m), so the cut is at
-    // z = 0.6, less the blend distance (0.5 m).
-    Aabb cut = extra.proxy;
+    // Its influence (not stated) is the proxy grown by the blend distance (0.5 m), cut
+    // half-way to room A's probe at (-3, 1.2, 0), inside the same room: they lie furthest
+    // apart along z (1.2 m), so the cut is at z = 0.6, less the blend distance.
+    Aabb cut{extra.proxy.min - glm::vec3(0.5f), extra.proxy.max + glm::vec3(0.5f)};
     cut.min.z = 0.1f;
     expectBoxNear(extra.influence.box, cut, 1e-5f);
 }
@@ -178,7 +178,12 @@ TEST_F(LevelBake, FurnitureInFrontOfAProbeLeavesItsProxyTheRoom) {
     const GatheredProbes g = gatherLevelProbes(scene, s);
     ASSERT_EQ(g.probes.size(), 1u);
     expectBoxNear(g.probes[0].proxy, room, 1e-5f);
-    EXPECT_EQ(g.probes[0].influence.box, g.probes[0].proxy);
+    // The influence is the room grown by the blend distance: a reflector anywhere in the
+    // room, even touching the wall or the cupboard, takes nothing from the sky.
+    expectBoxNear(g.probes[0].influence.box,
+                  Aabb{room.min - glm::vec3(0.5f), room.max + glm::vec3(0.5f)}, 1e-5f);
+    for (const glm::vec3 p : {glm::vec3(2.95f, 0.05f, 2.95f), glm::vec3(0.f, 1.75f, 0.f)})
+        EXPECT_EQ(influenceWeight(g.probes[0], p), 1.f);
     EXPECT_TRUE(g.warnings.empty()) << g.warnings.front();
 
     // The same probe in the empty room gets the room's box.
