@@ -19,6 +19,7 @@ struct ReflectionProbe {
 struct Reflector {
     ecs::Entity probe;      // which probe it reflects
     float fresnelF0 = -1.f; // < 0: perfect mirror; otherwise Schlick with this F0
+    float roughness = 0.f;  // GGX (alpha = roughness^2); 0 = a mirror
 
     bool operator==(const Reflector&) const = default;
 };

@@ -39,6 +39,9 @@ struct ReflectorMarkup {
     std::string node;
     std::vector<ecs::Entity> meshes; // mesh entities of the node's subtree
     float f0 = -1.f;                 // < 0: perfect mirror
+    // GGX roughness (alpha = roughness^2): the markup's "roughness", else the material's
+    // metallic-roughness factor (averaged over the mesh's primitives); 0 = a mirror.
+    float roughness = 0.f;
 };
 
 struct EnvironmentObject {

@@ -194,6 +194,32 @@ TEST_F(MaterialReflector, MarkupWinsOverTheMaterialsOfItsSubtree) {
     EXPECT_EQ(m.reflectors[0].meshes.size(), 2u);
 }
 
+TEST_F(MaterialReflector, RoughnessComesFromTheMaterialOrTheMarkup) {
+    GltfScene g;
+    g.node("polished", g.metal("polished", 1.0, 0.08));
+    g.node("brushed", g.metal("brushed", 1.0, 0.6),
+           json{{"specula_reflector", {{"roughness", 0.35}}}});
+    g.node("mirror", g.metal("mirror", 1.0, 0.0));
+    const SceneMarkup m = read(g);
+    std::map<std::string, float> roughness;
+    for (const ReflectorMarkup& r : m.reflectors)
+        roughness[r.node] = r.roughness;
+    ASSERT_EQ(roughness.size(), 3u);
+    EXPECT_FLOAT_EQ(roughness.at("polished"), 0.08f); // the material's factor
+    EXPECT_FLOAT_EQ(roughness.at("brushed"), 0.35f);  // the markup wins
+    EXPECT_FLOAT_EQ(roughness.at("mirror"), 0.f);
+    // Out of [0, 1] is an error naming the node's member.
+    GltfScene bad;
+    bad.node("bad", bad.metal("x", 1.0, 0.0), json{{"specula_reflector", {{"roughness", 1.5}}}});
+    try {
+        read(bad);
+        FAIL() << "roughness 1.5 was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("specula_reflector.roughness"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST_F(MaterialReflector, ThresholdsComeFromTheRule) {
     GltfScene g;
     g.node("almost_metal", g.metal("a", 0.89, 0.0));
