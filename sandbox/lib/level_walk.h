@@ -8,8 +8,9 @@
 // how often a probe was hidden), summary.csv (mean and worst PSNR, on all frames and on the
 // frames where probes overlap; the pop metric) and level_walk.png (truth and the three
 // blends where engine-style blending is worst, error maps below). With timing, the level is
-// also drawn on the GPU (DistanceLevelStore) at the walk's middle frame for every blend and K
-// = 1, 2, 4, and its reflector pass timed against one probe's envmap (timing.csv).
+// also drawn on the GPU (DistanceLevelStore) for every blend and K
+// = 1, 2, 4 at the frame where probes overlap with the most reflector pixels, and its
+// reflector pass timed against one probe's envmap (timing.csv).
 #include "components/reflection_probe/added_reflector.h"
 
 #include <glm/vec3.hpp>

@@ -36,8 +36,9 @@ constexpr const char* kLevelDescription =
     "DIR/level_walk.png (truth and the three blends at the frame where engine-style blending\n"
     "is worst, error maps below).\n"
     "\n"
-    "Unless --no-timing, the level is also drawn on the GPU at the walk's middle frame for\n"
-    "every blend and K = 1, 2, 4 (the level shader), and its reflector pass is timed against\n"
+    "Unless --no-timing, the level is also drawn on the GPU (the level shader) for every blend\n"
+    "and K = 1, 2, 4 at the frame where probes overlap with the most reflector pixels, and\n"
+    "its reflector pass is timed against\n"
     "one probe's envmap pass: DIR/timing.csv (ms and ratio_to_envmap; on a software\n"
     "rasteriser only the ratios mean something).\n";
 
