@@ -164,7 +164,7 @@ TEST_F(ConstantFlavour, AnUnregisteredFlavourIsRefusedNamingTheKnownOnes) {
     } catch (const Error& e) {
         EXPECT_EQ(e.file(), manifest_);
         EXPECT_EQ(e.field(), "flavour");
-        EXPECT_NE(std::string(e.what()).find("distance, lightfield"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("distance, distance-level, lightfield"), std::string::npos)
             << e.what();
     }
 }
