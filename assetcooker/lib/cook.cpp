@@ -72,8 +72,8 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
     b.proxy = o.proxy;
     std::string planJson;
     if (s.planned || s.recordPlan) {
-        const EffectPlan plan =
-            planEffects(scene.registry, scene.markup, b.centre, b.reflectorReach, {}, o.markupProbe);
+        const EffectPlan plan = planEffects(scene.registry, scene.markup, b.centre,
+                                            b.reflectorReach, {}, o.markupProbe);
         if (s.planned) applyPlan(plan, b);
         if (s.recordPlan) planJson = plan.toJson().dump();
     }
@@ -82,6 +82,17 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
         return bakeDistanceProbe(scene.registry, scene.markup, b);
     });
     result.bakeSeconds = secondsSince(start);
+    if (s.glossy == GlossyBake::On ||
+        (s.glossy == GlossyBake::Auto && hasGlossyReflector(scene.markup))) {
+        const auto prefilterStart = Clock::now();
+        if (log)
+            *log << "prefiltering the composite for glossy reflectors (GGX, "
+                 << s.prefilter.levels - 1 << " levels)..." << std::flush;
+        prefilterComposite(asset, s.prefilter); // seconds, no progress of its own
+        result.prefilterSeconds = secondsSince(prefilterStart);
+        if (log) *log << " " << result.prefilterSeconds << " s\n";
+        throwIfCancelled(o.out);
+    }
     asset.effectPlan = planJson;
     writeDistanceProbe(asset, o.out, scene.path);
     result.asset = std::move(asset);
@@ -134,6 +145,18 @@ CookResult cookPrepared(ProbeScene& scene, const CookOptions& o, std::ostream* l
 }
 
 } // namespace
+
+const char* toString(GlossyBake g) {
+    switch (g) {
+    case GlossyBake::On:
+        return "on";
+    case GlossyBake::Off:
+        return "off";
+    case GlossyBake::Auto:
+        break;
+    }
+    return "auto";
+}
 
 CookResult cookProbe(const CookOptions& options, std::ostream* log) {
     prepareOutput(options, log);

@@ -9,6 +9,7 @@
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/probe_setup.h"
+#include "engine/image/ggx_prefilter.h"
 
 #include <functional>
 #include <optional>
@@ -19,6 +20,11 @@
 
 namespace specula {
 
+// Whether a distance bake writes the composite's GGX prefiltered chain (glossy levels) for
+// glossy reflectors. Auto: when some reflector of the scene has a roughness > 0.
+enum class GlossyBake { Auto, On, Off };
+const char* toString(GlossyBake g); // "auto", "on", "off"
+
 // Distance-cubemap flavour.
 struct DistanceCookSettings {
     int faceRes = 256;
@@ -26,6 +32,10 @@ struct DistanceCookSettings {
     // is recorded in the manifest either way when `recordPlan`.
     bool planned = true;
     bool recordPlan = true;
+    GlossyBake glossy = GlossyBake::Auto;
+    // The chain when glossy (its levels, level 0 included: the default 6 writes 5 glossy
+    // levels, the chain a glossy lookup builds itself when an asset has none).
+    GgxPrefilterOptions prefilter;
 };
 
 // Light-field-slab flavour. The cell defaults to the probe markup's (cell_size, else 1.5 m)
@@ -63,6 +73,8 @@ struct CookOptions {
 struct CookResult {
     std::string manifest;   // out/manifest.json
     double bakeSeconds = 0; // planning and tracing; without opening the scene and writing
+    // Distance, glossy: the GGX prefilter of the composite (not in bakeSeconds); 0 when none.
+    double prefilterSeconds = 0;
     std::vector<std::string> warnings; // the probe placement's (also written to the log)
     std::variant<DistanceProbeAsset, LightFieldAsset, PemAsset> asset; // as written
     // Light field: the cell baked and the reflectors reaching outside it.

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <unordered_map>
 
@@ -202,6 +203,21 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
         asset.layers.push_back(std::move(L));
     if (opt.progress) opt.progress(1.0);
     return asset;
+}
+
+bool hasGlossyReflector(const SceneMarkup& markup) {
+    return std::any_of(markup.reflectors.begin(), markup.reflectors.end(),
+                       [](const ReflectorMarkup& r) { return r.roughness > 0.f; });
+}
+
+void prefilterComposite(DistanceProbeAsset& asset, const GgxPrefilterOptions& options) {
+    if (asset.layers.empty()) throw Error("", "layers", "expected the composite to prefilter");
+    GgxPrefilterOptions o = options;
+    o.dInf = asset.dInf;
+    CubeChain chain = prefilterGgx(asset.layers[0].faces, o);
+    // Level 0 is the composite itself; the asset keeps the levels above it.
+    asset.glossyLevels.assign(std::make_move_iterator(chain.levels.begin() + 1),
+                              std::make_move_iterator(chain.levels.end()));
 }
 
 } // namespace specula

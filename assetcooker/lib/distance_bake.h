@@ -6,6 +6,7 @@
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/scene_markup.h"
 #include "engine/ecs/registry.h"
+#include "engine/image/ggx_prefilter.h"
 
 #include <functional>
 #include <optional>
@@ -45,5 +46,15 @@ struct DistanceBakeOptions {
 
 DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup& markup,
                                      const DistanceBakeOptions& options);
+
+// Glossy reflectors (issue 14). Whether any reflector of the scene has a roughness > 0: what a
+// glossy bake on Auto asks (a scene of mirrors pays nothing for the chain).
+bool hasGlossyReflector(const SceneMarkup& markup);
+
+// The composite's GGX prefiltered chain above level 0 into asset.glossyLevels: prefilterGgx
+// of layer 0 with `options` (its levels, level 0 included; the default 6 gives 5 glossy
+// levels, perceptual roughness 0.2 .. 1, the chain a glossy lookup builds itself when an
+// asset has none) and the asset's d_inf. Call after bakeDistanceProbe (d_inf is set).
+void prefilterComposite(DistanceProbeAsset& asset, const GgxPrefilterOptions& options = {});
 
 } // namespace specula

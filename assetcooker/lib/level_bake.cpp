@@ -349,6 +349,12 @@ LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& env,
     std::string geometry;
     for (const auto& [index, e] : within)
         geometry += meshKey(reg, e) + '\n';
+    // The reflectors' markup decides what the bake makes too (Fresnel in the plan, the glossy
+    // chain under --glossy auto), whatever their materials say.
+    for (const ReflectorMarkup& r : scene.markup.reflectors) {
+        const float figures[] = {r.f0, r.roughness};
+        geometry += r.node + ' ' + bytesChecksum(figures, sizeof figures) + '\n';
+    }
     const std::string opts = options + '\n' + toJson(probe).dump();
     return {bytesChecksum(geometry.data(), geometry.size()),
             bytesChecksum(opts.data(), opts.size()),

@@ -261,6 +261,16 @@ TEST_F(LevelBake, BakesEveryProbeThenOnlyWhatChangedAndSaysWhy) {
     EXPECT_EQ(fs::last_write_time(root_ / "level/room_a_probe/manifest.json"), stamp);
     EXPECT_NE(log.str().find("probe room_b_probe: baked in"), std::string::npos) << log.str();
 
+    // A reflector made rough by its markup alone (the materials unchanged) re-bakes both
+    // probes: under --glossy auto that decides whether their chains are baked.
+    ASSERT_FALSE(scene.markup.reflectors.empty());
+    scene.markup.reflectors.front().roughness = 0.3f;
+    const LevelCookResult rough = cookLevel(scene, options(), &log);
+    for (const LevelProbeOutcome& p : rough.probes) {
+        EXPECT_TRUE(p.baked) << p.name;
+        EXPECT_EQ(p.reason, "geometry changed");
+    }
+
     // Other options re-bake both, naming the options.
     const LevelCookResult resized = cookLevel(scene, options(8), &log);
     for (const LevelProbeOutcome& p : resized.probes) {

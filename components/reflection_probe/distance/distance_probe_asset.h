@@ -48,9 +48,22 @@ struct DistanceProbeAsset {
     Image sky;                              // equirectangular panorama (may be empty)
     std::string skyFile, skyChecksum;
     std::string effectPlan; // the cooker's effect plan as JSON text (empty when none)
+    // The composite's GGX prefiltered chain (engine/image/ggx_prefilter.h) above level 0 (the
+    // composite itself): level i (1 .. size) has faces of max(1, faceRes >> i), RGB
+    // prefiltered at perceptual roughness i / size, A the min distance over its footprint
+    // (the finite distances of the composite's texels on the same face that overlap the
+    // texel; d_inf where none hits). Empty when the bake made none (no glossy reflector); a
+    // glossy lookup then prefilters the composite when it loads. On disk: one N_i x 6 N_i
+    // float EXR per level beside the layers (layer_00_ggx_<i>.exr, faces stacked as a
+    // layer's), listed in the manifest's "glossy": {"levels": [{"file", "checksum",
+    // "roughness"}, ...]} (absent when empty).
+    std::vector<std::array<Image, 6>> glossyLevels;
 
     int objectLayerCount() const { return int(layers.size()) - 1; }
 };
+
+// Most glossy levels a probe may hold: a face of 8192 texels is one texel at level 13.
+inline constexpr int kMaxGlossyLevels = 16;
 
 // Solid angle (steradians) of texel (x, y) of an n x n cube face.
 double cubeTexelSolidAngle(int x, int y, int n);
@@ -66,8 +79,9 @@ struct DistanceLayerContent {
 DistanceLayerContent measureDistanceLayer(const std::array<Image, 6>& faces, float dInf,
                                           const std::string& file);
 
-// Writes DIR/manifest.json and the layer EXRs. Everything goes to a sibling temporary folder
-// first and replaces DIR by rename, so an interrupted or failed write leaves DIR as it was.
+// Writes DIR/manifest.json, the layer EXRs and the glossy levels' EXRs. Everything goes to a
+// sibling temporary folder first and replaces DIR by rename, so an interrupted or failed
+// write leaves DIR as it was.
 void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
                         const std::string& sourceScene);
 
@@ -75,8 +89,11 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
 // range (centres within kMaxCoordinate, face_res an integer), file checksums, and the
 // images' content: float OpenEXR, every texel valid (measureDistanceLayer), each layer's
 // min/max distance and solid angle as the manifest states them, and layer 0 per texel the
-// nearest of the object layers. Files are read only when regular (no FIFO, device or
-// directory). Errors name the file and the field.
+// nearest of the object layers; the glossy levels likewise (checksum, float OpenEXR of
+// their size, every texel valid, "roughness" i / L, A the min over the composite under each
+// texel), errors naming the image and the field glossy.levels[k] (level k + 1); a manifest
+// without "glossy" reads with no glossy levels. Files are read only when regular (no FIFO,
+// device or directory). Errors name the file and the field.
 // writeDistanceProbe runs the same content checks before writing.
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath);
 
