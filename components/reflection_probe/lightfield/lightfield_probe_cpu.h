@@ -2,16 +2,36 @@
 // The CPU twin of the light-field shader: the same lookup code
 // (shaders/lightfield_lookup.glsl.h) compiled as C++ over the cooked atlas, with bilinear
 // fetches that read what the GPU reads (sRGB texels decoded to linear before filtering, BC1
-// decoded first, clamped to the layer). Tests hold the shader to it pixel by pixel.
+// decoded first, clamped to the layer). Tests hold the shader to it pixel by pixel. The glossy
+// lookup (shaders/lightfield_glossy.glsl.h) reads the mips of lightfield_mips.h, made on its
+// first call.
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
 
 #include <array>
+#include <cstdint>
 #include <memory>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace specula {
+
+// The glossy lookup's settings (the shader's uniforms; see shaders/lightfield_glossy.glsl.h).
+// The defaults are what the shader uses; the others exist for the measurements
+// (tests/probe/lightfield_glossy_test.cpp; room, NUM 8, RES 64, roughness 0.35, against the
+// GGX truth): K = 16 rays. 8 rays lose 1.2-1.6 dB, 32 gain 1.0-1.2 dB for twice the fetches;
+// the mips alone (K = 1) lose 5 dB; the same 16 rays without mips lose 0.8-1.0 dB, and rays
+// without mips alias textured surfaces (on the synthetic walls 32 rays at level 0 err 1.4-3.2x
+// as much as these 16 with mips). Level bias log2(2 / sqrt(12)): a level-k trilinear read
+// blurs with a standard deviation of 2^k / 2 texels (a 2^k box, then the bilinear tent), a
+// ray's square share of side s has s / sqrt(12); the bias makes the two equal.
+inline constexpr int kLightFieldGlossyRays = 16;
+inline constexpr float kLightFieldGlossyLevelBias = -0.7925f;
+struct LightFieldGlossyOptions {
+    int rays = kLightFieldGlossyRays;             // lobe rays: 1 or even
+    float levelBias = kLightFieldGlossyLevelBias; // added to each ray's mip level
+    bool mips = true;                             // false: every ray at level 0
+};
 
 // Continuous indices of a ray's slab lookup, before clamping (exposed for the coverage tests).
 struct LightFieldCoords {
@@ -29,6 +49,21 @@ public:
     // p: cell-local reflector point, d: reflected direction (need not be unit).
     glm::vec3 radiance(glm::vec3 p, glm::vec3 d) const;
     LightFieldCoords coords(glm::vec3 p, glm::vec3 d) const;
+
+    // The normalised GGX filter of a reflector of perceptual roughness `roughness` at p with
+    // normal n (either side) and mirror direction lhat (unit): lightFieldGlossyRadiance.
+    // Roughness <= 0 or NaN: radiance(p, lhat), bit for bit. Thread-safe.
+    glm::vec3 glossyRadiance(glm::vec3 p, glm::vec3 lhat, glm::vec3 n, float roughness,
+                             const LightFieldGlossyOptions& options = {}) const;
+    // What the shader writes for a reflector (before Fresnel): the filter times the GGX
+    // directional albedo E(|n.lhat|, roughness) when roughness > 0, else the mirror lookup.
+    glm::vec3 reflectedRadiance(glm::vec3 p, glm::vec3 lhat, glm::vec3 n, float roughness,
+                                const LightFieldGlossyOptions& options = {}) const;
+    // The deepest mip level the glossy lookup reads (lightFieldMaxLevel).
+    int maxLevel() const;
+    // Bilinear fetches the lookups of every twin have made on the calling thread so far (a
+    // running count: the cost figures take differences).
+    static std::uint64_t fetchCount();
 
     // The disparities the lookup uses (cooked or the override).
     const std::array<float, 6>& disparities() const { return disparity_; }

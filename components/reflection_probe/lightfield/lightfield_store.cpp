@@ -1,9 +1,11 @@
 #include "lightfield_store.h"
 
+#include "components/reflection_probe/lightfield/lightfield_mips.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "engine/gpu/shader.h"
+#include "engine/image/ggx_albedo.h"
 #include "engine/scene/components.h"
 #include "engine/scene/mesh_bounds.h"
 
@@ -14,8 +16,10 @@ namespace specula {
 namespace {
 
 // The six slabs as one sRGB array layer each (the texels are sRGB codes, decoded to linear
-// before filtering). Throws Error naming the manifest when this GPU cannot hold it.
-gpu::Texture uploadAtlas(const LightFieldAsset& a, const std::string& manifest) {
+// before filtering), with `mips` as levels 1.. when given. Throws Error naming the manifest
+// when this GPU cannot hold it.
+gpu::Texture uploadAtlas(const LightFieldAsset& a, const std::string& manifest,
+                         const LightFieldMips* mips = nullptr) {
     GLint maxLayers = 0, maxSize = 0;
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
@@ -30,19 +34,29 @@ gpu::Texture uploadAtlas(const LightFieldAsset& a, const std::string& manifest) 
                     "bc1 needs GL_EXT_texture_compression_s3tc, which this context lacks");
     gpu::Texture atlas = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
     const GLuint tex = atlas.id();
-    glTextureStorage3D(tex, 1, bc1 ? GL_COMPRESSED_SRGB_S3TC_DXT1_EXT : GL_SRGB8_ALPHA8, n, n, 6);
+    const int levels = 1 + (mips ? mips->maxLevel() : 0);
+    glTextureStorage3D(tex, levels, bc1 ? GL_COMPRESSED_SRGB_S3TC_DXT1_EXT : GL_SRGB8_ALPHA8, n, n,
+                       6);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    for (int k = 0; k < 6; ++k) {
-        const auto& data = a.slabs[std::size_t(k)].data;
-        if (bc1)
-            glCompressedTextureSubImage3D(tex, 0, 0, 0, k, n, n, 1,
-                                          GL_COMPRESSED_SRGB_S3TC_DXT1_EXT, GLsizei(data.size()),
-                                          data.data());
-        else
-            glTextureSubImage3D(tex, 0, 0, 0, k, n, n, 1, GL_RGB, GL_UNSIGNED_BYTE, data.data());
-    }
+    for (int level = 0; level < levels; ++level)
+        for (int k = 0; k < 6; ++k) {
+            const auto& data = level == 0 ? a.slabs[std::size_t(k)].data
+                                          : mips->levels[std::size_t(level - 1)][std::size_t(k)];
+            const int m = n >> level;
+            if (bc1)
+                glCompressedTextureSubImage3D(tex, level, 0, 0, k, m, m, 1,
+                                              GL_COMPRESSED_SRGB_S3TC_DXT1_EXT,
+                                              GLsizei(data.size()), data.data());
+            else
+                glTextureSubImage3D(tex, level, 0, 0, k, m, m, 1, GL_RGB, GL_UNSIGNED_BYTE,
+                                    data.data());
+        }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    // With mips: an integral lod reads exactly that level, bilinearly (the glossy lookup blends
+    // two levels itself); lod 0 is level 0 as without them.
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER,
+                        levels > 1 ? GL_LINEAR_MIPMAP_NEAREST : GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAX_LEVEL, levels - 1);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
@@ -57,13 +71,14 @@ gpu::Texture uploadAtlas(const LightFieldAsset& a, const std::string& manifest) 
 
 LightFieldVariant LightFieldVariant::filter() const {
     LightFieldVariant v = *this;
-    if (v.background || v.output != 0) v.fresnel = false;
+    if (v.background || v.output != 0) v.fresnel = v.glossy = false;
     return v;
 }
 
 std::string LightFieldVariant::name() const {
     std::string s = kLightFieldMethod.name;
     if (background) s += "+background";
+    if (glossy) s += "+glossy";
     if (fresnel) s += "+fresnel";
     return s;
 }
@@ -76,7 +91,7 @@ gpu::Program LightFieldVariant::build() const {
             "components/reflection_probe/lightfield/shaders/lightfield_reflector.frag"),
         {std::string("HAS_FRESNEL=") + (fresnel ? "1" : "0"),
          std::string("BACKGROUND=") + (background ? "1" : "0"),
-         "OUTPUT=" + std::to_string(output)});
+         std::string("GLOSSY=") + (glossy ? "1" : "0"), "OUTPUT=" + std::to_string(output)});
 }
 
 LightFieldProbeGpu LightFieldStore::loadProbe(const ProbeManifest& manifest,
@@ -90,7 +105,7 @@ LightFieldProbeGpu LightFieldStore::loadProbe(const ProbeManifest& manifest,
 }
 
 std::size_t LightFieldStore::gpuBytesOf(const LightFieldProbeGpu& g) const {
-    return g.asset->gpuBytes();
+    return g.asset->gpuBytes() + g.mipBytes;
 }
 
 void LightFieldStore::bind(gpu::Program& prog, const LightFieldProbeGpu& p,
@@ -115,7 +130,7 @@ void LightFieldStore::drawBackground(const ProbeDrawContext& ctx) {
         const float h = a.halfCell();
         if (!(std::abs(eye.x) <= h && std::abs(eye.y) <= h && std::abs(eye.z) <= h)) continue;
         if (!emptyVao_) emptyVao_ = gpu::VertexArray::create();
-        const LightFieldVariant v{false, true, ctx.output};
+        const LightFieldVariant v{false, true, false, ctx.output};
         gpu::Program& prog = variants_.get(v);
         prog.use();
         SceneRenderer::setCameraUniforms(prog, ctx.camera);
@@ -138,14 +153,46 @@ void LightFieldStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity ref
                                     const Reflector& r, const LightFieldProbeGpu& p,
                                     const LightFieldProbe& s) {
     checkCell(ctx, reflector, p);
-    const LightFieldVariant v{r.fresnelF0 >= 0.f, false, ctx.output};
+    // A rough reflector compiles the glossy lookup in (NaN roughness: a mirror); a scene of
+    // mirrors never builds it, nor the mips.
+    const LightFieldVariant v =
+        LightFieldVariant{r.fresnelF0 >= 0.f, false, r.roughness > 0.f, ctx.output}.filter();
     gpu::Program& prog = variants_.get(v);
-    ctx.stats.drew(v.filter().name());
+    ctx.stats.drew(v.name());
     prog.use();
     SceneRenderer::setCameraUniforms(prog, ctx.camera);
+    if (v.glossy) bindGlossy(ctx, prog, r, p); // may make the atlas again: before bind()
     bind(prog, p, s);
     prog.setUniform("uF0", r.fresnelF0);
     ctx.scene.drawEntity(reflector, prog);
+}
+
+void LightFieldStore::bindGlossy(const ProbeDrawContext& ctx, gpu::Program& prog,
+                                 const Reflector& r, const LightFieldProbeGpu& p) {
+    const LightFieldAsset& a = *p.asset;
+    if (p.mipLevels == 0 && lightFieldMaxLevel(a.res, a.compression) > 0) {
+        const LightFieldMips mips = buildLightFieldMips(a);
+        p.atlas = uploadAtlas(a, p.manifestPath, &mips);
+        p.mipLevels = mips.maxLevel();
+        p.mipBytes = mips.gpuBytes(a.atlasSize(), a.compression);
+        ++ctx.stats.textureUploads;
+    }
+    if (!ggxAlbedo_) {
+        ggxAlbedo_ = gpu::Texture::create(GL_TEXTURE_2D);
+        const GLuint tex = ggxAlbedo_.id();
+        glTextureStorage2D(tex, 1, GL_R32F, kGgxAlbedoTableSize, kGgxAlbedoTableSize);
+        glTextureSubImage2D(tex, 0, 0, 0, kGgxAlbedoTableSize, kGgxAlbedoTableSize, GL_RED,
+                            GL_FLOAT, ggxAlbedoTable().data());
+        glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        ++ctx.stats.textureUploads;
+    }
+    glBindTextureUnit(2, ggxAlbedo_.id());
+    prog.setUniform("uGgxAlbedo", 2);
+    prog.setUniform("uRoughness", r.roughness);
+    prog.setUniform("uGlossyRays", kLightFieldGlossyRays);
+    prog.setUniform("uLevelBias", kLightFieldGlossyLevelBias);
+    prog.setUniform("uMaxLevel", p.mipLevels);
 }
 
 void LightFieldStore::checkCell(const ProbeDrawContext& ctx, ecs::Entity reflector,

@@ -19,16 +19,22 @@ namespace specula {
 struct LightFieldProbeGpu {
     std::string manifestPath;
     std::shared_ptr<const LightFieldAsset> asset;
-    gpu::Texture atlas;
+    // The six slabs, level 0 only until the probe's first rough reflector draws; then made
+    // again with the mips of lightfield_mips.h (mutable: the store's hooks get the probe const).
+    mutable gpu::Texture atlas;
+    mutable int mipLevels = 0;        // deepest mip level uploaded (0: none)
+    mutable std::size_t mipBytes = 0; // their texture memory
 };
 
 struct LightFieldVariant {
     bool fresnel = false;
     bool background = false; // the full-screen environment pass
+    bool glossy = false;     // a rough reflector (GLOSSY: shaders/lightfield_glossy.glsl.h)
     int output = 0;
 
     auto operator<=>(const LightFieldVariant&) const = default;
-    // The background pass and the twin-input outputs write no reflector colour: no Fresnel.
+    // The background pass and the twin-input outputs write no reflector colour: no Fresnel,
+    // no glossy lookup.
     LightFieldVariant filter() const;
     std::string name() const;
     gpu::Program build() const;
@@ -57,10 +63,15 @@ private:
 
     void bind(gpu::Program& prog, const LightFieldProbeGpu& p, const LightFieldProbe& s) const;
     void checkCell(const ProbeDrawContext& ctx, ecs::Entity reflector, const LightFieldProbeGpu& p);
+    // The atlas with its mips and the GGX albedo table, made when a rough reflector first needs
+    // them; binds what the GLOSSY shader reads.
+    void bindGlossy(const ProbeDrawContext& ctx, gpu::Program& prog, const Reflector& r,
+                    const LightFieldProbeGpu& p);
 
     SharedAssets<LightFieldAsset> assets_;
     std::unordered_set<ecs::Entity> warnedOutside_; // reflectors already logged as outside
     gpu::VertexArray emptyVao_;                     // the background pass draws no attributes
+    gpu::Texture ggxAlbedo_;                        // E(n.v, roughness), made on first use
     ShaderVariants<LightFieldVariant> variants_;
 };
 

@@ -19,6 +19,7 @@ struct SlabCoords {
     int slab;    // 0..5: +X -X +Y -Y +Z -Z
     vec2 camera; // continuous camera index along (b, c): [0, NUM-1] for rays from the cell
     vec2 pixel;  // continuous pixel index (texel centres at integers): [-0.5, RES-0.5]
+    float along; // distance from p to the camera plane along the slab axis: [0, l] in the cell
 };
 
 // Picks the slab by the largest absolute direction component with the tie rule of
@@ -46,6 +47,7 @@ SlabCoords slabCoords(vec3 p, vec3 d, LightFieldParams prm) {
     r.slab = 2 * axis + (sigma < 0.0f ? 1 : 0);
     r.camera = (st / (6.0f * prm.halfCell) + 0.5f) * float(prm.cameras - 1);
     r.pixel = (slope + 1.0f) * (0.5f * float(prm.res)) - 0.5f;
+    r.along = along;
     return r;
 }
 

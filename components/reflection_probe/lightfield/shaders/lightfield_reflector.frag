@@ -1,6 +1,8 @@
 // Reflector pixels of a light-field-slab probe (and, with BACKGROUND=1, the environment seen
 // from an eye inside the slabs). Permutation defines: HAS_FRESNEL (0/1), BACKGROUND (0/1),
-// OUTPUT (0 colour, 1 cell-local position, 2 lookup direction: inputs for the CPU twin).
+// GLOSSY (0/1: a rough reflector, shaders/lightfield_glossy.glsl.h over the atlas's mips, times
+// the GGX albedo E), OUTPUT (0 colour, 1 cell-local position, 2 lookup direction, 3 shading
+// normal: inputs for the CPU twin).
 #include "engine/core/glsl_device.glsl"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
 
@@ -32,6 +34,25 @@ float slabDisparity(int slab) { return uDisparity[slab]; }
 
 #include "components/reflection_probe/lightfield/shaders/lightfield_lookup.glsl.h"
 
+#if GLOSSY
+uniform float uRoughness;     // perceptual, > 0
+uniform int uGlossyRays;      // K
+uniform float uLevelBias;     // added to each ray's mip level
+uniform int uMaxLevel;        // the atlas's deepest mip level
+uniform sampler2D uGgxAlbedo; // kGgxAlbedoSize^2 R32F: E(n.v = i / 31, roughness = j / 31)
+
+// The same normalised coordinate at every level (mips of lightfield_mips.h; the atlas is
+// mipmapped with GL_LINEAR_MIPMAP_NEAREST, so an integral lod reads that level bilinearly).
+vec3 fetchAtlasLevel(int slab, vec2 texel, int level) {
+    return textureLod(uAtlas, vec3(texel / uAtlasSize, float(slab)), float(level)).rgb;
+}
+
+float fetchGgxAlbedo(int i, int j) { return texelFetch(uGgxAlbedo, ivec2(i, j), 0).r; }
+
+#include "engine/image/ggx_albedo.glsl.h"
+#include "components/reflection_probe/lightfield/shaders/lightfield_glossy.glsl.h"
+#endif
+
 void main() {
     LightFieldParams prm;
     prm.halfCell = uHalfCell;
@@ -52,7 +73,17 @@ void main() {
     vec3 geometric = normalize(cross(dFdx(vWorldPos), dFdy(vWorldPos)));
     vec3 n = safeNormal(vNormal, geometric);
     vec3 lhat = normalize(mirrorDirection(v, n));
+#if GLOSSY
+    LightFieldGlossy g;
+    g.roughness = uRoughness;
+    g.rays = uGlossyRays;
+    g.levelBias = uLevelBias;
+    g.maxLevel = uMaxLevel;
+    vec3 colour = lightFieldGlossyRadiance(x, lhat, n, g, prm) *
+                  ggxAlbedo(lightFieldAlbedoCosine(n, lhat), min(uRoughness, 1.0));
+#else
     vec3 colour = lightFieldRadiance(x, lhat, prm);
+#endif
 #if HAS_FRESNEL
     colour *= schlickFresnel(uF0, abs(dot(n, v)));
 #endif
@@ -61,6 +92,8 @@ void main() {
     fragColor = vec4(x, 1.0);
 #elif OUTPUT == 2
     fragColor = vec4(lhat, 1.0);
+#elif OUTPUT == 3 && !BACKGROUND
+    fragColor = vec4(n, 1.0);
 #else
     fragColor = vec4(colour, 1.0);
 #endif
