@@ -64,6 +64,10 @@ public:
     virtual void update(const ecs::Registry& registry, ecs::Entity probe,
                         ProbeFrameStats& stats) = 0;
     virtual void drop(ecs::Entity probe) = 0;
+    // After every probe's update: what this frame's reflectors need from the store's probes
+    // beyond their settings (the distance flavour's glossy chain for rough reflectors), made
+    // here so that the timed reflector pass only draws.
+    virtual void syncReflectors(ecs::Registry&, ProbeFrameStats&) {}
     virtual bool holdsSettings(const ecs::Registry& registry, ecs::Entity probe) const = 0;
     virtual std::size_t gpuBytes() const = 0;
 

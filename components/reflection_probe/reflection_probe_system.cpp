@@ -84,6 +84,8 @@ void ReflectionProbeSystem::sync(ecs::Registry& registry) {
                                 " settings");
         slot.store->update(registry, e, stats_);
     });
+    for (const auto& s : stores_)
+        s->syncReflectors(registry, stats_);
     stats_.probeGpuBytes = 0;
     for (const auto& s : stores_)
         stats_.probeGpuBytes += s->gpuBytes();

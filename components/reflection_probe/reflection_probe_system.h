@@ -1,7 +1,8 @@
 #pragma once
 // Owns the GPU side of every ReflectionProbe through one store per flavour. sync() reads a
 // new or re-pointed probe's manifest once and hands it to the store its "flavour" names;
-// every store then applies its settings component (an edit rewrites parameters only).
+// every store then applies its settings component (an edit rewrites parameters only) and
+// makes what the reflectors need (syncReflectors: a rough reflector's glossy chain).
 // render() lets each store draw its background, then draws every Reflector through the store
 // of its probe. Nothing here knows a flavour: each registers itself with addFlavour().
 #include "components/reflection_probe/probe_flavour.h"

@@ -13,6 +13,23 @@
 #include <tbb/parallel_for.h>
 
 namespace specula {
+namespace glsl {
+namespace {
+// sampleChain is the shared sampler (engine/math/cube_chain_sample.glsl.h) over the chain's
+// images, so the shader that includes the same file samples exactly what the tests hold here.
+struct ChainSampler {
+    const CubeChain* chain;
+
+    vec3 fetchChainTexel(int level, int face, ivec2 texel) const {
+        return vec3(chain->levels[std::size_t(level)][std::size_t(face)].rgba(texel.x, texel.y));
+    }
+    int chainFaceRes(int level) const { return chain->levels[std::size_t(level)][0].width; }
+
+#include "engine/math/cube_chain_sample.glsl.h"
+};
+} // namespace
+} // namespace glsl
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -111,7 +128,7 @@ std::vector<double> solidAngleTable(int n) {
     std::vector<double> table(std::size_t(n) * n);
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x)
-            table[std::size_t(y) * n + x] = cubeTexelSolidAngle(n, x, y);
+            table[std::size_t(y) * n + x] = cubeFaceTexelSolidAngle(n, x, y);
     return table;
 }
 
@@ -326,7 +343,7 @@ int ggxChainSamples(int level, const GgxPrefilterOptions& options) {
     return int(std::min<std::int64_t>(s, std::max(options.samples, options.maxSamples)));
 }
 
-double cubeTexelSolidAngle(int n, int x, int y) {
+double cubeFaceTexelSolidAngle(int n, int x, int y) {
     // The solid angle of [-1, s] x [-1, t] on the face z = 1 up to constants: integral of
     // ds dt / (1 + s^2 + t^2)^1.5 has antiderivative atan(s t / sqrt(1 + s^2 + t^2)).
     const auto f = [](double s, double t) {
@@ -373,15 +390,8 @@ CubeChain prefilterGgx(const CubeFaces& faces, const GgxPrefilterOptions& option
 }
 
 glm::vec3 sampleChain(const CubeChain& chain, glm::vec3 dir, float level) {
-    const int last = int(chain.levels.size()) - 1;
-    const float lv = std::clamp(std::isnan(level) ? 0.f : level, 0.f, float(last));
-    const int l0 = std::min(int(lv), last), l1 = std::min(l0 + 1, last);
-    const float blend = lv - float(l0);
-    const glm::vec3 uvf = glsl::cubeFaceUv(dir);
-    const int f = int(uvf.z);
-    const glm::vec3 c0(bilinearAcross(chain.levels[l0], f, uvf.x, uvf.y));
-    if (!(blend > 0.f) || l1 == l0) return c0;
-    return glm::mix(c0, glm::vec3(bilinearAcross(chain.levels[l1], f, uvf.x, uvf.y)), blend);
+    glsl::ChainSampler sampler{&chain};
+    return sampler.sampleCubeChain(dir, level, int(chain.levels.size()));
 }
 
 glm::vec2 fetchMinMaxDistance(const CubeChain& chain, glm::vec3 dir, int level) {

@@ -87,7 +87,9 @@ int ggxChainSamples(int level, const GgxPrefilterOptions& options);
 CubeChain prefilterGgx(const CubeFaces& faces, const GgxPrefilterOptions& options = {});
 
 // Prefiltered radiance along dir (need not be normalised) at a fractional level (clamped to
-// the chain): trilinear, bilinear within a face and across face edges, seam-free.
+// the chain): trilinear, bilinear within a face and across face edges, seam-free. Runs the
+// shared GLSL/C++ sampler engine/math/cube_chain_sample.glsl.h, which shaders include to
+// sample the same chain the same way.
 glm::vec3 sampleChain(const CubeChain& chain, glm::vec3 dir, float level);
 
 // (min, max) distance of the level's texel along dir: a nearest fetch, never blended.
@@ -101,7 +103,9 @@ glm::vec2 fetchMinMaxDistance(const CubeChain& chain, glm::vec3 dir, int level);
 // three corner texels (as seamless cube-map hardware does), so the result is continuous
 // over the whole sphere.
 glm::vec4 sampleCubeBilinear(const CubeFaces& faces, glm::vec3 dir);
-// Exact solid angle of texel (x, y) of an n x n cube face (the same on every face).
-double cubeTexelSolidAngle(int n, int x, int y);
+// Exact solid angle of texel (x, y) of an n x n cube face (the same on every face). Not
+// named cubeTexelSolidAngle: the distance probe asset (components/) has one taking
+// (x, y, n), the same types, so the two would clash at link time.
+double cubeFaceTexelSolidAngle(int n, int x, int y);
 
 } // namespace specula

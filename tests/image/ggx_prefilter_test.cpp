@@ -124,7 +124,7 @@ TEST(GgxPrefilter, TexelSolidAnglesAreExact) {
         double sum = 0.0;
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x)
-                sum += cubeTexelSolidAngle(n, x, y);
+                sum += cubeFaceTexelSolidAngle(n, x, y);
         EXPECT_NEAR(6.0 * sum, 4.0 * kPi, 1e-10) << "n = " << n;
     }
     // A corner and a centre texel against the midpoint rule on ds dt / (1 + s^2 + t^2)^1.5.
@@ -137,7 +137,7 @@ TEST(GgxPrefilter, TexelSolidAnglesAreExact) {
                 const double s = s0 + (i + 0.5) * h, t = t0 + (j + 0.5) * h;
                 ref += h * h / std::pow(1.0 + s * s + t * t, 1.5);
             }
-        EXPECT_NEAR(cubeTexelSolidAngle(n, x, 0), ref, 1e-6);
+        EXPECT_NEAR(cubeFaceTexelSolidAngle(n, x, 0), ref, 1e-6);
     }
 }
 

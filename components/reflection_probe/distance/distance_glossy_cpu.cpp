@@ -1,5 +1,7 @@
 #include "distance_glossy_cpu.h"
 
+#include "components/reflection_probe/distance/distance_glossy_chain.h"
+
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 
@@ -9,7 +11,10 @@
 namespace specula {
 namespace glsl {
 namespace {
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
 #include "components/reflection_probe/distance/shaders/distance_glossy.glsl.h"
+#pragma GCC diagnostic pop
 } // namespace
 } // namespace glsl
 
@@ -26,9 +31,12 @@ const DistanceProbe& rectifying(const DistanceProbe& search) {
     return search;
 }
 
-GgxPrefilterOptions withDInf(GgxPrefilterOptions o, float dInf) {
-    o.dInf = dInf;
-    return o;
+// The chain, once the search method is known to be good (before the prefilter's time).
+std::shared_ptr<const CubeChain> chainFor(const DistanceProbeAsset& asset,
+                                          const DistanceProbe& search,
+                                          const GgxPrefilterOptions& prefilter) {
+    rectifying(search);
+    return std::make_shared<const CubeChain>(glossyChainOf(asset, prefilter));
 }
 
 } // namespace
@@ -50,10 +58,10 @@ const char* glossyModeName(GlossyMode mode) {
 CpuGlossyDistanceProbe::CpuGlossyDistanceProbe(const DistanceProbeAsset& asset,
                                                const DistanceProbe& search,
                                                const GgxPrefilterOptions& prefilter)
-    : envmap_(asset, makeLookupConfig(withMethod(search, DistanceMethod::Envmap), asset)),
-      boxproj_(asset, makeLookupConfig(withMethod(search, DistanceMethod::BoxProj), asset)),
-      rectified_(asset, makeLookupConfig(rectifying(search), asset)),
-      chain_(prefilterGgx(asset.layers.at(0).faces, withDInf(prefilter, asset.dInf))) {}
+    : chain_(chainFor(asset, search, prefilter)),
+      envmap_(asset, makeLookupConfig(withMethod(search, DistanceMethod::Envmap), asset), chain_),
+      boxproj_(asset, makeLookupConfig(withMethod(search, DistanceMethod::BoxProj), asset), chain_),
+      rectified_(asset, makeLookupConfig(rectifying(search), asset), chain_) {}
 
 const CpuDistanceProbe& CpuGlossyDistanceProbe::mirror(GlossyMode mode) const {
     if (mode == GlossyMode::EnvmapChain) return envmap_;
@@ -64,19 +72,20 @@ const CpuDistanceProbe& CpuGlossyDistanceProbe::mirror(GlossyMode mode) const {
 CpuGlossyDistanceProbe::Sample CpuGlossyDistanceProbe::sample(glm::vec3 x, glm::vec3 lhat,
                                                               float roughness,
                                                               GlossyMode mode) const {
-    // The lobe's centre: the mirror lookup's own search (box exit, rectified hit, or none).
-    const CpuDistanceProbe::CompositeHit h = mirror(mode).compositeHit(x, lhat);
+    if (mode != GlossyMode::RectifiedRoughnessLevel) {
+        // The shader's glossy path of the mode's method.
+        const CpuDistanceProbe::GlossySample g = mirror(mode).glossySample(x, lhat, roughness);
+        return {g.radiance, g.level, g.t, g.hit};
+    }
+    // The same search, the level from roughness alone: the lobe's centre is the rectified
+    // hit, or the direction when the search found nothing (the composite holds the sky
+    // there, so its chain has the sky's blur).
+    const CpuDistanceProbe::CompositeHit h = rectified_.compositeHit(x, lhat);
     Sample s{h.radiance, 0.f, h.t, h.hit};
     if (!(roughness > 0.f)) return s; // a mirror: level 0 is the input, read as the mirror does
-    const int levels = int(chain_.levels.size());
-    const float r = std::min(roughness, 1.f);
-    // Envmap and a search that found nothing read by direction alone: the composite holds
-    // the sky where it sees nothing, so its chain has the sky's blur there.
-    const bool direction = mode == GlossyMode::EnvmapChain || !h.hit;
-    s.level = mode == GlossyMode::RectifiedFootprint && !direction
-                  ? glsl::glossyFootprintLevel(r, x, lhat, h.t, levels)
-                  : glsl::glossyRoughnessLevel(r, levels);
-    s.radiance = sampleChain(chain_, direction ? lhat : x + h.t * lhat, s.level);
+    const int levels = int(chain_->levels.size());
+    s.level = glsl::glossyRoughnessLevel(std::min(roughness, 1.f), levels);
+    s.radiance = sampleChain(*chain_, h.hit ? x + h.t * lhat : lhat, s.level);
     return s;
 }
 

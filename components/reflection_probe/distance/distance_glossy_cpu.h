@@ -4,8 +4,14 @@
 // direction and a level chosen four ways: what engines do (direction only, or box-projected,
 // with the level from roughness alone), and the distance probe's mirror search for the hit
 // followed by the level from roughness alone or from the lobe's footprint at the hit
-// (shaders/distance_glossy.glsl.h, shared with the shader to come). Roughness 0 is the
-// mirror lookup of CpuDistanceProbe, bit for bit.
+// (shaders/distance_glossy.glsl.h). Roughness 0 is the mirror lookup of CpuDistanceProbe,
+// bit for bit.
+//
+// Three modes are the shader's glossy path of a method (CpuDistanceProbe::glossySample, the
+// code of shaders/distance_glossy_lookup.glsl.h): EnvmapChain is envmap's, BoxprojChain
+// boxproj's, RectifiedFootprint that of the search method (bisection or secant).
+// RectifiedRoughnessLevel, the search with the level from roughness alone, exists here only,
+// as the comparison that shows what the footprint level buys.
 //
 // Radiance is the prefiltered (split-sum) lighting term only: the reflector's directional
 // albedo and Fresnel multiply it outside, as in the shader.
@@ -13,6 +19,7 @@
 #include "engine/image/ggx_prefilter.h"
 
 #include <array>
+#include <memory>
 
 namespace specula {
 
@@ -30,7 +37,8 @@ const char* glossyModeName(GlossyMode mode);
 class CpuGlossyDistanceProbe {
 public:
     // `search`: the rectified modes' method (Bisection or Secant; else Error) and d_e. The
-    // composite is prefiltered here; the asset must outlive the probe.
+    // chain is glossyChainOf(asset, prefilter): the cooked levels, else the composite
+    // prefiltered here. The asset must outlive the probe.
     explicit CpuGlossyDistanceProbe(const DistanceProbeAsset& asset,
                                     const DistanceProbe& search = {},
                                     const GgxPrefilterOptions& prefilter = {});
@@ -48,13 +56,13 @@ public:
         return sample(x, lhat, roughness, mode).radiance;
     }
 
-    const CubeChain& chain() const { return chain_; }
+    const CubeChain& chain() const { return *chain_; }
 
 private:
     const CpuDistanceProbe& mirror(GlossyMode mode) const;
 
+    std::shared_ptr<const CubeChain> chain_; // first: the probes below share it
     CpuDistanceProbe envmap_, boxproj_, rectified_;
-    CubeChain chain_;
 };
 
 } // namespace specula

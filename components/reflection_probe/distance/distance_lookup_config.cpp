@@ -55,6 +55,7 @@ std::string distanceFeatureName(std::uint32_t f) {
     add(kFeatureLayers, "layers");
     for (const DistanceMethodInfo& row : kDistanceMethods)
         add(row.feature, row.label.name);
+    add(kFeatureGlossy, "glossy");
     add(kFeatureFresnel, "fresnel");
     return s;
 }

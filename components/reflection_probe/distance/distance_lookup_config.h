@@ -17,8 +17,8 @@ namespace glsl {
 // The shared parameter block (shaders/distance_params.glsl.h) plus the permutation bits,
 // which pick the shader and so are not a uniform.
 struct DistanceLookupConfig : glsl::DistanceParamsBlock {
-    // Permutation bits: the methods' (kDistanceMethods) and kFeatureLayers; Fresnel is added
-    // per reflector.
+    // Permutation bits: the methods' (kDistanceMethods) and kFeatureLayers; Fresnel and
+    // glossy are added per reflector.
     std::uint32_t features = 0;
 };
 
@@ -28,7 +28,7 @@ int bisectionSteps(float range, float tolerance);
 // Throws Error naming the asset's manifest when the method needs data the asset lacks.
 DistanceLookupConfig makeLookupConfig(const DistanceProbe& settings, const DistanceProbeAsset& a);
 
-// "layers+bisection+avgdist+fresnel": a feature mask's name, from the method table.
+// "layers+bisection+avgdist+glossy+fresnel": a feature mask's name, from the method table.
 std::string distanceFeatureName(std::uint32_t features);
 
 } // namespace specula

@@ -47,6 +47,9 @@ struct DistanceMethodInfo {
 // Permutation bits that are not methods.
 inline constexpr std::uint32_t kFeatureLayers = 1u << 5;
 inline constexpr std::uint32_t kFeatureFresnel = 1u << 6;
+// A rough reflector (Reflector::roughness > 0): the composite's GGX prefiltered chain read at
+// the hit (shaders/distance_glossy_lookup.glsl.h). Per reflector, like Fresnel.
+inline constexpr std::uint32_t kFeatureGlossy = 1u << 7;
 
 inline constexpr std::array<DistanceMethodInfo, 7> kDistanceMethods = {{
     {DistanceMethod::Envmap,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
@@ -51,6 +52,13 @@ struct TwinFetches {
         if (asset->sky.empty()) return vec3(0.f);
         return vec3(sampleBilinear(asset->sky, equirectUv(dir), Wrap::Repeat, Wrap::Clamp));
     }
+    // The composite's glossy chain, as shaders/distance_glossy_gpu.glsl reads it.
+    const CubeChain* chain = nullptr;
+    vec3 fetchChainTexel(int level, int face, ivec2 texel) const {
+        return vec3(chain->levels[std::size_t(level)][std::size_t(face)].rgba(texel.x, texel.y));
+    }
+    int chainFaceRes(int level) const { return chain->levels[std::size_t(level)][0].width; }
+
     const DistanceLayerParams& layerParams(int i) const { return config->layers[i]; }
     int layerMethod(int i) const { return layerParams(i).method; }
     float layerAvgDistance(int i) const { return layerParams(i).avgDistance; }
@@ -72,13 +80,24 @@ struct TwinFetches {
 struct TwinSingle : TwinFetches {
 #include "components/reflection_probe/distance/shaders/distance_lookup.glsl.h"
 #include "components/reflection_probe/distance/shaders/distance_seen.glsl.h"
+// The glossy path (HAS_GLOSSY): the seam-free chain sampler,
+#include "engine/math/cube_chain_sample.glsl.h"
+// then the lookup that reads the chain at the hit.
+#include "components/reflection_probe/distance/shaders/distance_glossy_lookup.glsl.h"
 };
 #undef HAS_LAYERS
 #undef SPECULA_DISTANCE_LOOKUP_GLSL_H
+#undef SPECULA_CUBE_CHAIN_SAMPLE_GLSL_H
+#undef SPECULA_DISTANCE_GLOSSY_GLSL_H
+#undef SPECULA_DISTANCE_GLOSSY_LOOKUP_GLSL_H
 
 #define HAS_LAYERS 1
 struct TwinLayered : TwinFetches {
 #include "components/reflection_probe/distance/shaders/distance_lookup.glsl.h"
+// The glossy path (HAS_GLOSSY): the seam-free chain sampler,
+#include "engine/math/cube_chain_sample.glsl.h"
+// then the lookup that reads the chain at the hit.
+#include "components/reflection_probe/distance/shaders/distance_glossy_lookup.glsl.h"
 };
 #undef HAS_LAYERS
 
@@ -89,10 +108,12 @@ struct CpuDistanceProbe::Twin {
     glsl::TwinLayered layered;
 };
 
-CpuDistanceProbe::CpuDistanceProbe(const DistanceProbeAsset& asset, DistanceLookupConfig config)
-    : twin_(std::make_unique<Twin>()), config_(std::move(config)) {
+CpuDistanceProbe::CpuDistanceProbe(const DistanceProbeAsset& asset, DistanceLookupConfig config,
+                                   std::shared_ptr<const CubeChain> glossy)
+    : twin_(std::make_unique<Twin>()), config_(std::move(config)), glossy_(std::move(glossy)) {
     twin_->single.asset = twin_->layered.asset = &asset;
     twin_->single.config = twin_->layered.config = &config_;
+    twin_->single.chain = twin_->layered.chain = glossy_.get();
 }
 
 CpuDistanceProbe::~CpuDistanceProbe() = default;
@@ -112,6 +133,27 @@ glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches,
 
 glm::vec3 CpuDistanceProbe::sky(glm::vec3 dir) const {
     return twin_->single.fetchSky(dir);
+}
+
+CpuDistanceProbe::CompositeHit CpuDistanceProbe::compositeHit(glm::vec3 x, glm::vec3 lhat) const {
+    const glsl::DistanceParams& p = config_.params;
+    const glsl::LayerHit h = twin_->single.lookupLayer(
+        p.method, 0, x, lhat, p, twin_->single.makeSpan(0.f, 2.f * p.range, p.maxSteps));
+    if (!h.hit) return {twin_->single.fetchSky(lhat), p.dInf, false, h.fetches + 1};
+    return {h.radiance, h.t, true, h.fetches};
+}
+
+CpuDistanceProbe::GlossySample CpuDistanceProbe::glossySample(glm::vec3 x, glm::vec3 lhat,
+                                                              float roughness) const {
+    if (!glossy_)
+        throw Error(twin_->single.asset->manifestPath, "glossy chain",
+                    "a glossy lookup needs the composite's prefiltered chain (glossyChainOf)");
+    const int levels = int(glossy_->levels.size());
+    const glsl::GlossySample s =
+        (config_.features & kFeatureLayers)
+            ? twin_->layered.probeGlossySample(x, lhat, roughness, config_.params, levels)
+            : twin_->single.probeGlossySample(x, lhat, roughness, config_.params, levels);
+    return {s.radiance, s.level, s.t, s.hit, s.fetches};
 }
 
 CpuDistanceProbe::Seen CpuDistanceProbe::seenRadiance(glm::vec3 x, glm::vec3 lhat) const {

@@ -4,6 +4,7 @@
 // fetches that read what the GPU reads (bilinear radiance, nearest distance, clamp to the
 // face edge). Tests hold the shader to it pixel by pixel.
 #include "components/reflection_probe/distance/distance_lookup_config.h"
+#include "engine/image/ggx_prefilter.h"
 
 #include <memory>
 
@@ -11,7 +12,10 @@ namespace specula {
 
 class CpuDistanceProbe {
 public:
-    CpuDistanceProbe(const DistanceProbeAsset& asset, DistanceLookupConfig config);
+    // `glossy`: the composite's prefiltered chain (glossyChainOf), needed by glossySample
+    // only; the asset must outlive the probe.
+    CpuDistanceProbe(const DistanceProbeAsset& asset, DistanceLookupConfig config,
+                     std::shared_ptr<const CubeChain> glossy = nullptr);
     ~CpuDistanceProbe();
 
     // x: probe-local reflector point, lhat: unit reflected direction. Adds the texture
@@ -30,6 +34,37 @@ public:
     };
     Seen seenRadiance(glm::vec3 x, glm::vec3 lhat) const;
 
+    // The composite's (layer 0) lookup by params.method alone, as radiance() runs it without
+    // layers, with the distance t along the ray to what it found (the glossy lookup reads
+    // its chain there): the box exit for boxproj; d_inf for envmap and when nothing was hit
+    // (hit = false, radiance from the sky).
+    struct CompositeHit {
+        glm::vec3 radiance{0.f};
+        float t = 0.f;
+        bool hit = false;
+        int fetches = 0;
+    };
+    CompositeHit compositeHit(glm::vec3 x, glm::vec3 lhat) const;
+
+    // The shader's glossy path (HAS_GLOSSY, shaders/distance_glossy_lookup.glsl.h) for a
+    // reflector of perceptual roughness `roughness`: the search of the configured method (the
+    // nearest layer hit in layered mode), then the chain read at the hit direction with the
+    // footprint level (searching methods, layered) or the roughness level (envmap, boxproj,
+    // and rays that hit nothing). Roughness <= 0 is radiance() exactly. Throws Error when
+    // the probe was made without a chain.
+    struct GlossySample {
+        glm::vec3 radiance{0.f};
+        float level = 0.f; // chain level read (0 for a mirror)
+        float t = 0.f;     // along the ray to the hit (d_inf: none, or envmap)
+        bool hit = false;
+        int fetches = 0;
+    };
+    GlossySample glossySample(glm::vec3 x, glm::vec3 lhat, float roughness) const;
+    glm::vec3 glossyRadiance(glm::vec3 x, glm::vec3 lhat, float roughness) const {
+        return glossySample(x, lhat, roughness).radiance;
+    }
+    const CubeChain* glossyChain() const { return glossy_.get(); }
+
     // The asset's sky along dir, as the shader's fetchSky reads it (black without one).
     glm::vec3 sky(glm::vec3 dir) const;
 
@@ -39,6 +74,7 @@ private:
     struct Twin;
     std::unique_ptr<Twin> twin_;
     DistanceLookupConfig config_;
+    std::shared_ptr<const CubeChain> glossy_;
 };
 
 } // namespace specula

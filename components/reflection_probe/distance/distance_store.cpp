@@ -1,5 +1,6 @@
 #include "distance_store.h"
 
+#include "components/reflection_probe/distance/distance_glossy_chain.h"
 #include "components/reflection_probe/distance/distance_textures.h"
 #include "engine/gpu/shader.h"
 
@@ -9,7 +10,7 @@ namespace specula {
 
 DistanceVariant DistanceVariant::filter() const {
     DistanceVariant v = *this;
-    if (v.output != 0) v.features &= ~kFeatureFresnel;
+    if (v.output != 0) v.features &= ~(kFeatureFresnel | kFeatureGlossy);
     return v;
 }
 
@@ -19,6 +20,7 @@ gpu::Program DistanceVariant::build() const {
     for (const DistanceMethodInfo& row : kDistanceMethods)
         if (row.define) defines.push_back(std::string(row.define) + "=" + bit(row.feature));
     defines.push_back(std::string("HAS_LAYERS=") + bit(kFeatureLayers));
+    defines.push_back(std::string("HAS_GLOSSY=") + bit(kFeatureGlossy));
     defines.push_back(std::string("HAS_FRESNEL=") + bit(kFeatureFresnel));
     defines.push_back("OUTPUT=" + std::to_string(output));
     return gpu::buildProgram(
@@ -57,7 +59,8 @@ void DistanceStore::applySettings(DistanceProbeGpu& g, const DistanceProbe& sett
 std::size_t DistanceStore::gpuBytesOf(const DistanceProbeGpu& g) const {
     const DistanceProbeAsset& a = *g.asset;
     return cubeArrayBytes(a.faceRes, g.layersUploaded) +
-           (a.sky.empty() ? 0 : skyTextureBytes(a.sky));
+           (a.sky.empty() ? 0 : skyTextureBytes(a.sky)) +
+           (g.glossyChain ? chainArrayBytes(*g.glossyChain) : 0);
 }
 
 void DistanceStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector,
@@ -65,6 +68,9 @@ void DistanceStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity refle
                                   const DistanceProbe&) {
     DistanceVariant v{p.config.features, ctx.output};
     if (r.fresnelF0 >= 0.f) v.features |= kFeatureFresnel;
+    if (r.roughness > 0.f) v.features |= kFeatureGlossy; // NaN: a mirror
+    const bool glossy = (v.filter().features & kFeatureGlossy) != 0;
+    if (glossy) prepareGlossy(p, ctx.stats); // made in sync, unless it turned rough since
     gpu::Program& prog = variants_.get(v);
     ctx.stats.drew(v.filter().name());
     prog.use();
@@ -76,7 +82,44 @@ void DistanceStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity refle
     prog.setUniform("uHasSky", p.sky.id() != 0 ? 1 : 0);
     p.params.bind(glsl::kDistanceParamsBinding);
     prog.setUniform("uF0", r.fresnelF0);
+    if (glossy) {
+        glBindTextureUnit(3, p.glossyTexture.id());
+        prog.setUniform("uChain", 3);
+        prog.setUniform("uRoughness", r.roughness);
+        prog.setUniform("uChainLevels", int(p.glossyChain->levels.size()));
+    }
     ctx.scene.drawEntity(reflector, prog);
+}
+
+void DistanceStore::syncReflectors(ecs::Registry& registry, ProbeFrameStats& stats) {
+    registry.view<Reflector>().each([&](ecs::Entity, Reflector& r) {
+        if (!(r.roughness > 0.f)) return;
+        if (const DistanceProbeGpu* g = probe(r.probe)) prepareGlossy(*g, stats);
+    });
+}
+
+void DistanceStore::prepareGlossy(const DistanceProbeGpu& p, ProbeFrameStats& stats) {
+    if (p.glossyChain) return;
+    std::shared_ptr<const CubeChain> chain = chainOf(p.asset); // throws before any change
+    p.glossyTexture = uploadChainArray(*chain);
+    p.glossyChain = std::move(chain);
+    ++stats.textureUploads;
+}
+
+std::shared_ptr<const CubeChain>
+DistanceStore::chainOf(const std::shared_ptr<const DistanceProbeAsset>& a) {
+    std::erase_if(chains_, [](const auto& entry) { return entry.second.asset.expired(); });
+    SharedChain& cached = chains_[a.get()];
+    std::shared_ptr<const CubeChain> chain = cached.chain.lock();
+    if (chain && cached.asset.lock() == a) return chain;
+    chain = std::make_shared<const CubeChain>(glossyChainOf(*a));
+    cached = {a, chain};
+    return chain;
+}
+
+std::shared_ptr<const CubeChain> DistanceStore::glossyChain(ecs::Entity e) const {
+    const DistanceProbeGpu* g = probe(e);
+    return g ? g->glossyChain : nullptr;
 }
 
 const DistanceProbeAsset* DistanceStore::asset(ecs::Entity e) const {

@@ -6,6 +6,7 @@
 #include "components/reflection_probe/flavour_store_base.h"
 #include "components/reflection_probe/shader_variants.h"
 #include "engine/gpu/gl_objects.h"
+#include "engine/image/ggx_prefilter.h"
 
 #include <memory>
 #include <string>
@@ -20,15 +21,21 @@ struct DistanceProbeGpu {
     gpu::Texture layers;
     int layersUploaded = 0; // cube layers in `layers`: the composite, or every layer
     gpu::Texture sky;
+    // The composite's GGX prefiltered chain (glossyChainOf) and its levels 1.. on the GPU
+    // (uploadChainArray): made by the first sync that finds a rough reflector of this probe,
+    // since only rough reflectors read it (mutable: the store's hooks get the probe const).
+    mutable std::shared_ptr<const CubeChain> glossyChain;
+    mutable gpu::Texture glossyTexture;
 };
 
-// A compiled feature set: the methods' bits, layers and Fresnel, and the output.
+// A compiled feature set: the methods' bits, layers, glossy and Fresnel, and the output.
 struct DistanceVariant {
     std::uint32_t features = 0;
     int output = 0;
 
     auto operator<=>(const DistanceVariant&) const = default;
-    // The twin-input outputs (1, 2) write no colour, so Fresnel is irrelevant to them.
+    // The twin-input outputs (1, 2) write no colour, so Fresnel and glossy are irrelevant to
+    // them.
     DistanceVariant filter() const;
     std::string name() const { return distanceFeatureName(features); }
     gpu::Program build() const;
@@ -39,9 +46,15 @@ public:
     std::string_view flavour() const override { return "distance"; }
     std::string_view settingsName() const override { return "DistanceProbe"; }
 
+    // Makes the glossy chain of every probe a rough reflector reads.
+    void syncReflectors(ecs::Registry& registry, ProbeFrameStats& stats) override;
+
     // The CPU-side asset and lookup configuration of a synced probe (null if none).
     const DistanceProbeAsset* asset(ecs::Entity probe) const;
     const DistanceLookupConfig* config(ecs::Entity probe) const;
+    // The glossy chain a synced probe's rough reflectors read (null before one drew): what
+    // the CPU twin needs (CpuDistanceProbe's `glossy`).
+    std::shared_ptr<const CubeChain> glossyChain(ecs::Entity probe) const;
 
 private:
     DistanceProbeGpu loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) override;
@@ -54,6 +67,16 @@ private:
     // Probes that share an asset share its CPU copy; the GPU copy is per probe since the
     // methods (and so the layers uploaded) may differ.
     SharedAssets<DistanceProbeAsset> assets_;
+    // Probes that share an asset share its chain (prefiltered once). An entry counts only
+    // while its asset is the very one alive (a freed asset's address may come back).
+    struct SharedChain {
+        std::weak_ptr<const DistanceProbeAsset> asset;
+        std::weak_ptr<const CubeChain> chain;
+    };
+    std::unordered_map<const DistanceProbeAsset*, SharedChain> chains_;
+    std::shared_ptr<const CubeChain> chainOf(const std::shared_ptr<const DistanceProbeAsset>& a);
+    // The probe's glossy chain and its texture, unless it has them.
+    void prepareGlossy(const DistanceProbeGpu& probe, ProbeFrameStats& stats);
     ShaderVariants<DistanceVariant> variants_;
 };
 

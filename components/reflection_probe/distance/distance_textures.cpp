@@ -1,6 +1,9 @@
 #include "distance_textures.h"
 
+#include "engine/core/error.h"
+
 #include <algorithm>
+#include <string>
 #include <vector>
 
 namespace specula {
@@ -26,6 +29,68 @@ void uploadCube(const gpu::Texture& array, int cube, const DistanceProbeLayer& l
 
 std::size_t cubeArrayBytes(int faceRes, int cubes) {
     return std::size_t(faceRes) * std::size_t(faceRes) * 6 * std::size_t(cubes) * 16;
+}
+
+namespace {
+
+// Mips of the chain array: level 1's faces halved down to 1 x 1, at most one per level.
+int chainMips(const CubeChain& chain) {
+    const int levels = int(chain.levels.size()) - 1;
+    int mips = 1;
+    for (int n = chain.levels[1][0].width; n > 1 && mips < levels; n /= 2)
+        ++mips;
+    return mips;
+}
+
+} // namespace
+
+gpu::Texture uploadChainArray(const CubeChain& chain) {
+    if (chain.levels.size() < 2) return {};
+    // The shader computes level i's size from the composite's (chainFaceRes).
+    const int n = chain.levels[0][0].width;
+    for (std::size_t i = 1; i < chain.levels.size(); ++i) {
+        const int want = std::max(1, n >> std::min(int(i), 30));
+        for (int f = 0; f < 6; ++f) {
+            const Image& face = chain.levels[i][std::size_t(f)];
+            if (face.width != want || face.height != want || face.channels != 4)
+                throw Error("", "glossy level " + std::to_string(i) + " face " + std::to_string(f),
+                            "expected " + std::to_string(want) + "x" + std::to_string(want) +
+                                " RGBA, got " + std::to_string(face.width) + "x" +
+                                std::to_string(face.height) + " with " +
+                                std::to_string(face.channels) + " channels");
+        }
+    }
+    const int base = chain.levels[1][0].width, mips = chainMips(chain);
+    const int slots = int(chain.levels.size()) - mips; // level i at slot i - 1 - mip
+    gpu::Texture array = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    const GLuint tex = array.id();
+    glTextureStorage3D(tex, mips, GL_RGBA32F, base, base, 6 * slots);
+    for (std::size_t i = 1; i < chain.levels.size(); ++i) {
+        const int mip = std::min(int(i) - 1, mips - 1), slot = int(i) - 1 - mip;
+        for (int f = 0; f < 6; ++f) {
+            const Image& face = chain.levels[i][std::size_t(f)];
+            glTextureSubImage3D(tex, mip, 0, 0, 6 * slot + f, face.width, face.height, 1, GL_RGBA,
+                                GL_FLOAT, face.pixels.data());
+        }
+    }
+    // Read by texelFetch only; nearest filters keep the texture complete at every mip.
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return array;
+}
+
+std::size_t chainArrayBytes(const CubeChain& chain) {
+    if (chain.levels.size() < 2) return 0;
+    const int base = chain.levels[1][0].width, mips = chainMips(chain);
+    const int slots = int(chain.levels.size()) - mips;
+    std::size_t bytes = 0;
+    for (int m = 0; m < mips; ++m) {
+        const std::size_t n = std::size_t(std::max(1, base >> m));
+        bytes += n * n * 6 * std::size_t(slots) * 16;
+    }
+    return bytes;
 }
 
 gpu::Texture uploadSkyTexture(const Image& sky) {

@@ -4,6 +4,7 @@
 // panorama. Need a current GL 4.5 context.
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "engine/gpu/gl_objects.h"
+#include "engine/image/ggx_prefilter.h"
 
 #include <cstddef>
 
@@ -14,6 +15,14 @@ gpu::Texture createCubeArray(int faceRes, int cubes);
 // Writes `layer`'s six faces into array layers 6 cube .. 6 cube + 5.
 void uploadCube(const gpu::Texture& array, int cube, const DistanceProbeLayer& layer);
 std::size_t cubeArrayBytes(int faceRes, int cubes);
+
+// The levels 1.. of a cube chain (engine/image/ggx_prefilter.h; level 0, the composite, is
+// already in the cube array) as a mipmapped RGBA32F 2D array read by texelFetch
+// (shaders/distance_glossy_gpu.glsl): level i at mip i - 1, array layers 0..5; levels past the
+// mip pyramid (1 x 1 faces) in the last mip, six more layers each. Null for a chain of one
+// level. Throws Error when level i's faces are not max(1, n >> i) square RGBA (n: level 0's).
+gpu::Texture uploadChainArray(const CubeChain& chain);
+std::size_t chainArrayBytes(const CubeChain& chain);
 
 // The equirectangular sky, bilinear, repeating around the horizon.
 gpu::Texture uploadSkyTexture(const Image& sky);

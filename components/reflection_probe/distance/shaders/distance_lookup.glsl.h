@@ -200,8 +200,10 @@ LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, DistanceParams p,
 #endif
 }
 
-// Radiance seen from probe-local point x along the unit reflected direction lhat.
-vec3 probeRadiance(vec3 x, vec3 lhat, DistanceParams p, INOUT(int) fetches) {
+// The surface seen from probe-local point x along the unit reflected direction lhat: the
+// nearest hit along the ray over the object layers (layered), or the composite's lookup by
+// p.method; hit = false (t = d_inf) when nothing was found and the sky answers.
+LayerHit probeHit(vec3 x, vec3 lhat, DistanceParams p) {
 #if HAS_LAYERS
     // The hit nearest along the ray occludes the others. Wang et al. let the first layer
     // with a hit win, which holds for nested shells; per-object layers overlap in depth
@@ -210,32 +212,36 @@ vec3 probeRadiance(vec3 x, vec3 lhat, DistanceParams p, INOUT(int) fetches) {
     // layer usually answers first; the box test skips a layer entered only behind the best
     // hit, and the loop ends once no later layer can come nearer: a point of those layers
     // lies at least layerReach from the centre, so at least layerReach - |x| along the ray.
-    float bestT = p.dInf; // stays d_inf until some layer hits
-    vec3 best = vec3(0.0f);
+    LayerHit best = makeHit(vec3(0.0f), false, 0, p.dInf); // t stays d_inf until a hit
     float fromCentre = length(x);
     for (int i = 1; i <= p.layerCount; ++i) {
-        if (layerReach(i) - fromCentre >= bestT) break;
+        if (layerReach(i) - fromCentre >= best.t) break;
         vec2 span = layerSpan(i, x, lhat);
         float t1 = min(span.y, 2.0f * p.range); // every hit lies within 2D
-        if (span.x > t1 || span.x >= bestT) continue;
+        if (span.x > t1 || span.x >= best.t) continue;
         RaySpan s = makeSpan(span.x, t1, spanSteps(t1 - span.x, p));
         LayerHit h = lookupLayer(layerMethod(i), i, x, lhat, p, s);
-        fetches += h.fetches;
-        if (h.hit && h.t < bestT) {
-            bestT = h.t;
-            best = h.radiance;
+        best.fetches += h.fetches;
+        if (h.hit && h.t < best.t) {
+            best.t = h.t;
+            best.radiance = h.radiance;
+            best.hit = true;
         }
     }
-    if (bestT < p.dInf) return best;
-    fetches += 1;
-    return fetchSky(lhat);
+    return best;
 #else
-    LayerHit h = lookupLayer(p.method, 0, x, lhat, p, makeSpan(0.0f, 2.0f * p.range, p.maxSteps));
+    return lookupLayer(p.method, 0, x, lhat, p, makeSpan(0.0f, 2.0f * p.range, p.maxSteps));
+#endif
+}
+
+// Radiance seen from probe-local point x along the unit reflected direction lhat: the hit's,
+// else the sky by direction alone.
+vec3 probeRadiance(vec3 x, vec3 lhat, DistanceParams p, INOUT(int) fetches) {
+    LayerHit h = probeHit(x, lhat, p);
     fetches += h.fetches;
     if (h.hit) return h.radiance;
     fetches += 1;
     return fetchSky(lhat);
-#endif
 }
 
 #endif

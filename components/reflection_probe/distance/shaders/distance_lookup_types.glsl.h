@@ -32,4 +32,13 @@ struct SeenSample {
     float t;     // along the ray to the hit proposed (d_inf: the sky)
 };
 
+// A glossy lookup (distance_glossy_lookup.glsl.h): the prefiltered chain read at the hit.
+struct GlossySample {
+    vec3 radiance;
+    float level; // the chain level read (0 for a mirror: no chain read at all)
+    float t;     // along the ray to the hit whose direction the chain was read at (d_inf: none)
+    bool hit;    // a surface was found (always for envmap and boxproj)
+    int fetches; // texture fetches spent (distance, radiance and chain texels)
+};
+
 #endif

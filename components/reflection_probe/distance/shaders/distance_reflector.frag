@@ -1,6 +1,8 @@
 // Reflector pixels of a distance-cubemap probe. Permutation defines (0 or 1): HAS_ENVMAP,
-// HAS_BOXPROJ, HAS_BISECTION, HAS_SECANT, HAS_AVGDIST, HAS_LAYERS, HAS_FRESNEL, and
-// OUTPUT (0 colour, 1 probe-local position, 2 reflected direction: inputs for the CPU twin).
+// HAS_BOXPROJ, HAS_BISECTION, HAS_SECANT, HAS_AVGDIST, HAS_LAYERS, HAS_GLOSSY, HAS_FRESNEL,
+// and OUTPUT (0 colour, 1 probe-local position, 2 reflected direction: inputs for the CPU
+// twin). HAS_GLOSSY (a rough reflector) reads the composite's prefiltered chain at the hit
+// (distance_glossy_lookup.glsl.h) instead of the composite.
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"
 #include "engine/scene/shading.glsl.h"
@@ -24,6 +26,14 @@ vec3 fetchSky(vec3 dir) {
 
 #include "components/reflection_probe/distance/shaders/distance_lookup.glsl.h"
 
+#if HAS_GLOSSY
+uniform float uRoughness; // perceptual, > 0 (alpha = uRoughness^2)
+uniform int uChainLevels; // the chain's levels, the composite (level 0) included
+#include "components/reflection_probe/distance/shaders/distance_glossy_gpu.glsl"
+#include "engine/math/cube_chain_sample.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_glossy_lookup.glsl.h"
+#endif
+
 void main() {
     // Probe-local space: the lookup never sees world coordinates.
     vec3 x = vWorldPos - probeCentre();
@@ -34,7 +44,13 @@ void main() {
 
     DistanceParams p = lookupParams();
     int fetches = 0;
+#if HAS_GLOSSY
+    GlossySample glossy = probeGlossySample(x, lhat, uRoughness, p, uChainLevels);
+    fetches += glossy.fetches;
+    vec3 colour = glossy.radiance;
+#else
     vec3 colour = probeRadiance(x, lhat, p, fetches);
+#endif
 #if HAS_FRESNEL
     colour *= schlickFresnel(uF0, abs(dot(n, v)));
 #endif

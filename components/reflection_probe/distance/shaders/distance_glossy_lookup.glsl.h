@@ -1,0 +1,65 @@
+// Shared by GLSL and C++ (see engine/core/glsl_host.h): a distance probe's glossy reflection
+// (issue 14), the shader's HAS_GLOSSY path and the CPU twin's glossySample. The mirror search
+// finds the hit, and the composite's GGX prefiltered chain (engine/image/ggx_prefilter.h) is
+// read there instead of the composite itself.
+//
+// Included after distance_lookup.glsl.h (probeHit, fetchSky) and
+// engine/math/cube_chain_sample.glsl.h (sampleCubeChain) over the chain of the composite:
+// level 0 is the composite (layer 0) itself, levels 1 .. levels - 1 its prefiltered levels.
+//
+// Where the chain is read, and at which level:
+//   envmap        the direction lhat, level by roughness alone (what engines do);
+//   boxproj       the box-projected point x + t lhat (t: the box exit), level by roughness;
+//   bisection, secant, avgdist, and the nearest hit of layered mode
+//                 the hit q = x + t lhat the search found, level from the lobe's footprint
+//                 at t (distance_glossy.glsl.h: sharper near contact);
+//   no hit        (the search ended on d_inf) the direction lhat, level by roughness: the
+//                 composite holds the sky where it sees nothing, so its chain has the sky's
+//                 blur there.
+// Layered mode searches the object layers for the nearest hit, then reads the composite's
+// chain at it: the composite holds, in the direction of q, the nearest surface from the
+// centre, which is the hit unless something nearer the centre hides it.
+#ifndef SPECULA_DISTANCE_GLOSSY_LOOKUP_GLSL_H
+#define SPECULA_DISTANCE_GLOSSY_LOOKUP_GLSL_H
+
+#include "components/reflection_probe/distance/shaders/distance_glossy.glsl.h"
+
+// Texels a chain read fetches: four in each of the two levels it blends.
+SHARED_CONST int kGlossyChainFetches = 8;
+
+// The prefiltered radiance of a GGX lobe about the unit mirror direction lhat leaving the
+// probe-local point x, for perceptual roughness `roughness` (alpha = roughness^2, clamped to
+// [0, 1]), over a chain of `levels` levels. Roughness <= 0 (or NaN) is the mirror lookup,
+// exactly probeRadiance: no chain read.
+GlossySample probeGlossySample(vec3 x, vec3 lhat, float roughness, DistanceParams p,
+                               int levels) {
+    LayerHit h = probeHit(x, lhat, p);
+    GlossySample s;
+    s.radiance = h.radiance;
+    s.level = 0.0f;
+    s.t = h.t;
+    s.hit = h.hit;
+    s.fetches = h.fetches;
+    if (!(roughness > 0.0f)) {
+        if (!h.hit) {
+            s.radiance = fetchSky(lhat);
+            s.fetches += 1;
+        }
+        return s;
+    }
+#if HAS_LAYERS
+    bool byDirection = !h.hit;
+    bool footprint = true;
+#else
+    bool byDirection = !h.hit || p.method == kMethodEnvmap;
+    bool footprint = p.method != kMethodBoxProj;
+#endif
+    s.level = footprint && !byDirection ? glossyFootprintLevel(roughness, x, lhat, h.t, levels)
+                                        : glossyRoughnessLevel(roughness, levels);
+    s.radiance = sampleCubeChain(byDirection ? lhat : x + h.t * lhat, s.level, levels);
+    // The hit's own radiance fetch is not spent: the chain read replaces it.
+    s.fetches += kGlossyChainFetches - (h.hit ? 1 : 0);
+    return s;
+}
+
+#endif
