@@ -6,6 +6,7 @@
 #include "components/reflection_probe/distance/distance_textures.h"
 #include "engine/gpu/render_target.h"
 #include "engine/gpu/shader.h"
+#include "engine/image/ggx_albedo.h"
 #include "probe_fixture.h"
 #include "twin_agreement.h"
 
@@ -50,6 +51,21 @@ protected:
 
 constexpr float kRoughness = 0.2f;
 
+// The shader's colour over the GGX albedo E(|n.v|, r) it multiplied in (|n.v| from the
+// OUTPUT 3 frame, E from the C++ table): the prefiltered lighting the twin returns. A shader
+// that applied another E, or none, leaves the ratio off by it.
+Image withoutAlbedo(const Image& colour, const Image& nv, const Image& mask) {
+    Image out = colour;
+    for (int y = 0; y < mask.height; ++y)
+        for (int x = 0; x < mask.width; ++x) {
+            if (mask.at(x, y)[0] < 0.5f) continue;
+            const float e = ggxAlbedo(nv.at(x, y)[0], kRoughness);
+            for (int c = 0; c < 3; ++c)
+                out.at(x, y)[c] = colour.at(x, y)[c] / e;
+        }
+    return out;
+}
+
 } // namespace
 
 // The twin runs on the exact inputs the shader used (probe-local position and reflected
@@ -72,6 +88,7 @@ TEST_F(GlossyGpu, ShaderMatchesCpuTwinPerPixel) {
         const std::vector<std::string> drawn = renderer_->stats().permutations;
         const Image pos = renderer_->render(cam, 1);
         const Image dir = renderer_->render(cam, 2);
+        const Image lighting = withoutAlbedo(colour, renderer_->render(cam, 3), mask);
 
         const ecs::Entity probe = scene_->probeEntity();
         const DistanceStore& store = *renderer_->probes().store<DistanceStore>();
@@ -79,7 +96,7 @@ TEST_F(GlossyGpu, ShaderMatchesCpuTwinPerPixel) {
         ASSERT_TRUE(chain) << "a rough reflector drew: the store made the chain";
         const CpuDistanceProbe twin(*store.asset(probe), *store.config(probe), chain);
         const test::PixelAgreement a = test::agreeByPixel(
-            colour, pos, dir, mask,
+            lighting, pos, dir, mask,
             [&](glm::vec3 x, glm::vec3 l) { return twin.glossyRadiance(x, l, kRoughness); }, 2e-3);
         // How far glossy moves the image from the mirror's: the comparison is not vacuous.
         double fromMirror = 0.0;
@@ -234,6 +251,7 @@ TEST_F(GlossyGpu, CookedGlossyLevelsAreTheChainTheShaderReads) {
     const Image colour = renderer_->render(cam);
     const Image pos = renderer_->render(cam, 1);
     const Image dir = renderer_->render(cam, 2);
+    const Image lighting = withoutAlbedo(colour, renderer_->render(cam, 3), mask);
     const DistanceStore& store = *renderer_->probes().store<DistanceStore>();
     const ecs::Entity probe = scene_->probeEntity();
     const std::shared_ptr<const CubeChain> chain = store.glossyChain(probe);
@@ -243,7 +261,7 @@ TEST_F(GlossyGpu, CookedGlossyLevelsAreTheChainTheShaderReads) {
         EXPECT_EQ(chain->levels[i][0].pixels, asset.glossyLevels[i - 1][0].pixels) << i;
     const CpuDistanceProbe twin(*store.asset(probe), *store.config(probe), chain);
     const test::PixelAgreement a = test::agreeByPixel(
-        colour, pos, dir, mask,
+        lighting, pos, dir, mask,
         [&](glm::vec3 x, glm::vec3 l) { return twin.glossyRadiance(x, l, kRoughness); }, 2e-3);
     std::printf("cooked levels (64^2): twin vs GLSL %ld px, %.3f%% within 2e-3, mean %.2e\n", a.n,
                 100.0 * a.share(), a.mean());

@@ -2,6 +2,7 @@
 
 #include "components/reflection_probe/distance/distance_glossy_chain.h"
 #include "components/reflection_probe/distance/distance_textures.h"
+#include "engine/gpu/ggx_albedo_texture.h"
 #include "engine/gpu/shader.h"
 
 #include <algorithm>
@@ -87,6 +88,12 @@ void DistanceStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity refle
         prog.setUniform("uChain", 3);
         prog.setUniform("uRoughness", r.roughness);
         prog.setUniform("uChainLevels", int(p.glossyChain->levels.size()));
+        if (!ggxAlbedo_) {
+            ggxAlbedo_ = gpu::createGgxAlbedoTexture();
+            ++ctx.stats.textureUploads;
+        }
+        glBindTextureUnit(4, ggxAlbedo_.id());
+        prog.setUniform("uGgxAlbedo", 4);
     }
     ctx.scene.drawEntity(reflector, prog);
 }

@@ -4,8 +4,8 @@
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "engine/core/error.h"
 #include "engine/core/log.h"
+#include "engine/gpu/ggx_albedo_texture.h"
 #include "engine/gpu/shader.h"
-#include "engine/image/ggx_albedo.h"
 #include "engine/scene/components.h"
 #include "engine/scene/mesh_bounds.h"
 
@@ -178,13 +178,7 @@ void LightFieldStore::bindGlossy(const ProbeDrawContext& ctx, gpu::Program& prog
         ++ctx.stats.textureUploads;
     }
     if (!ggxAlbedo_) {
-        ggxAlbedo_ = gpu::Texture::create(GL_TEXTURE_2D);
-        const GLuint tex = ggxAlbedo_.id();
-        glTextureStorage2D(tex, 1, GL_R32F, kGgxAlbedoTableSize, kGgxAlbedoTableSize);
-        glTextureSubImage2D(tex, 0, 0, 0, kGgxAlbedoTableSize, kGgxAlbedoTableSize, GL_RED,
-                            GL_FLOAT, ggxAlbedoTable().data());
-        glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        ggxAlbedo_ = gpu::createGgxAlbedoTexture();
         ++ctx.stats.textureUploads;
     }
     glBindTextureUnit(2, ggxAlbedo_.id());

@@ -1,8 +1,10 @@
 // Reflector pixels of a distance-cubemap probe. Permutation defines (0 or 1): HAS_ENVMAP,
 // HAS_BOXPROJ, HAS_BISECTION, HAS_SECANT, HAS_AVGDIST, HAS_LAYERS, HAS_GLOSSY, HAS_FRESNEL,
-// and OUTPUT (0 colour, 1 probe-local position, 2 reflected direction: inputs for the CPU
-// twin). HAS_GLOSSY (a rough reflector) reads the composite's prefiltered chain at the hit
-// (distance_glossy_lookup.glsl.h) instead of the composite.
+// and OUTPUT (0 colour, 1 probe-local position, 2 reflected direction, 3 |n.v| in red:
+// inputs for the CPU twin). HAS_GLOSSY (a rough reflector) reads the composite's prefiltered
+// chain at the hit (distance_glossy_lookup.glsl.h) instead of the composite, times the GGX
+// directional albedo E(|n.v|, roughness) (the chain is normalised; the microfacet surface
+// returns E of it, engine/image/ggx_albedo.glsl.h).
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"
 #include "engine/scene/shading.glsl.h"
@@ -32,6 +34,9 @@ uniform int uChainLevels; // the chain's levels, the composite (level 0) include
 #include "components/reflection_probe/distance/shaders/distance_glossy_gpu.glsl"
 #include "engine/math/cube_chain_sample.glsl.h"
 #include "components/reflection_probe/distance/shaders/distance_glossy_lookup.glsl.h"
+uniform sampler2D uGgxAlbedo;
+float fetchGgxAlbedo(int i, int j) { return texelFetch(uGgxAlbedo, ivec2(i, j), 0).r; }
+#include "engine/image/ggx_albedo.glsl.h"
 #endif
 
 void main() {
@@ -47,7 +52,7 @@ void main() {
 #if HAS_GLOSSY
     GlossySample glossy = probeGlossySample(x, lhat, uRoughness, p, uChainLevels);
     fetches += glossy.fetches;
-    vec3 colour = glossy.radiance;
+    vec3 colour = glossy.radiance * ggxAlbedo(abs(dot(n, v)), uRoughness);
 #else
     vec3 colour = probeRadiance(x, lhat, p, fetches);
 #endif
@@ -58,6 +63,8 @@ void main() {
     fragColor = vec4(x, 1.0);
 #elif OUTPUT == 2
     fragColor = vec4(lhat, 1.0);
+#elif OUTPUT == 3
+    fragColor = vec4(abs(dot(n, v)), 0.0, 0.0, 1.0);
 #else
     fragColor = vec4(colour, 1.0);
 #endif
