@@ -10,7 +10,7 @@ namespace specula::sandbox {
 bool isOwnOutput(const std::string& name) {
     static const std::regex own(
         R"(((frame_\d+|contact_sheet|accuracy_vs_time|strip_.+|level_walk)\.png)"
-        R"(|frames\.csv|summary\.csv|bench\.(csv|md))(\.tmp-\d+)?)"
+        R"(|frames\.csv|summary\.csv|glossy\.csv|bench\.(csv|md))(\.tmp-\d+)?)"
         R"(|probes?(\.(tmp|old)-\d+)?|level)");
     return std::regex_match(name, own);
 }

@@ -7,6 +7,7 @@
 #include "sandbox/lib/bench.h"
 #include "sandbox/lib/bench_methods.h"
 #include "sandbox/lib/created_output_folder.h"
+#include "sandbox/lib/glossy_bench.h"
 #include "sandbox/lib/level_walk.h"
 #include "sandbox/lib/walk.h"
 
@@ -185,6 +186,7 @@ int runCli(std::span<const std::string> args, std::ostream& out, std::ostream& e
     addWalkCommand(tool);
     addLevelCommand(tool);
     addBenchCommand(tool);
+    addGlossyCommand(tool);
     return tool.run(args, out, err);
 }
 

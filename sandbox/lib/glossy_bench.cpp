@@ -1,0 +1,222 @@
+#include "glossy_bench.h"
+
+#include "assetcooker/lib/cook.h"
+#include "components/reflection_probe/distance/distance_glossy_cpu.h"
+#include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
+#include "engine/core/error.h"
+#include "engine/core/file_write.h"
+#include "engine/core/glsl_host.h"
+#include "engine/image/compare.h"
+#include "engine/image/ggx_albedo.h"
+#include "engine/raytrace/ground_truth.h"
+#include "sandbox/lib/reflection_scene.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace specula {
+namespace glsl {
+namespace {
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include "components/reflection_probe/shaders/reflector_common.glsl.h"
+#pragma GCC diagnostic pop
+} // namespace
+} // namespace glsl
+
+namespace sandbox {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct MirrorPixel {
+    int px, py;
+    glm::vec3 position, n, lhat; // world space; n facing the viewer, lhat unit
+};
+
+std::vector<MirrorPixel> mirrorPixels(const GroundTruthTracer& tracer, const CameraView& camera,
+                                      const Image& mirrorMask) {
+    std::vector<MirrorPixel> out;
+    for (int y = 0; y < camera.height; ++y)
+        for (int x = 0; x < camera.width; ++x) {
+            if (mirrorMask.at(x, y)[0] < 0.5f) continue;
+            glm::vec3 origin, dir;
+            camera.primaryRay(x, y, origin, dir);
+            const std::optional<Hit> hit = tracer.fullScene().intersect(origin, dir);
+            if (!hit) continue;
+            const glm::vec3 v = glm::normalize(dir);
+            const glm::vec3 n = glsl::safeNormal(hit->normal, hit->geometricNormal);
+            out.push_back({x, y, hit->position, n, glm::normalize(glsl::mirrorDirection(v, n))});
+        }
+    return out;
+}
+
+double clampedPsnr(const ImageStats& s) {
+    return s.hasPsnr ? std::min(s.psnr, 99.0) : 0.0;
+}
+
+} // namespace
+
+const std::vector<std::string>& glossyBenchMethods() {
+    static const std::vector<std::string> methods{
+        "envmap+chain", "boxproj+chain", "rectified (roughness level)",
+        "rectified (footprint level)", "light field glossy"};
+    return methods;
+}
+
+std::vector<float> parseRoughnessList(const std::string& text) {
+    std::vector<float> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) {
+        item.erase(0, item.find_first_not_of(" \t"));
+        item.erase(item.find_last_not_of(" \t") + 1);
+        std::size_t used = 0;
+        float r = std::numeric_limits<float>::quiet_NaN();
+        try {
+            r = std::stof(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (item.empty() || used != item.size() || !std::isfinite(r) || r < 0.f || r > 1.f)
+            throw UsageError("--roughness", "expected perceptual roughness values in [0, 1] "
+                                            "separated by commas, got '" +
+                                                item + "'");
+        out.push_back(r);
+    }
+    if (out.empty())
+        throw UsageError("--roughness",
+                         "expected one roughness value at least, got '" + text + "'");
+    return out;
+}
+
+GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log) {
+    using Clock = std::chrono::steady_clock;
+    ReflectionScene reflectionScene(o.scene, o.sky, o.addedReflectors);
+    ProbeScene& scene = reflectionScene.probeScene();
+    for (const AddedReflector& r : o.addedReflectors)
+        log << "added " << describeAddedReflector(r) << '\n';
+    if (scene.markup.mirrorEntities.empty())
+        throw Error(scene.path, "specula_reflector", "the scene has no reflector to look up");
+    fs::create_directories(o.out);
+    GlossyBenchResult result;
+
+    // The two probes, baked once through the cooking API into DIR/probes.
+    const auto bakeStart = Clock::now();
+    CookOptions cook;
+    cook.progress = o.progress;
+    DistanceCookSettings d;
+    d.faceRes = o.faceRes;
+    d.planned = d.recordPlan = false;
+    d.glossy = GlossyBake::On;
+    cook.flavour = d;
+    cook.out = (fs::path(o.out) / "probes" / "distance").string();
+    const CookResult distanceCook = cookProbe(scene, cook, &log);
+    const DistanceProbeAsset& distanceAsset = std::get<DistanceProbeAsset>(distanceCook.asset);
+    LightFieldCookSettings lfSettings;
+    lfSettings.cameras = 8;
+    lfSettings.imageRes = 64;
+    cook.flavour = lfSettings;
+    cook.out = (fs::path(o.out) / "probes" / "lightfield").string();
+    const CookResult lightFieldCook = cookProbe(scene, cook, &log);
+    const LightFieldAsset& lightFieldAsset = std::get<LightFieldAsset>(lightFieldCook.asset);
+    result.bakeSeconds = std::chrono::duration<double>(Clock::now() - bakeStart).count();
+    const glm::vec3 cell = lightFieldCook.cellCentre;
+    log << "light-field cell: " << lightFieldCook.cellSize << " m around (" << cell.x << ", "
+        << cell.y << ", " << cell.z << ")\n";
+    for (const LightFieldIntrusion& i : lightFieldAsset.intrusions)
+        if (i.region == "cell")
+            log << "warning: " << i.object << " lies in the light-field cell (reaches "
+                << std::abs(i.depth) << " m): reflectors there see it wrongly\n";
+    for (const ReflectorOverhang& h : lightFieldCook.overhangs)
+        log << "warning: reflector '" << h.node << "' reaches " << h.metres
+            << " m outside the light-field cell (the light field is exact only inside)\n";
+    log << "baked the distance probe (" << o.faceRes << "^2 faces) and the light field (8 x 8 "
+        << "cameras of 64^2) in " << std::fixed << std::setprecision(1) << result.bakeSeconds
+        << " s" << std::defaultfloat << std::setprecision(6) << '\n';
+
+    DistanceProbe search;
+    search.method = DistanceMethod::Secant;
+    search.errorTolerance = 0.01f;
+    const CpuGlossyDistanceProbe distance(distanceAsset, search);
+    const CpuLightFieldProbe lightField(lightFieldAsset);
+
+    const CameraView camera = reflectionScene.camera(o.width, o.height);
+    const std::vector<std::string>& methods = glossyBenchMethods();
+    std::ostringstream csv;
+    csv << "roughness,method,psnr,noise_floor_psnr\n";
+    for (const float r : o.roughness) {
+        TraceOptions t = groundTruthOptions(scene, true);
+        t.mirrorRoughness = [r](ecs::Entity) { return r; };
+        t.glossySamples = o.samples;
+        t.seed = 1;
+        const GroundTruthTracer tracer(scene.registry, t);
+        const GroundTruthImage truth = tracer.render(camera, 1);
+        const Image mask = erodedMask(truth.mirrorMask);
+        // The truth against itself with another seed; exact at roughness 0.
+        const double noise =
+            r > 0.f ? clampedPsnr(compareImages(tracer.render(camera, 2).color, truth.color, &mask))
+                    : std::numeric_limits<double>::infinity();
+        const std::vector<MirrorPixel> pixels = mirrorPixels(tracer, camera, truth.mirrorMask);
+        result.mirrorPixels = long(pixels.size());
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+            Image img = truth.color;
+            for (const MirrorPixel& p : pixels) {
+                glm::vec3 c;
+                if (m < kGlossyModes.size()) {
+                    // The normalised prefiltered lighting times the directional albedo, as the
+                    // shaders do (E = 1 for a mirror).
+                    const float e =
+                        r > 0.f
+                            ? ggxAlbedo(std::clamp(std::abs(glm::dot(p.n, p.lhat)), 1e-4f, 1.f), r)
+                            : 1.f;
+                    c = e * distance.radiance(p.position - distanceAsset.centre, p.lhat, r,
+                                              kGlossyModes[m]);
+                } else {
+                    c = lightField.reflectedRadiance(p.position - lightFieldAsset.cellCentre,
+                                                     p.lhat, p.n, r);
+                }
+                std::copy(&c[0], &c[0] + 3, img.at(p.px, p.py));
+            }
+            GlossyBenchRow row;
+            row.roughness = r;
+            row.method = methods[m];
+            row.psnr = clampedPsnr(compareImages(img, truth.color, &mask));
+            row.noiseFloorPsnr = noise;
+            csv << r << ",\"" << row.method << "\"," << formatPsnr(row.psnr) << ','
+                << formatPsnr(row.noiseFloorPsnr) << '\n';
+            result.rows.push_back(row);
+        }
+        log << "roughness " << r << ": " << pixels.size() << " reflector pixels, truth noise floor "
+            << formatPsnr(noise) << " dB\n";
+    }
+
+    // The table: a row per roughness, a column per method.
+    log << "\nPSNR (dB) against the GGX truth (environment only, " << o.samples
+        << " samples) on the reflector pixels\n";
+    log << std::left << std::setw(6) << "r" << std::setw(8) << "noise";
+    for (const std::string& m : methods)
+        log << " | " << std::setw(27) << m;
+    log << '\n';
+    for (std::size_t i = 0; i < result.rows.size(); i += methods.size()) {
+        std::ostringstream r;
+        r << result.rows[i].roughness;
+        log << std::setw(6) << r.str() << std::setw(8) << formatPsnr(result.rows[i].noiseFloorPsnr);
+        for (std::size_t m = 0; m < methods.size(); ++m)
+            log << " | " << std::setw(27) << formatPsnr(result.rows[i + m].psnr);
+        log << '\n';
+    }
+    log << std::right;
+    writeFileAtomically((fs::path(o.out) / "glossy.csv").string(), csv.str());
+    log << "-> " << o.out << "/glossy.csv\n";
+    return result;
+}
+
+} // namespace sandbox
+} // namespace specula

@@ -1,0 +1,55 @@
+#pragma once
+// specula-sandbox glossy: the issue-14 bench of glossy reflections on the CPU twins. A
+// distance probe (secant search) and a small light-field probe (8 x 8 cameras of 64^2) of the
+// scene are baked once through the cooking API; then, for each roughness, every reflector gets
+// that roughness, the environment-only GGX ground truth is traced (and its noise floor: seed 1
+// against seed 2), and every reflector pixel is looked up five ways: envmap + chain, boxproj +
+// chain, rectified (level by roughness), rectified (level by footprint) and the light field's
+// glossy lookup. PSNR on the eroded reflector pixels goes to glossy.csv and a printed table.
+// No GPU: the pass-time ratios come from `specula-sandbox bench`.
+#include "components/reflection_probe/added_reflector.h"
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace specula::cli {
+class ToolCli;
+}
+
+namespace specula::sandbox {
+
+struct GlossyBenchOptions {
+    std::string scene, sky, out;
+    std::vector<float> roughness{0.f, 0.05f, 0.1f, 0.2f, 0.35f, 0.5f};
+    int width = 320, height = 240;
+    int faceRes = 128;
+    int samples = 256; // GGX truth samples per pixel
+    std::vector<AddedReflector> addedReflectors;
+    bool progress = true;
+};
+
+struct GlossyBenchRow {
+    float roughness = 0.f;
+    std::string method;
+    double psnr = 0.0;
+    double noiseFloorPsnr = 0.0; // +inf at roughness 0 (the truth is exact there)
+};
+
+struct GlossyBenchResult {
+    std::vector<GlossyBenchRow> rows;
+    long mirrorPixels = 0; // reflector pixels evaluated per roughness
+    double bakeSeconds = 0.0;
+};
+
+// The method names, in the order of the rows of each roughness.
+const std::vector<std::string>& glossyBenchMethods();
+
+// "0,0.2,0.5": each value in [0, 1]; else UsageError naming --roughness.
+std::vector<float> parseRoughnessList(const std::string& text);
+
+GlossyBenchResult runGlossyBench(const GlossyBenchOptions& options, std::ostream& log);
+
+void addGlossyCommand(cli::ToolCli& tool);
+
+} // namespace specula::sandbox

@@ -1,0 +1,82 @@
+// specula-sandbox glossy: the command line of runGlossyBench (glossy_bench.h).
+#include "assetcooker/lib/tool_cli.h"
+#include "sandbox/lib/added_reflector_flag.h"
+#include "sandbox/lib/created_output_folder.h"
+#include "sandbox/lib/glossy_bench.h"
+#include "sandbox/lib/reflection_scene.h"
+
+#include <memory>
+
+namespace specula::sandbox {
+
+namespace {
+
+constexpr const char* kGlossyDescription =
+    "The glossy-reflection bench of issue 14, on the CPU twins of the lookups. A distance\n"
+    "probe of SCENE (cooked with its GGX prefiltered chain; secant search, d_e 0.01 m) and a\n"
+    "small light-field probe (8 x 8 cameras of 64^2 per slab) are baked once into DIR/probes.\n"
+    "Then for each --roughness every reflector is given that perceptual roughness (alpha =\n"
+    "roughness^2), Embree traces the environment-only GGX ground truth (--samples samples a\n"
+    "pixel, seed 1) and its noise floor (seed 1 against seed 2: a method's PSNR near it\n"
+    "cannot be trusted), and every reflector pixel is looked up five ways:\n"
+    "\n"
+    "  envmap+chain                 the direction alone, chain level from roughness alone\n"
+    "                               (what Filament does)\n"
+    "  boxproj+chain                the box-projected direction, level from roughness alone\n"
+    "                               (Unity, Godot)\n"
+    "  rectified (roughness level)  the distance probe's mirror search for the hit, level\n"
+    "                               from roughness alone (the comparison for the next)\n"
+    "  rectified (footprint level)  the same hit, level from the lobe's footprint at the hit\n"
+    "                               distance (ours; the shader's glossy distance lookup)\n"
+    "  light field glossy           the light field's GGX filter (rays and mips)\n"
+    "\n"
+    "The four distance lookups give the normalised prefiltered lighting and are multiplied by\n"
+    "the GGX directional albedo E(n.v, roughness), as the shaders do; the light field's lookup\n"
+    "includes it. At roughness 0 every lookup is its mirror lookup.\n"
+    "\n"
+    "Writes DIR/glossy.csv (roughness, method, psnr, noise_floor_psnr; PSNR in dB on the\n"
+    "eroded reflector pixels) and prints the table. No GPU work and no timing: the pass-time\n"
+    "ratios of the methods come from `specula-sandbox bench`.\n";
+
+struct GlossyArgs {
+    GlossyBenchOptions o;
+    std::string size = "320x240", roughness;
+    std::vector<std::string> addedReflectors;
+};
+
+} // namespace
+
+void addGlossyCommand(cli::ToolCli& tool) {
+    auto a = std::make_shared<GlossyArgs>();
+    GlossyBenchOptions& o = a->o;
+    o.sky = defaultSkyPath();
+    CLI::App* sub = tool.addSubcommand(
+        "glossy", "compare the glossy lookups with the GGX ground truth, roughness by roughness",
+        kGlossyDescription,
+        "exit status: 0 ok, 1 the input could not be processed, 2 bad command line\n",
+        [a](std::ostream& out) {
+            cli::parseSize(a->size, a->o.width, a->o.height);
+            if (!a->roughness.empty()) a->o.roughness = parseRoughnessList(a->roughness);
+            a->o.addedReflectors = parseAddedReflectors(a->addedReflectors);
+            CreatedOutputFolder created(a->o.out);
+            runGlossyBench(a->o, out);
+            created.keep();
+            return cli::kExitOk;
+        });
+    sub->add_option("SCENE", o.scene, "the glTF/GLB scene")->required();
+    sub->add_option("--out", o.out, "output folder")->required()->check(cli::nonEmpty("a folder"));
+    sub->add_option("--roughness", a->roughness,
+                    "perceptual roughness values in [0, 1], comma-separated (default "
+                    "0,0.05,0.1,0.2,0.35,0.5)");
+    sub->add_option("--size", a->size, "frame size (default 320x240)")->check(cli::sizeText());
+    sub->add_option("--face-res", o.faceRes,
+                    "cube face resolution of the distance probe "
+                    "(default 128)")
+        ->check(CLI::Range(8, 2048));
+    sub->add_option("--samples", o.samples, "GGX truth samples per pixel (default 256)")
+        ->check(CLI::Range(1, 65536));
+    sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
+    addReflectorOption(sub, a->addedReflectors);
+}
+
+} // namespace specula::sandbox
