@@ -88,10 +88,6 @@ void DistanceStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity refle
         prog.setUniform("uChain", 3);
         prog.setUniform("uRoughness", r.roughness);
         prog.setUniform("uChainLevels", int(p.glossyChain->levels.size()));
-        if (!ggxAlbedo_) {
-            ggxAlbedo_ = gpu::createGgxAlbedoTexture();
-            ++ctx.stats.textureUploads;
-        }
         glBindTextureUnit(4, ggxAlbedo_.id());
         prog.setUniform("uGgxAlbedo", 4);
     }
@@ -110,6 +106,8 @@ void DistanceStore::prepareGlossy(const DistanceProbeGpu& p, ProbeFrameStats& st
     std::shared_ptr<const CubeChain> chain = chainOf(p.asset); // throws before any change
     p.glossyTexture = uploadChainArray(*chain);
     p.glossyChain = std::move(chain);
+    // The albedo table every rough reflector reads, made with the first chain (one upload).
+    if (!ggxAlbedo_) ggxAlbedo_ = gpu::createGgxAlbedoTexture();
     ++stats.textureUploads;
 }
 

@@ -77,7 +77,7 @@ private:
     std::shared_ptr<const CubeChain> chainOf(const std::shared_ptr<const DistanceProbeAsset>& a);
     // The probe's glossy chain and its texture, unless it has them.
     void prepareGlossy(const DistanceProbeGpu& probe, ProbeFrameStats& stats);
-    gpu::Texture ggxAlbedo_; // E(n.v, roughness) for rough reflectors, made on first use
+    gpu::Texture ggxAlbedo_; // E(n.v, roughness) for rough reflectors, made with a chain
     ShaderVariants<DistanceVariant> variants_;
 };
 
