@@ -3,9 +3,9 @@
 #include "assetcooker/lib/cook.h"
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
+#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
-#include "engine/core/glsl_host.h"
 #include "engine/image/compare.h"
 #include "engine/image/ggx_albedo.h"
 #include "engine/raytrace/ground_truth.h"
@@ -21,42 +21,11 @@
 #include <sstream>
 
 namespace specula {
-namespace glsl {
-namespace {
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#include "components/reflection_probe/shaders/reflector_common.glsl.h"
-#pragma GCC diagnostic pop
-} // namespace
-} // namespace glsl
-
 namespace sandbox {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-struct MirrorPixel {
-    int px, py;
-    glm::vec3 position, n, lhat; // world space; n facing the viewer, lhat unit
-};
-
-std::vector<MirrorPixel> mirrorPixels(const GroundTruthTracer& tracer, const CameraView& camera,
-                                      const Image& mirrorMask) {
-    std::vector<MirrorPixel> out;
-    for (int y = 0; y < camera.height; ++y)
-        for (int x = 0; x < camera.width; ++x) {
-            if (mirrorMask.at(x, y)[0] < 0.5f) continue;
-            glm::vec3 origin, dir;
-            camera.primaryRay(x, y, origin, dir);
-            const std::optional<Hit> hit = tracer.fullScene().intersect(origin, dir);
-            if (!hit) continue;
-            const glm::vec3 v = glm::normalize(dir);
-            const glm::vec3 n = glsl::safeNormal(hit->normal, hit->geometricNormal);
-            out.push_back({x, y, hit->position, n, glm::normalize(glsl::mirrorDirection(v, n))});
-        }
-    return out;
-}
 
 double clampedPsnr(const ImageStats& s) {
     return s.hasPsnr ? std::min(s.psnr, 99.0) : 0.0;
@@ -163,26 +132,24 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
         const double noise =
             r > 0.f ? clampedPsnr(compareImages(tracer.render(camera, 2).color, truth.color, &mask))
                     : std::numeric_limits<double>::infinity();
-        const std::vector<MirrorPixel> pixels = mirrorPixels(tracer, camera, truth.mirrorMask);
+        const std::vector<ReflectorPixel> pixels =
+            reflectorPixels(tracer, camera, truth.mirrorMask);
         result.mirrorPixels = long(pixels.size());
         for (std::size_t m = 0; m < methods.size(); ++m) {
             Image img = truth.color;
-            for (const MirrorPixel& p : pixels) {
+            for (const ReflectorPixel& p : pixels) {
                 glm::vec3 c;
                 if (m < kGlossyModes.size()) {
                     // The normalised prefiltered lighting times the directional albedo, as the
                     // shaders do (E = 1 for a mirror).
-                    const float e =
-                        r > 0.f
-                            ? ggxAlbedo(std::clamp(std::abs(glm::dot(p.n, p.lhat)), 1e-4f, 1.f), r)
-                            : 1.f;
+                    const float e = r > 0.f ? ggxAlbedo(std::min(p.cosView(), 1.f), r) : 1.f;
                     c = e * distance.radiance(p.position - distanceAsset.centre, p.lhat, r,
                                               kGlossyModes[m]);
                 } else {
                     c = lightField.reflectedRadiance(p.position - lightFieldAsset.cellCentre,
-                                                     p.lhat, p.n, r);
+                                                     p.lhat, p.normal, r);
                 }
-                std::copy(&c[0], &c[0] + 3, img.at(p.px, p.py));
+                std::copy(&c[0], &c[0] + 3, img.at(p.x, p.y));
             }
             GlossyBenchRow row;
             row.roughness = r;

@@ -4,9 +4,9 @@
 #include "components/reflection_probe/distance/distance_level.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
 #include "components/reflection_probe/probe_setup.h"
+#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
-#include "engine/core/glsl_host.h"
 #include "engine/core/progress.h"
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"
@@ -24,10 +24,6 @@
 #include <sstream>
 
 namespace specula {
-namespace glsl {
-#include "components/reflection_probe/shaders/reflector_common.glsl.h"
-} // namespace glsl
-
 namespace sandbox {
 
 namespace fs = std::filesystem;
@@ -269,34 +265,26 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
         img.mask = erodedMask(truth.mirrorMask);
         for (Image& b : img.blends)
             b = truth.color;
-        long evaluated = 0, hidden = 0, fallback = 0, mirrorPixels = 0;
-        for (int y = 0; y < camera.height; ++y)
-            for (int x = 0; x < camera.width; ++x) {
-                if (truth.mirrorMask.at(x, y)[0] < 0.5f) continue;
-                glm::vec3 origin, dir;
-                camera.primaryRay(x, y, origin, dir);
-                const std::optional<Hit> hit = tracer.fullScene().intersect(origin, dir);
-                if (!hit) continue;
-                ++mirrorPixels;
-                const glm::vec3 v = glm::normalize(dir);
-                const glm::vec3 n = glsl::safeNormal(hit->normal, hit->geometricNormal);
-                const glm::vec3 lhat = glm::normalize(glsl::mirrorDirection(v, n));
-                for (std::size_t b = 0; b < kBlends.size(); ++b) {
-                    const LevelSample s = level.radiance(hit->position, lhat, kBlends[b], o.k);
-                    std::copy(&s.radiance[0], &s.radiance[0] + 3, img.blends[b].at(x, y));
-                    if (kBlends[b] == LevelBlend::Visibility) {
-                        evaluated += long(s.weights.size()) + s.hidden;
-                        hidden += s.hidden;
-                        fallback += s.fallback && !s.outside ? 1 : 0;
-                        outsideSum += s.outside ? 1 : 0;
-                        if (s.outside && firstOutsideFrame < 0) firstOutsideFrame = f;
-                    }
-                    for (std::size_t k = 0; k < kKs.size(); ++k)
-                        fetchSum[b][k] +=
-                            kKs[k] == o.k
-                                ? s.fetches
-                                : level.radiance(hit->position, lhat, kBlends[b], kKs[k]).fetches;
+        long evaluated = 0, hidden = 0, fallback = 0;
+        const std::vector<ReflectorPixel> pixels =
+            reflectorPixels(tracer, camera, truth.mirrorMask);
+        const long mirrorPixels = long(pixels.size());
+        for (const ReflectorPixel& px : pixels)
+            for (std::size_t b = 0; b < kBlends.size(); ++b) {
+                const LevelSample s = level.radiance(px.position, px.lhat, kBlends[b], o.k);
+                std::copy(&s.radiance[0], &s.radiance[0] + 3, img.blends[b].at(px.x, px.y));
+                if (kBlends[b] == LevelBlend::Visibility) {
+                    evaluated += long(s.weights.size()) + s.hidden;
+                    hidden += s.hidden;
+                    fallback += s.fallback && !s.outside ? 1 : 0;
+                    outsideSum += s.outside ? 1 : 0;
+                    if (s.outside && firstOutsideFrame < 0) firstOutsideFrame = f;
                 }
+                for (std::size_t k = 0; k < kKs.size(); ++k)
+                    fetchSum[b][k] +=
+                        kKs[k] == o.k
+                            ? s.fetches
+                            : level.radiance(px.position, px.lhat, kBlends[b], kKs[k]).fetches;
             }
         pixelSum += double(mirrorPixels);
         lookupSum += double(evaluated);

@@ -2,6 +2,7 @@
 // footprint at the hit distance (shaders/distance_glossy.glsl.h) against the level from
 // roughness alone, on the CPU twin (CpuGlossyDistanceProbe) and against the GGX ground truth.
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
+#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/gpu/render_target.h"
 #include "engine/gpu/shader.h"
 #include "engine/raytrace/ground_truth.h"
@@ -17,7 +18,6 @@ namespace {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
 #include "components/reflection_probe/distance/shaders/distance_glossy.glsl.h"
-#include "components/reflection_probe/shaders/reflector_common.glsl.h"
 #pragma GCC diagnostic pop
 } // namespace
 } // namespace specula::glsl
@@ -284,19 +284,8 @@ struct MirrorPixel {
 std::vector<MirrorPixel> mirrorPixels(const GroundTruthTracer& tracer, const CameraView& cam,
                                       const Image& mirrorMask, glm::vec3 probeCentre) {
     std::vector<MirrorPixel> out;
-    for (int y = 0; y < cam.height; ++y)
-        for (int x = 0; x < cam.width; ++x) {
-            if (mirrorMask.at(x, y)[0] < 0.5f) continue;
-            glm::vec3 origin, dir;
-            cam.primaryRay(x, y, origin, dir);
-            const std::optional<Hit> hit = tracer.fullScene().intersect(origin, dir);
-            if (!hit) continue;
-            const glm::vec3 v = glm::normalize(dir);
-            const glm::vec3 n = glsl::safeNormal(hit->normal, hit->geometricNormal);
-            const glm::vec3 lhat = glm::normalize(glsl::mirrorDirection(v, n));
-            out.push_back({x, y, hit->position - probeCentre, lhat,
-                           std::max(std::abs(glm::dot(n, v)), 1e-4f)});
-        }
+    for (const ReflectorPixel& p : reflectorPixels(tracer, cam, mirrorMask))
+        out.push_back({p.x, p.y, p.position - probeCentre, p.lhat, p.cosView()});
     return out;
 }
 

@@ -8,6 +8,7 @@
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "components/reflection_probe/lightfield/lightfield_store.h"
 #include "components/reflection_probe/probe_setup.h"
+#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/core/glsl_host.h"
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"
@@ -445,18 +446,8 @@ struct MirrorPixel {
 std::vector<MirrorPixel> mirrorPixels(const GroundTruthTracer& tracer, const CameraView& cam,
                                       const Image& mirrorMask, glm::vec3 cellCentre) {
     std::vector<MirrorPixel> out;
-    for (int y = 0; y < cam.height; ++y)
-        for (int x = 0; x < cam.width; ++x) {
-            if (mirrorMask.at(x, y)[0] < 0.5f) continue;
-            glm::vec3 origin, dir;
-            cam.primaryRay(x, y, origin, dir);
-            const std::optional<Hit> hit = tracer.fullScene().intersect(origin, dir);
-            if (!hit) continue;
-            const glm::vec3 v = glm::normalize(dir);
-            const glm::vec3 n = glsl::safeNormal(hit->normal, hit->geometricNormal);
-            out.push_back(
-                {x, y, hit->position - cellCentre, n, glm::normalize(glsl::mirrorDirection(v, n))});
-        }
+    for (const ReflectorPixel& p : reflectorPixels(tracer, cam, mirrorMask))
+        out.push_back({p.x, p.y, p.position - cellCentre, p.normal, p.lhat});
     return out;
 }
 
