@@ -117,6 +117,22 @@ struct PaddedCube {
     }
 };
 
+// A level of m x m faces of `channels` floats a texel, rows in parallel: texel(face, x, y, q)
+// writes texel (x, y) of `face` into q.
+template <typename Texel> CubeFaces computeLevel(int m, int channels, const Texel& texel) {
+    CubeFaces out;
+    for (Image& img : out)
+        img = Image(m, m, channels);
+    tbb::parallel_for(tbb::blocked_range<int>(0, 6 * m), [&](const tbb::blocked_range<int>& r) {
+        for (int row = r.begin(); row < r.end(); ++row) {
+            const int face = row / m, y = row % m;
+            for (int x = 0; x < m; ++x)
+                texel(face, x, y, out[face].at(x, y));
+        }
+    });
+    return out;
+}
+
 // Level-0 texels [lo, hi] that overlap texel x of a face of m texels over one of n texels.
 void footprint(int x, int m, int n, int& lo, int& hi) {
     lo = int((std::int64_t(x) * n) / m);
@@ -140,39 +156,28 @@ std::vector<CubeFaces> radianceMips(const CubeFaces& faces, const std::vector<do
     mips.push_back(faces);
     for (int level = 1; levelSize(n, level - 1) > 1; ++level) {
         const int m = levelSize(n, level);
-        CubeFaces out;
-        for (Image& img : out)
-            img = Image(m, m, 3);
-        tbb::parallel_for(tbb::blocked_range<int>(0, 6 * m), [&](const tbb::blocked_range<int>& r) {
-            for (int row = r.begin(); row < r.end(); ++row) {
-                const int face = row / m, y = row % m;
-                int y0, y1;
-                footprint(y, m, n, y0, y1);
-                for (int x = 0; x < m; ++x) {
-                    int x0, x1;
-                    footprint(x, m, n, x0, x1);
-                    double sum[3] = {0, 0, 0}, wsum = 0;
-                    for (int sy = y0; sy <= y1; ++sy) {
-                        // Overlap of source row sy with the coarse texel, in source texels.
-                        const double oy = std::min(double(sy + 1), double(y + 1) * n / m) -
-                                          std::max(double(sy), double(y) * n / m);
-                        for (int sx = x0; sx <= x1; ++sx) {
-                            const double ox = std::min(double(sx + 1), double(x + 1) * n / m) -
-                                              std::max(double(sx), double(x) * n / m);
-                            const double w = ox * oy * omega[std::size_t(sy) * n + sx];
-                            const float* p = faces[face].at(sx, sy);
-                            for (int c = 0; c < 3; ++c)
-                                sum[c] += w * double(p[c]);
-                            wsum += w;
-                        }
-                    }
-                    float* q = out[face].at(x, y);
+        mips.push_back(computeLevel(m, 3, [&](int face, int x, int y, float* q) {
+            int y0, y1, x0, x1;
+            footprint(y, m, n, y0, y1);
+            footprint(x, m, n, x0, x1);
+            double sum[3] = {0, 0, 0}, wsum = 0;
+            for (int sy = y0; sy <= y1; ++sy) {
+                // Overlap of source row sy with the coarse texel, in source texels.
+                const double oy = std::min(double(sy + 1), double(y + 1) * n / m) -
+                                  std::max(double(sy), double(y) * n / m);
+                for (int sx = x0; sx <= x1; ++sx) {
+                    const double ox = std::min(double(sx + 1), double(x + 1) * n / m) -
+                                      std::max(double(sx), double(x) * n / m);
+                    const double w = ox * oy * omega[std::size_t(sy) * n + sx];
+                    const float* p = faces[face].at(sx, sy);
                     for (int c = 0; c < 3; ++c)
-                        q[c] = float(sum[c] / wsum);
+                        sum[c] += w * double(p[c]);
+                    wsum += w;
                 }
             }
-        });
-        mips.push_back(std::move(out));
+            for (int c = 0; c < 3; ++c)
+                q[c] = float(sum[c] / wsum);
+        }));
     }
     return mips;
 }
@@ -180,34 +185,23 @@ std::vector<CubeFaces> radianceMips(const CubeFaces& faces, const std::vector<do
 // Min and max of the finite level-0 distances under each texel of a level of m texels.
 CubeFaces minMaxLevel(const CubeFaces& faces, int m, float dInf) {
     const int n = faces[0].width;
-    CubeFaces out;
-    for (Image& img : out)
-        img = Image(m, m, 2);
-    tbb::parallel_for(tbb::blocked_range<int>(0, 6 * m), [&](const tbb::blocked_range<int>& r) {
-        for (int row = r.begin(); row < r.end(); ++row) {
-            const int face = row / m, y = row % m;
-            int y0, y1;
-            footprint(y, m, n, y0, y1);
-            for (int x = 0; x < m; ++x) {
-                int x0, x1;
-                footprint(x, m, n, x0, x1);
-                float lo = dInf, hi = dInf;
-                bool any = false;
-                for (int sy = y0; sy <= y1; ++sy)
-                    for (int sx = x0; sx <= x1; ++sx) {
-                        const float d = faces[face].at(sx, sy)[3];
-                        if (!(d < dInf)) continue; // a miss, or NaN
-                        lo = any ? std::min(lo, d) : d;
-                        hi = any ? std::max(hi, d) : d;
-                        any = true;
-                    }
-                float* q = out[face].at(x, y);
-                q[0] = lo;
-                q[1] = hi;
+    return computeLevel(m, 2, [&](int face, int x, int y, float* q) {
+        int y0, y1, x0, x1;
+        footprint(y, m, n, y0, y1);
+        footprint(x, m, n, x0, x1);
+        float lo = dInf, hi = dInf;
+        bool any = false;
+        for (int sy = y0; sy <= y1; ++sy)
+            for (int sx = x0; sx <= x1; ++sx) {
+                const float d = faces[face].at(sx, sy)[3];
+                if (!(d < dInf)) continue; // a miss, or NaN
+                lo = any ? std::min(lo, d) : d;
+                hi = any ? std::max(hi, d) : d;
+                any = true;
             }
-        }
+        q[0] = lo;
+        q[1] = hi;
     });
-    return out;
 }
 
 // One GGX sample in the frame of the lobe's axis (z): the reflected direction, its weight
@@ -260,48 +254,36 @@ std::vector<LobeSample> lobeSamples(float roughness, int count, int n, float lod
 CubeFaces filterLevel(const std::vector<PaddedCube>& mips, const std::vector<LobeSample>& lobe,
                       int m) {
     const int maxMip = int(mips.size()) - 1;
-    CubeFaces out;
-    for (Image& img : out)
-        img = Image(m, m, 4);
-    tbb::parallel_for(tbb::blocked_range<int>(0, 6 * m), [&](const tbb::blocked_range<int>& r) {
-        for (int row = r.begin(); row < r.end(); ++row) {
-            const int face = row / m, y = row % m;
-            for (int x = 0; x < m; ++x) {
-                const glm::vec3 nrm =
-                    glm::normalize(texelDirection(face, m, float(x) + 0.5f, float(y) + 0.5f));
-                // Any frame about the axis will do: the lobe is symmetric about it, and with the
-                // FIS blur the estimate hardly depends on how the sample pattern is turned (the
-                // frame turns abruptly only near the +-Y face centres, where up switches).
-                const glm::vec3 up =
-                    std::fabs(nrm.y) < 0.999f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-                const glm::vec3 tx = glm::normalize(glm::cross(up, nrm));
-                const glm::vec3 ty = glm::cross(nrm, tx);
-                glm::vec3 sum(0.f);
-                float wsum = 0.f;
-                for (const LobeSample& s : lobe) {
-                    const glm::vec3 l = s.l.x * tx + s.l.y * ty + s.l.z * nrm;
-                    const glm::vec3 uvf = glsl::cubeFaceUv(l);
-                    const float sc = 2.f * uvf.x - 1.f, tc = 2.f * uvf.y - 1.f;
-                    // The level-0 texel's solid angle here is (2/n)^2 / (1 + s^2 + t^2)^1.5.
-                    const float lod = std::clamp(
-                        s.lodBase + 0.75f * std::log2(1.f + sc * sc + tc * tc), 0.f, float(maxMip));
-                    const int m0 = std::min(int(lod), maxMip), m1 = std::min(m0 + 1, maxMip);
-                    const int f = int(uvf.z);
-                    glm::vec3 c = mips[m0].bilinear(f, uvf.x, uvf.y);
-                    const float blend = lod - float(m0);
-                    if (blend > 0.f && m1 != m0)
-                        c = glm::mix(c, mips[m1].bilinear(f, uvf.x, uvf.y), blend);
-                    sum += s.weight * c;
-                    wsum += s.weight;
-                }
-                float* q = out[face].at(x, y);
-                q[0] = sum.x / wsum;
-                q[1] = sum.y / wsum;
-                q[2] = sum.z / wsum;
-            }
+    return computeLevel(m, 4, [&](int face, int x, int y, float* q) {
+        const glm::vec3 nrm =
+            glm::normalize(texelDirection(face, m, float(x) + 0.5f, float(y) + 0.5f));
+        // Any frame about the axis will do: the lobe is symmetric about it, and with the FIS
+        // blur the estimate hardly depends on how the sample pattern is turned (the frame turns
+        // abruptly only near the +-Y face centres, where up switches).
+        const glm::vec3 up = std::fabs(nrm.y) < 0.999f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+        const glm::vec3 tx = glm::normalize(glm::cross(up, nrm));
+        const glm::vec3 ty = glm::cross(nrm, tx);
+        glm::vec3 sum(0.f);
+        float wsum = 0.f;
+        for (const LobeSample& s : lobe) {
+            const glm::vec3 l = s.l.x * tx + s.l.y * ty + s.l.z * nrm;
+            const glm::vec3 uvf = glsl::cubeFaceUv(l);
+            const float sc = 2.f * uvf.x - 1.f, tc = 2.f * uvf.y - 1.f;
+            // The level-0 texel's solid angle here is (2/n)^2 / (1 + s^2 + t^2)^1.5.
+            const float lod = std::clamp(s.lodBase + 0.75f * std::log2(1.f + sc * sc + tc * tc),
+                                         0.f, float(maxMip));
+            const int m0 = std::min(int(lod), maxMip), m1 = std::min(m0 + 1, maxMip);
+            const int f = int(uvf.z);
+            glm::vec3 c = mips[m0].bilinear(f, uvf.x, uvf.y);
+            const float blend = lod - float(m0);
+            if (blend > 0.f && m1 != m0) c = glm::mix(c, mips[m1].bilinear(f, uvf.x, uvf.y), blend);
+            sum += s.weight * c;
+            wsum += s.weight;
         }
+        q[0] = sum.x / wsum;
+        q[1] = sum.y / wsum;
+        q[2] = sum.z / wsum;
     });
-    return out;
 }
 
 void validate(const CubeFaces& faces, const GgxPrefilterOptions& options) {

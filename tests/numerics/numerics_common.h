@@ -8,8 +8,8 @@
 #include "engine/gpu/context.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/gpu/render_target.h"
-#include "engine/gpu/shader.h"
 #include "probe/analytic_probe.h"
+#include "support/fullscreen_pass.h"
 
 #include <gtest/gtest.h>
 
@@ -288,20 +288,14 @@ public:
         gpu::RenderTarget dir(w, h);
         std::vector<GpuResult> out(rays.size());
         for (int pass = 0; pass < 2; ++pass) {
-            gpu::RenderTarget& target = pass == 0 ? colour : dir;
-            target.bind();
-            target.clear();
-            prog.use();
-            prog.setUniform("uOutput", pass);
-            glBindTextureUnit(0, cube.id());
-            glBindTextureUnit(1, tx.id());
-            glBindTextureUnit(2, ta.id());
-            glBindTextureUnit(3, tb.id());
-            glBindTextureUnit(4, tc.id());
-            glBindVertexArray(vao_.id());
-            glDisable(GL_DEPTH_TEST);
-            glDrawArrays(GL_TRIANGLES, 0, 3);
-            const Image img = target.readback(); // row 0 at the top
+            const Image img = drawFullscreen(pass == 0 ? colour : dir, prog, vao_, [&] {
+                prog.setUniform("uOutput", pass);
+                glBindTextureUnit(0, cube.id());
+                glBindTextureUnit(1, tx.id());
+                glBindTextureUnit(2, ta.id());
+                glBindTextureUnit(3, tb.id());
+                glBindTextureUnit(4, tc.id());
+            }); // row 0 at the top
             for (int i = 0; i < count; ++i) {
                 const glm::vec4 p = img.rgba(i % w, h - 1 - i / w);
                 if (pass == 0) {
@@ -324,19 +318,10 @@ private:
         for (const DistanceMethodInfo& row : kDistanceMethods)
             if (row.define) defines.push_back(std::string(row.define) + "=" + bit(row.feature));
         defines.push_back(std::string("HAS_LAYERS=") + bit(kFeatureLayers));
-        return programs_
-            .emplace(features,
-                     gpu::buildProgram(gpu::ShaderSource::text("numerics.vert", kVert),
-                                       gpu::ShaderSource::text("numerics.frag", kFrag), defines))
+        return programs_.emplace(features, buildFullscreenProgram("numerics", kFrag, defines))
             .first->second;
     }
 
-    static constexpr const char* kVert = R"(
-void main() {
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
     static constexpr const char* kFrag = R"(
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"

@@ -5,9 +5,9 @@
 #include "components/reflection_probe/distance/distance_glossy_chain.h"
 #include "components/reflection_probe/distance/distance_textures.h"
 #include "engine/gpu/render_target.h"
-#include "engine/gpu/shader.h"
 #include "engine/image/ggx_albedo.h"
 #include "probe_fixture.h"
+#include "support/fullscreen_pass.h"
 #include "twin_agreement.h"
 
 #include <algorithm>
@@ -310,12 +310,6 @@ CubeChain patternChain(int n, int levels) {
 // power of two, one that is not (6: 6, 3, 1, ...) and chains longer than the mip pyramid
 // (4 and 6: the last levels are 1 x 1 and share the last mip).
 TEST_F(GlossyGpu, ChainSamplerInGlslMatchesSampleChain) {
-    static constexpr const char* kVert = R"(
-void main() {
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
     static constexpr const char* kFrag = R"(
 #include "engine/core/glsl_device.glsl"
 #include "components/reflection_probe/distance/shaders/distance_params.glsl.h"
@@ -333,8 +327,7 @@ void main() {
     fragColor = vec4(sampleCubeChain(q.xyz, q.w, uLevels), 1.0);
 }
 )";
-    gpu::Program prog = gpu::buildProgram(gpu::ShaderSource::text("chain.vert", kVert),
-                                          gpu::ShaderSource::text("chain.frag", kFrag));
+    gpu::Program prog = test::buildFullscreenProgram("chain", kFrag);
     const gpu::VertexArray vao = gpu::VertexArray::create();
     constexpr int kW = 64, kH = 64;
     gpu::RenderTarget target(kW, kH);
@@ -391,21 +384,16 @@ void main() {
         block.params.faceRes = c.n;
         params.upload(block);
 
-        target.bind();
-        target.clear();
-        prog.use();
-        glBindTextureUnit(1, layers.id());
-        glBindTextureUnit(3, levels.id());
-        glBindTextureUnit(4, queryTex.id());
-        prog.setUniform("uLayers", 1);
-        prog.setUniform("uChain", 3);
-        prog.setUniform("uQueries", 4);
-        prog.setUniform("uLevels", c.levels);
-        params.bind(glsl::kDistanceParamsBinding);
-        glBindVertexArray(vao.id());
-        glDisable(GL_DEPTH_TEST);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        const Image img = target.readback(); // row 0 at the top
+        const Image img = test::drawFullscreen(target, prog, vao, [&] {
+            glBindTextureUnit(1, layers.id());
+            glBindTextureUnit(3, levels.id());
+            glBindTextureUnit(4, queryTex.id());
+            prog.setUniform("uLayers", 1);
+            prog.setUniform("uChain", 3);
+            prog.setUniform("uQueries", 4);
+            prog.setUniform("uLevels", c.levels);
+            params.bind(glsl::kDistanceParamsBinding);
+        }); // row 0 at the top
         double worst = 0.0;
         long close = 0;
         for (int y = 0; y < kH; ++y)

@@ -4,9 +4,9 @@
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
 #include "components/reflection_probe/reflector_pixels.h"
 #include "engine/gpu/render_target.h"
-#include "engine/gpu/shader.h"
 #include "engine/raytrace/ground_truth.h"
 #include "probe_fixture.h"
+#include "support/fullscreen_pass.h"
 
 #include <array>
 #include <cmath>
@@ -188,12 +188,6 @@ TEST_F(GlossyRoom, FootprintLevelHardensAtContact) {
 
 // The shared header compiles as GLSL and computes what the C++ copy computes.
 TEST_F(GlossyRoom, SharedLevelIsTheSameInGlsl) {
-    static constexpr const char* kVert = R"(
-void main() {
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
     static constexpr const char* kFrag = R"(
 #include "components/reflection_probe/distance/shaders/distance_glossy.glsl.h"
 uniform vec3 uX;
@@ -206,21 +200,15 @@ void main() {
     fragColor = vec4(glossyFootprintLevel(r, uX, uL, t, 6), glossyRoughnessLevel(r, 6), 0, 1);
 }
 )";
-    gpu::Program prog = gpu::buildProgram(gpu::ShaderSource::text("glossy.vert", kVert),
-                                          gpu::ShaderSource::text("glossy.frag", kFrag));
+    gpu::Program prog = test::buildFullscreenProgram("glossy", kFrag);
     const gpu::VertexArray vao = gpu::VertexArray::create();
     gpu::RenderTarget target(16, 16);
     for (const auto& [x, l] : {std::pair{glm::vec3(0.3f, -1.f, 0.2f), glm::vec3(0.f, -1.f, 0.f)},
                                std::pair{glm::vec3(0.9f, 0.5f, 0.f), glm::vec3(-1.f, 0.f, 0.f)}}) {
-        target.bind();
-        target.clear();
-        prog.use();
-        prog.setUniform("uX", x);
-        prog.setUniform("uL", l);
-        glBindVertexArray(vao.id());
-        glDisable(GL_DEPTH_TEST);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        const Image img = target.readback(); // row 0 at the top
+        const Image img = test::drawFullscreen(target, prog, vao, [&] {
+            prog.setUniform("uX", x);
+            prog.setUniform("uL", l);
+        }); // row 0 at the top
         float worst = 0.f;
         for (int j = 0; j < 16; ++j)
             for (int i = 0; i < 16; ++i) {

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -15,24 +14,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kTool = fs::path(SPECULA_BIN_DIR) / "specula-sandbox";
 const fs::path kRoom = fs::path(SPECULA_SOURCE_DIR) / "assets/room/room.gltf";
 
-using specula::test::shellQuote;
-using specula::test::TempDir;
-using specula::test::ToolRun;
+using namespace specula::test;
 
-ToolRun glossy(const std::string& args) {
-    return specula::test::runShellTool(kTool, "glossy " + args);
-}
-
-std::vector<std::string> linesOf(const fs::path& file) {
-    std::ifstream in(file);
-    std::vector<std::string> out;
-    for (std::string line; std::getline(in, line);)
-        out.push_back(line);
-    return out;
-}
+// specula-sandbox glossy ARGS through the shell.
+const ToolSubcommand glossy{fs::path(SPECULA_BIN_DIR) / "specula-sandbox", "glossy"};
 
 // The psnr and noise_floor_psnr fields of the row of `roughness` and `method`; empty when
 // there is no such row.
@@ -52,7 +39,7 @@ TEST(SandboxGlossy, WritesARowPerRoughnessAndMethodAndTheRectifiedModesAgreeAtRo
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(fs::exists(out / "probes/distance/manifest.json"));
     EXPECT_TRUE(fs::exists(out / "probes/lightfield/manifest.json"));
-    const std::vector<std::string> rows = linesOf(out / "glossy.csv");
+    const std::vector<std::string> rows = fileLines(out / "glossy.csv");
     ASSERT_EQ(rows.size(), 1u + 2u * 5u);
     EXPECT_EQ(rows[0], "roughness,method,psnr,noise_floor_psnr");
     for (const std::string roughness : {"0", "0.2"})

@@ -15,25 +15,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kTool = fs::path(SPECULA_BIN_DIR) / "specula-sandbox";
 const fs::path kTwoRooms = fs::path(SPECULA_SOURCE_DIR) / "assets/two_rooms/two_rooms.gltf";
 const fs::path kRoom = fs::path(SPECULA_SOURCE_DIR) / "assets/room/room.gltf";
 
-using specula::test::shellQuote;
-using specula::test::TempDir;
-using specula::test::ToolRun;
+using namespace specula::test;
 
-ToolRun level(const std::string& args) {
-    return specula::test::runShellTool(kTool, "level " + args);
-}
-
-std::vector<std::string> linesOf(const fs::path& file) {
-    std::ifstream in(file);
-    std::vector<std::string> out;
-    for (std::string line; std::getline(in, line);)
-        out.push_back(line);
-    return out;
-}
+// specula-sandbox level ARGS through the shell.
+const ToolSubcommand level{fs::path(SPECULA_BIN_DIR) / "specula-sandbox", "level"};
 
 TEST(SandboxLevel, WalksThroughBothRoomsAndWritesAFrameRowPerFrame) {
     TempDir dir("level-walk");
@@ -44,7 +32,7 @@ TEST(SandboxLevel, WalksThroughBothRoomsAndWritesAFrameRowPerFrame) {
     EXPECT_TRUE(fs::exists(out / "level/level.json"));
     EXPECT_TRUE(fs::exists(out / "level/room_a_probe/manifest.json"));
     EXPECT_TRUE(fs::exists(out / "level/room_b_probe/manifest.json"));
-    const std::vector<std::string> frames = linesOf(out / "frames.csv");
+    const std::vector<std::string> frames = fileLines(out / "frames.csv");
     ASSERT_EQ(frames.size(), 6u);
     EXPECT_EQ(frames[0].rfind("frame,x,y,z,psnr_nearest,psnr_engine,psnr_visibility", 0), 0u);
     // The walk starts at room A's probe (x = -3) and ends at room B's (x = 3).
@@ -52,7 +40,7 @@ TEST(SandboxLevel, WalksThroughBothRoomsAndWritesAFrameRowPerFrame) {
     EXPECT_EQ(frames[5].rfind("4,3,1.2,0,", 0), 0u) << frames[5];
     EXPECT_NE(frames[1].find("room_a_probe:1.000"), std::string::npos) << frames[1];
     EXPECT_NE(frames[5].find("room_b_probe:1.000"), std::string::npos) << frames[5];
-    const std::vector<std::string> summary = linesOf(out / "summary.csv");
+    const std::vector<std::string> summary = fileLines(out / "summary.csv");
     ASSERT_GE(summary.size(), 4u);
     EXPECT_EQ(summary[1].rfind("nearest,", 0), 0u);
     EXPECT_EQ(summary[2].rfind("engine,", 0), 0u);
@@ -60,7 +48,7 @@ TEST(SandboxLevel, WalksThroughBothRoomsAndWritesAFrameRowPerFrame) {
     EXPECT_NE(r.out.find("visibility"), std::string::npos);
     // The GPU pass of every blend and K, against envmap: a header and 1 + 1 + 3 + 3 rows, the
     // envmap row the unit of the ratios.
-    const std::vector<std::string> timing = linesOf(out / "timing.csv");
+    const std::vector<std::string> timing = fileLines(out / "timing.csv");
     ASSERT_EQ(timing.size(), 9u);
     EXPECT_EQ(timing[0].rfind("blend,k,ms_median,ratio_to_envmap", 0), 0u);
     EXPECT_EQ(timing[1].rfind("envmap (one probe),1,", 0), 0u) << timing[1];
@@ -77,7 +65,7 @@ TEST(SandboxLevel, APathFileGivesThePointsAndNoTimingLeavesOutTheGpuPass) {
                             "--face-res 16 --sky '' --no-timing --path @" +
                             shellQuote(pathFile.string()) + " --out " + shellQuote(out.string()));
     ASSERT_EQ(r.status, 0) << r.err;
-    const std::vector<std::string> frames = linesOf(out / "frames.csv");
+    const std::vector<std::string> frames = fileLines(out / "frames.csv");
     ASSERT_EQ(frames.size(), 3u);
     EXPECT_EQ(frames[1].rfind("0,-3,1.2,0,", 0), 0u) << frames[1];
     EXPECT_EQ(frames[2].rfind("1,-1,1.2,0.5,", 0), 0u) << frames[2];

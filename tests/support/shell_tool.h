@@ -1,12 +1,13 @@
 #pragma once
 // Runs a built tool through the shell as a user would type it (arguments already quoted),
-// capturing stdout, stderr and the exit status; and a fresh temporary folder per use. What
-// the command-line tests of every tool share.
+// capturing stdout, stderr and the exit status; the lines of a file it wrote; and a fresh
+// temporary folder per use. What the command-line tests of every tool share.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -47,6 +48,25 @@ inline ToolRun runShellTool(const std::filesystem::path& tool, const std::string
     r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     std::filesystem::remove(errFile);
     return r;
+}
+
+// One subcommand of a built tool: command(args) runs "TOOL NAME ARGS" (runShellTool).
+struct ToolSubcommand {
+    std::filesystem::path tool;
+    std::string name;
+
+    ToolRun operator()(const std::string& args) const {
+        return runShellTool(tool, name + " " + args);
+    }
+};
+
+// The lines of a text file a tool wrote, without their '\n's; none when it cannot be read.
+inline std::vector<std::string> fileLines(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::vector<std::string> out;
+    for (std::string line; std::getline(in, line);)
+        out.push_back(line);
+    return out;
 }
 
 // Lines in a tool's output (its '\n's): a one-line error is exactly one.

@@ -1,4 +1,5 @@
 #include "distance_probe_asset.h"
+#include "distance_asset_internal.h"
 
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/probe_folder.h"
@@ -21,14 +22,26 @@ using nlohmann::json;
 
 namespace specula {
 
+using namespace distance_asset;
+
 namespace {
 
-// Largest file a probe layer of face resolution n can be: an N x 6N float RGBA EXR is 96 N^2
-// bytes of pixels; the rest (header, offset tables, chunk headers) is far below the margin.
-std::uint64_t maxLayerFileBytes(int n) {
-    return 100ull * std::uint64_t(n) * std::uint64_t(n) + (1ull << 20);
-}
 constexpr std::uint64_t kMaxSkyFileBytes = 4ull << 30;
+
+bool radianceOk(const float* rgb) {
+    return rgb[0] >= 0.f && rgb[0] <= kMaxRadiance && rgb[1] >= 0.f && rgb[1] <= kMaxRadiance &&
+           rgb[2] >= 0.f && rgb[2] <= kMaxRadiance; // false for NaN too
+}
+
+// Throws for the first RGB channel that is not finite in [0, kMaxRadiance].
+void refuseRadiance(const float* p, const std::string& file, const std::string& where) {
+    for (int c = 0; c < 3; ++c)
+        if (!(p[c] >= 0.f && p[c] <= kMaxRadiance))
+            throw Error(file, "radiance",
+                        where + " channel " + "RGB"[c] + " holds " + shortNumber(p[c]) +
+                            "; expected a finite radiance in [0, " + shortNumber(kMaxRadiance) +
+                            "]");
+}
 
 } // namespace
 
@@ -42,7 +55,13 @@ double cubeTexelSolidAngle(int x, int y, int n) {
     return corner(x + 1, y + 1) - corner(x, y + 1) - corner(x + 1, y) + corner(x, y);
 }
 
-namespace {
+// --- shared with the glossy levels (distance_asset_internal.h) ------------------------------
+
+namespace distance_asset {
+
+std::uint64_t maxLayerFileBytes(int n) {
+    return 100ull * std::uint64_t(n) * std::uint64_t(n) + (1ull << 20);
+}
 
 Image stackFaces(const std::array<Image, 6>& faces) {
     const int n = faces[0].width;
@@ -72,8 +91,6 @@ std::array<Image, 6> splitFaces(const Image& stacked) {
     return faces;
 }
 
-// --- content checks: what the images hold, against the manifest -----------------------------
-
 std::string texelName(int face, int x, int y) {
     static const char* names[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
     return std::string("face ") + names[face] + " texel (" + std::to_string(x) + ", " +
@@ -86,23 +103,6 @@ std::string shortNumber(double v) {
     return buf;
 }
 
-bool radianceOk(const float* rgb) {
-    return rgb[0] >= 0.f && rgb[0] <= kMaxRadiance && rgb[1] >= 0.f && rgb[1] <= kMaxRadiance &&
-           rgb[2] >= 0.f && rgb[2] <= kMaxRadiance; // false for NaN too
-}
-
-// Throws for the first RGB channel that is not finite in [0, kMaxRadiance].
-void refuseRadiance(const float* p, const std::string& file, const std::string& where) {
-    for (int c = 0; c < 3; ++c)
-        if (!(p[c] >= 0.f && p[c] <= kMaxRadiance))
-            throw Error(file, "radiance",
-                        where + " channel " + "RGB"[c] + " holds " + shortNumber(p[c]) +
-                            "; expected a finite radiance in [0, " + shortNumber(kMaxRadiance) +
-                            "]");
-}
-
-// Solid angle of every texel of an N x N face, row-major (the same for all six faces):
-// computed once per probe, so measuring a layer is one pass over its texels.
 std::vector<float> faceSolidAngles(int n) {
     std::vector<float> out(std::size_t(n) * std::size_t(n));
     for (int y = 0; y < n; ++y)
@@ -144,6 +144,12 @@ DistanceLayerContent scanLayer(const std::array<Image, 6>& faces, float dInf,
     c.maxDistance = hi;
     return c;
 }
+
+} // namespace distance_asset
+
+// --- content checks: what the images hold, against the manifest -----------------------------
+
+namespace {
 
 // The manifest's figures for a layer against what its image holds. A layer file swapped with
 // another (checksums and all) or edited (checksum updated) fails here.
@@ -196,85 +202,6 @@ void checkCompositeNearest(const DistanceProbeAsset& a, const std::string& manif
                 }
 }
 
-// Face side of glossy level i (1 ..) of a probe of face_res n.
-int glossyFaceRes(int n, std::size_t level) {
-    return std::max(1, n >> std::min<std::size_t>(level, 30));
-}
-
-// "glossy.levels[k]": the manifest's entry for glossy level k + 1.
-std::string glossyField(std::size_t k) {
-    return "glossy.levels[" + std::to_string(k) + "]";
-}
-
-// Runs `check` on glossy level k + 1's image; an Error it throws names the level's field.
-template <typename Check> void namedGlossy(std::size_t k, Check check) {
-    try {
-        check();
-    } catch (const Error& e) {
-        const std::string field = glossyField(k);
-        if (e.field().rfind(field, 0) == 0) throw;
-        throw Error(e.file(), e.field().empty() ? field : field + "." + e.field(), e.message());
-    }
-}
-
-// Level 0's texels under texel x of a face of m texels over one of n: those it overlaps.
-void footprintOf(int x, int m, int n, int& lo, int& hi) {
-    lo = int((std::int64_t(x) * n) / m);
-    hi = int(((std::int64_t(x) + 1) * n + m - 1) / m) - 1;
-}
-
-// A glossy level's A holds, per texel, the nearest finite distance of the composite under it
-// (d_inf where it hits nothing there): a level swapped with another probe's fails here.
-void checkGlossyDistance(const std::array<Image, 6>& level, const std::array<Image, 6>& composite,
-                         float dInf, const std::string& file) {
-    const int n = composite[0].width, m = level[0].width;
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < m; ++y) {
-            int y0, y1;
-            footprintOf(y, m, n, y0, y1);
-            for (int x = 0; x < m; ++x) {
-                int x0, x1;
-                footprintOf(x, m, n, x0, x1);
-                float nearest = dInf;
-                for (int sy = y0; sy <= y1; ++sy)
-                    for (int sx = x0; sx <= x1; ++sx)
-                        nearest = std::min(nearest, composite[std::size_t(f)].at(sx, sy)[3]);
-                const float d = level[std::size_t(f)].at(x, y)[3];
-                if (d != nearest)
-                    throw Error(file, "distance",
-                                texelName(f, x, y) + " holds " + shortNumber(d) +
-                                    " but the composite's nearest hit under it is " +
-                                    shortNumber(nearest) +
-                                    "; expected the min distance over its footprint (a level "
-                                    "of another probe?)");
-            }
-        }
-}
-
-// The glossy levels against the composite: each level's size, every texel (as a layer's)
-// and its distances. `files[k]` names glossy level k + 1's image.
-void checkGlossy(const DistanceProbeAsset& a, const std::string& manifest,
-                 const std::vector<std::string>& files) {
-    if (a.glossyLevels.size() > std::size_t(kMaxGlossyLevels))
-        throw Error(manifest, "glossy.levels",
-                    "expected at most " + std::to_string(kMaxGlossyLevels) + " levels, got " +
-                        std::to_string(a.glossyLevels.size()));
-    for (std::size_t k = 0; k < a.glossyLevels.size(); ++k) {
-        const std::array<Image, 6>& faces = a.glossyLevels[k];
-        const int n = glossyFaceRes(a.faceRes, k + 1);
-        namedGlossy(k, [&] {
-            if (faces[0].width != n)
-                throw Error(files[k], "size",
-                            "expected faces of " + std::to_string(n) + " texels (level " +
-                                std::to_string(k + 1) + " of face_res " +
-                                std::to_string(a.faceRes) + "), got " +
-                                std::to_string(faces[0].width));
-            scanLayer(faces, a.dInf, faceSolidAngles(n), files[k]);
-            checkGlossyDistance(faces, a.layers[0].faces, a.dInf, files[k]);
-        });
-    }
-}
-
 // Everything the reader checks of the images' content; the writer runs it too, so a bake
 // never writes a probe its own reader would refuse. `files[i]` names layer i's image,
 // `glossyFiles[k]` glossy level k + 1's.
@@ -319,12 +246,6 @@ std::string layerFileName(std::size_t i) {
     std::snprintf(name, sizeof name, "layer_%02zu.exr", i);
     return name;
 }
-// Glossy level i (1 ..): the composite's (layer 0's) chain.
-std::string glossyFileName(std::size_t i) {
-    char name[64];
-    std::snprintf(name, sizeof name, "layer_00_ggx_%zu.exr", i);
-    return name;
-}
 } // namespace
 
 void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
@@ -339,11 +260,8 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
     std::vector<std::string> files;
     for (std::size_t i = 0; i < asset.layers.size(); ++i)
         files.push_back((fs::path(dir) / layerFileName(i)).string());
-    std::vector<std::string> glossyFiles;
-    for (std::size_t k = 0; k < asset.glossyLevels.size(); ++k)
-        glossyFiles.push_back((fs::path(dir) / glossyFileName(k + 1)).string());
-    checkContent(asset, (fs::path(dir) / "manifest.json").string(), files, glossyFiles,
-                 (fs::path(dir) / "sky.exr").string());
+    checkContent(asset, (fs::path(dir) / "manifest.json").string(), files,
+                 glossyFilePaths(asset, dir), (fs::path(dir) / "sky.exr").string());
 
     writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
         json layers = json::array();
@@ -380,20 +298,7 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
                             "RGB radiance, A distance from the centre"},
             {"layers", layers}};
         if (!asset.effectPlan.empty()) manifest["effect_plan"] = json::parse(asset.effectPlan);
-        if (!asset.glossyLevels.empty()) {
-            const std::size_t count = asset.glossyLevels.size();
-            json levels = json::array();
-            for (std::size_t k = 0; k < count; ++k) {
-                throwIfCancelled(dir);
-                const std::string name = glossyFileName(k + 1);
-                const std::string path = (tmp / name).string();
-                writeImage(path, stackFaces(asset.glossyLevels[k]));
-                levels.push_back({{"file", name},
-                                  {"checksum", fileChecksum(path)},
-                                  {"roughness", double(k + 1) / double(count)}});
-            }
-            manifest["glossy"] = {{"levels", levels}};
-        }
+        if (!asset.glossyLevels.empty()) manifest["glossy"] = writeGlossyLevels(asset, tmp, dir);
         if (!asset.sky.empty()) {
             const std::string path = (tmp / "sky.exr").string();
             writeImage(path, asset.sky);
@@ -402,47 +307,6 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
         return manifest;
     });
 }
-
-namespace {
-
-// The manifest's "glossy" member: each level's file (checksum, a float EXR of the level's
-// size) into a.glossyLevels; its content is checked with the layers' (checkContent).
-void readGlossyLevels(const ManifestFields& r, const json& glossy, const fs::path& dir,
-                      DistanceProbeAsset& a, std::vector<std::string>& files) {
-    if (!glossy.is_object()) throw Error(r.file, "glossy", "expected an object");
-    const json& levels = r.member(glossy, "levels", "glossy.");
-    if (!levels.is_array() || levels.empty() || levels.size() > std::size_t(kMaxGlossyLevels))
-        throw Error(r.file, "glossy.levels",
-                    "expected an array of 1 to " + std::to_string(kMaxGlossyLevels) + " levels");
-    for (std::size_t k = 0; k < levels.size(); ++k) {
-        const std::string path = glossyField(k) + ".";
-        const json& j = levels[k];
-        if (!j.is_object()) throw Error(r.file, glossyField(k), "expected an object");
-        // Level k + 1 of L = levels.size(): perceptual roughness (k + 1) / L, as written.
-        const double expected = double(k + 1) / double(levels.size());
-        const double roughness = r.number(j, "roughness", path, 0.0, 1.0);
-        if (std::fabs(roughness - expected) > 1e-6)
-            throw Error(r.file, path + "roughness",
-                        "says " + shortNumber(roughness) + "; level " + std::to_string(k + 1) +
-                            " of " + std::to_string(levels.size()) + " has roughness " +
-                            shortNumber(expected));
-        const int n = glossyFaceRes(a.faceRes, k + 1);
-        const ManifestFields::CheckedFile file = r.checkedFile(j, path, dir, maxLayerFileBytes(n));
-        namedGlossy(k, [&] {
-            const Image stacked = readFloatExr(file.path, {.width = n, .height = 6 * n});
-            if (stacked.width != n || stacked.height != 6 * n || stacked.channels < 4)
-                throw Error(file.path, "size",
-                            "expected " + std::to_string(n) + " x " + std::to_string(6 * n) +
-                                " RGBA, got " + std::to_string(stacked.width) + " x " +
-                                std::to_string(stacked.height) + " with " +
-                                std::to_string(stacked.channels) + " channels");
-            a.glossyLevels.push_back(splitFaces(stacked));
-        });
-        files.push_back(file.path);
-    }
-}
-
-} // namespace
 
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {
     return readDistanceProbe(ParsedManifest::load(manifestPath).view());
