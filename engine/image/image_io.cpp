@@ -56,8 +56,7 @@ Image readOpened(OIIO::ImageInput& in, std::optional<bool> srgbToLinear,
         limits.maxValues) {
         error = "image too large: " + std::to_string(spec.width) + " x " +
                 std::to_string(spec.height) + " x " + std::to_string(channels) +
-                " values, more than the " + std::to_string(limits.maxValues) +
-                " this reader holds";
+                " values, more than the " + std::to_string(limits.maxValues) + " this reader holds";
         return {};
     }
     Image img(spec.width, spec.height, channels);
@@ -137,8 +136,8 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
     return in;
 }
 
-Image readAndClose(OIIO::ImageInput& in, const std::string& path,
-                   std::optional<bool> srgbToLinear, const ImageReadLimits& limits) {
+Image readAndClose(OIIO::ImageInput& in, const std::string& path, std::optional<bool> srgbToLinear,
+                   const ImageReadLimits& limits) {
     std::string error;
     Image img = readOpened(in, srgbToLinear, limits, error);
     in.close();
@@ -201,6 +200,9 @@ void writeImage(const std::string& path, const Image& image, const ImageWriteOpt
         fileType = OIIO::TypeDesc::HALF;
 
     OIIO::ImageSpec spec(image.width, image.height, channels, fileType);
+    // OIIO stamps EXRs with the wall-clock time unless DateTime is set; empty leaves it out, so
+    // the same pixels give the same bytes (cooked assets are compared and hashed by bytes).
+    spec.attribute("DateTime", "");
     if (channels == 2 || channels == 4) {
         spec.alpha_channel = channels - 1;
         spec.attribute("oiio:UnassociatedAlpha", 1);

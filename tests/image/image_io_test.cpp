@@ -52,6 +52,16 @@ TEST_F(ImageIoTest, ExrRoundTripIsExact) {
     EXPECT_EQ(back.pixels, img.pixels);
 }
 
+TEST_F(ImageIoTest, ExrHeaderHoldsNoWallClockTime) {
+    // Cooked assets are hashed and compared by bytes: the same pixels must give the same file.
+    // OpenImageIO otherwise writes a "DateTime" attribute (plain ASCII in the EXR header).
+    writeImage(path("t.exr"), gradient(5, 4, 3));
+    std::ifstream in(path("t.exr"), std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    ASSERT_FALSE(bytes.empty());
+    EXPECT_EQ(bytes.find("DateTime"), std::string::npos);
+}
+
 TEST_F(ImageIoTest, ExrHalfIsCloseAndRowZeroStaysOnTop) {
     Image img(4, 3, 3);
     img.at(0, 0)[0] = 1.f; // top-left red
