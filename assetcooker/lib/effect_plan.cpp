@@ -71,6 +71,18 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     const std::vector<ObjectView> views = viewObjectsFromCentre(registry, markup, centre, cube);
 
     const float tolRad = t.maxErrorDeg * kPi / 180.f;
+    // Rough reflectors (plan_glossy.h): the sharpest one's lobe decides, and only where it is
+    // wider than the tolerance; below it the plan is a mirror's, to the letter.
+    const SharpestLobe lobe = planReflectors(markup, plan.reflectors);
+    plan.lobeDeg = lobe.deg;
+    const float lobeRad = lobe.deg * kPi / 180.f;
+    const bool lobeHides = lobeRad > tolRad;
+    plan.lobeReason =
+        lobe.text + (!(lobe.deg > 0.f) ? ""
+                     : lobeHides       ? ": wider than the " + fmt(t.maxErrorDeg) +
+                                       " deg tolerance, parallax below it hides in the blur"
+                                 : ": no wider than the " + fmt(t.maxErrorDeg) +
+                                       " deg tolerance, planned as a mirror");
     const float texelAngle = 0.5f * kPi / float(t.analysisFaceRes);
     // Near objects overlap where their grown coverage shares a texel. Per texel, the nearest
     // near object given the average distance and the farthest near object are all the
@@ -86,6 +98,7 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     };
     std::vector<Near> nears;
     std::vector<std::string> distant;
+    int blurred = 0; // objects the lobe's blur made distant
     for (std::size_t i = 0; i < views.size(); ++i) {
         const ObjectView& L = views[i];
         const EnvironmentObject& o = markup.objects[i];
@@ -122,6 +135,14 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
             po.reason = "direction-only error <= " + fmt(po.parallaxDeg) + " deg < " +
                         fmt(t.maxErrorDeg) + " deg at " + fmt(po.nearest) + " m";
             distant.push_back(o.name);
+        } else if (lobeHides && parallax < lobeRad) {
+            po.decision = "distant";
+            po.reason = "parallax up to " + fmt(po.parallaxDeg, 1) + " deg at " + fmt(po.nearest) +
+                        " m < " + lobe.text +
+                        ": the blur hides it -> direction-only lookup of "
+                        "the prefiltered chain";
+            distant.push_back(o.name);
+            ++blurred;
         } else {
             po.decision = po.solidAngle >= t.rectifySolidAngle ? "rectify" : "avgdist";
             po.reason = "parallax up to " + fmt(po.parallaxDeg, 1) + " deg; covers " +
@@ -176,16 +197,24 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     }
     if (!distant.empty())
         plan.layers.push_back(
-            {"distant", distant, "envmap", "far enough for the direction-only lookup"});
+            {"distant", distant, "envmap",
+             blurred ? "far enough, or blurred enough by the lobe, for the direction-only lookup"
+                     : "far enough for the direction-only lookup"});
 
     // Mode: the cheapest runtime path that represents the plan.
     if (nears.empty()) {
         plan.mode = "envmap";
         plan.modeReason = markup.objects.empty() ? "no environment geometry: only the distant sky"
-                                                 : "every object is distant";
-    } else if (!anyOverlap) {
+                          : blurred ? "every object is distant or its parallax hides in the blur "
+                                      "of the sharpest reflector's lobe"
+                                    : "every object is distant";
+    } else if (!anyOverlap || (lobeHides && occluderParallax < lobe.deg)) {
         plan.mode = "single";
-        plan.modeReason = "no two near objects overlap as seen from the cell: one layer, merged";
+        plan.modeReason =
+            !anyOverlap ? "no two near objects overlap as seen from the cell: one layer, merged"
+                        : "near objects overlap, but occluders uncover at most " +
+                              fmt(occluderParallax, 1) + " deg behind them < " + lobe.text +
+                              ": the blur hides the occlusion, one layer, merged";
         const bool rectify =
             std::any_of(plan.layers.begin(), plan.layers.end(),
                         [](const PlannedLayer& l) { return l.method == "bisection"; });
@@ -213,6 +242,11 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     if (forcedFlavour) {
         plan.flavour = *forcedFlavour;
         plan.flavourReason = "the user asked for it (specula_probe.flavour)";
+    } else if (occluderParallax > 30.f && lobeHides && occluderParallax < lobe.deg) {
+        plan.flavour = "distance";
+        plan.flavourReason = "a small occluder can uncover " + fmt(occluderParallax, 1) +
+                             " deg of what is behind it, < " + lobe.text +
+                             ": the blur hides the disocclusion, a distance cube map serves";
     } else if (occluderParallax > 30.f) {
         plan.flavour = "lightfield";
         plan.flavourReason = "a small occluder can uncover " + fmt(occluderParallax, 1) +
@@ -220,10 +254,14 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
                              "cannot show";
     } else {
         plan.flavour = "distance";
-        plan.flavourReason = anyOverlap ? "occluders uncover at most " + fmt(occluderParallax, 1) +
-                                              " deg behind them: layered distance cube maps "
-                                              "represent the occlusion"
-                                        : "no occlusion parallax to represent";
+        const std::string uncovered =
+            "occluders uncover at most " + fmt(occluderParallax, 1) + " deg behind them";
+        plan.flavourReason =
+            !anyOverlap ? "no occlusion parallax to represent"
+            : plan.mode == "layered"
+                ? uncovered + ": layered distance cube maps represent the occlusion"
+                : uncovered + ", hidden in the lobe's blur: one distance cube map "
+                              "serves";
     }
 
     // Fresnel only where a reflector's material asks for an F0 below 1, or the user does.
@@ -288,6 +326,11 @@ nlohmann::json EffectPlan::toJson() const {
                                 {"parallax_deg", o.parallaxDeg},
                                 {"decision", o.decision},
                                 {"reason", o.reason}});
+    j["reflectors"] = nlohmann::json::array();
+    for (const PlannedReflector& r : reflectors)
+        j["reflectors"].push_back(
+            {{"name", r.name}, {"roughness", r.roughness}, {"lobe_half_width_deg", r.lobeDeg}});
+    j["lobe"] = {{"half_width_deg", lobeDeg}, {"reason", lobeReason}};
     j["user_needs"] = userNeeds;
     j["features"] = features;
     return j;
@@ -307,6 +350,13 @@ std::string EffectPlan::toText() const {
     s << "fresnel  " << (fresnel ? "on" : "off") << "  (" << fresnelReason << ")\n";
     s << "background from light field  " << (lightFieldBackground ? "on" : "off") << "  ("
       << backgroundReason << ")\n";
+    if (std::any_of(reflectors.begin(), reflectors.end(),
+                    [](const PlannedReflector& r) { return r.roughness > 0.f; }))
+        s << "lobe     " << fmt(lobeDeg, 1) << " deg  (" << lobeReason << ")\n";
+    for (const PlannedReflector& r : reflectors)
+        if (r.roughness > 0.f)
+            s << "reflector  " << r.name << ": roughness " << fmt(r.roughness) << ", lobe "
+              << fmt(r.lobeDeg, 1) << " deg\n";
     for (const std::string& n : userNeeds)
         s << "user need  " << n << "\n";
     s << "objects:\n";

@@ -3,9 +3,13 @@
 // explained. A scene pays for exactly what it needs: distant objects are looked up by
 // direction only, large near ones are rectified per pixel, small near ones get the average
 // distance, layers exist only where objects can occlude each other in a reflection, and
-// Fresnel only where a material asks. The user can state needs in the probe node's extras
+// Fresnel only where a material asks. Rough reflectors blur what they reflect: where the
+// sharpest reflector's GGX lobe is wider than the parallax a lookup would correct, the cheaper
+// lookup serves (plan_glossy.h: the rule and its geometry). The user can state needs in the probe
+// node's extras
 // ("specula_probe": {"max_error_deg", "motion_range", "flavour", "fresnel"}); the plan
 // honours them and says so.
+#include "assetcooker/lib/plan_glossy.h"
 #include "components/reflection_probe/scene_markup.h"
 #include "engine/ecs/registry.h"
 
@@ -54,6 +58,10 @@ struct EffectPlan {
     bool lightFieldBackground = false;
     std::string backgroundReason;
     std::vector<PlannedObject> objects;
+    // Every reflector with its lobe; the sharpest (narrowest) lobe is the one the plan weighs.
+    std::vector<PlannedReflector> reflectors;
+    float lobeDeg = 0.f; // the sharpest reflector's lobe half-width, degrees (0: a mirror)
+    std::string lobeReason;
     std::vector<std::string> userNeeds; // what the markup asked for, as read
     std::string features;               // shader features the plan compiles in
 

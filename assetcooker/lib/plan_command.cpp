@@ -45,6 +45,9 @@ void addPlanCommand(cli::ToolCli& tool) {
         "-> per-pixel rectification; small near ones -> average distance; layers only where\n"
         "objects overlap as seen from the reflector cell; Fresnel only where a reflector's F0 < "
         "1.\n"
+        "Rough reflectors: where the sharpest reflector's GGX lobe (half-width 2 atan(r^2)) is\n"
+        "wider than an object's parallax, or than the band an occluder uncovers, the cheaper\n"
+        "lookup (direction only; one merged layer; no light field) is chosen, with the reason.\n"
         "Needs stated in the probe node's extras (\"specula_probe\": {\"max_error_deg\": 0.5,\n"
         "\"motion_range\": 1.5, \"flavour\": \"distance\"|\"lightfield\", \"fresnel\": true,\n"
         "\"background\": true}) are honoured and reported.\n",

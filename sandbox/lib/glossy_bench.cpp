@@ -6,9 +6,11 @@
 #include "components/reflection_probe/reflector_pixels.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
+#include "engine/gpu/context.h"
 #include "engine/image/compare.h"
 #include "engine/image/ggx_albedo.h"
 #include "engine/raytrace/ground_truth.h"
+#include "sandbox/lib/glossy_timing.h"
 #include "sandbox/lib/reflection_scene.h"
 
 #include <algorithm>
@@ -118,8 +120,8 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
 
     const CameraView camera = reflectionScene.camera(o.width, o.height);
     const std::vector<std::string>& methods = glossyBenchMethods();
-    std::ostringstream csv;
-    csv << "roughness,method,psnr,noise_floor_psnr\n";
+    const GlossyTextures textures =
+        glossyTextures(distanceAsset, distance.chain(), lightFieldAsset);
     for (const float r : o.roughness) {
         TraceOptions t = groundTruthOptions(scene, true);
         t.mirrorRoughness = [r](ecs::Entity) { return r; };
@@ -156,12 +158,41 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
             row.method = methods[m];
             row.psnr = clampedPsnr(compareImages(img, truth.color, &mask));
             row.noiseFloorPsnr = noise;
-            csv << r << ",\"" << row.method << "\"," << formatPsnr(row.psnr) << ','
-                << formatPsnr(row.noiseFloorPsnr) << '\n';
+            row.memoryMiB = double(textures.bytes(GlossyBenchMethod(m), r)) / (1024.0 * 1024.0);
             result.rows.push_back(row);
         }
         log << "roughness " << r << ": " << pixels.size() << " reflector pixels, truth noise floor "
             << formatPsnr(noise) << " dB\n";
+    }
+
+    if (o.timing) {
+        const auto context = gpu::GlContext::createHeadless();
+        const GlossyTiming timing =
+            timeGlossyPasses(reflectionScene, distanceCook.manifest, lightFieldCook.manifest,
+                             search, camera, o.roughness, textures, o.timingRounds);
+        for (const GlossyPassTime& t : timing.passes)
+            for (GlossyBenchRow& row : result.rows)
+                if (row.roughness == t.roughness && row.method == methods[std::size_t(t.method)])
+                    row.ratioToEnvmap = t.ratioToEnvmap;
+        result.envmapMs = timing.envmapMs;
+        result.timer = timing.timer;
+        result.storeBytes = timing.storeBytes;
+        result.expectedStoreBytes = timing.expectedStoreBytes;
+        if (timing.storeBytes != timing.expectedStoreBytes)
+            log << "warning: the probe stores hold " << timing.storeBytes
+                << " bytes of textures, the memory column counts " << timing.expectedStoreBytes
+                << '\n';
+    }
+    std::ostringstream csv;
+    csv << "roughness,method,psnr,noise_floor_psnr,ratio_to_envmap,memory_mib\n";
+    for (const GlossyBenchRow& row : result.rows) {
+        csv << row.roughness << ",\"" << row.method << "\"," << formatPsnr(row.psnr) << ','
+            << formatPsnr(row.noiseFloorPsnr) << ',';
+        if (row.ratioToEnvmap >= 0.0)
+            csv << row.ratioToEnvmap;
+        else
+            csv << "none";
+        csv << ',' << row.memoryMiB << '\n';
     }
 
     // The table: a row per roughness, a column per method.
@@ -177,6 +208,32 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
         log << std::setw(6) << r.str() << std::setw(8) << formatPsnr(result.rows[i].noiseFloorPsnr);
         for (std::size_t m = 0; m < methods.size(); ++m)
             log << " | " << std::setw(27) << formatPsnr(result.rows[i + m].psnr);
+        log << '\n';
+    }
+    log << "\nreflector pass / mirror envmap pass"
+        << (result.timer.empty() ? std::string(" (not timed)")
+                                 : " (" + result.timer + "; the mirror envmap pass " +
+                                       std::to_string(result.envmapMs) + " ms)")
+        << "; texture MiB\n";
+    log << std::left << std::setw(6) << "r";
+    for (const std::string& m : methods)
+        log << " | " << std::setw(27) << m;
+    log << '\n';
+    for (std::size_t i = 0; i < result.rows.size(); i += methods.size()) {
+        std::ostringstream r;
+        r << result.rows[i].roughness;
+        log << std::setw(6) << r.str();
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+            const GlossyBenchRow& row = result.rows[i + m];
+            std::ostringstream cell;
+            cell << std::fixed << std::setprecision(2);
+            if (row.ratioToEnvmap >= 0.0)
+                cell << row.ratioToEnvmap << "x";
+            else
+                cell << "-";
+            cell << ", " << row.memoryMiB << " MiB";
+            log << " | " << std::setw(27) << cell.str();
+        }
         log << '\n';
     }
     log << std::right;

@@ -5,8 +5,10 @@
 // that roughness, the environment-only GGX ground truth is traced (and its noise floor: seed 1
 // against seed 2), and every reflector pixel is looked up five ways: envmap + chain, boxproj +
 // chain, rectified (level by roughness), rectified (level by footprint) and the light field's
-// glossy lookup. PSNR on the eroded reflector pixels goes to glossy.csv and a printed table.
-// No GPU: the pass-time ratios come from `specula-sandbox bench`.
+// glossy lookup. PSNR on the eroded reflector pixels goes to glossy.csv and a printed table,
+// with each method's cost (glossy_timing.h): its GPU reflector pass as a ratio to the mirror
+// envmap pass of the same run (methods with a shader; unless timing is off) and the texture
+// memory it holds.
 #include "components/reflection_probe/added_reflector.h"
 
 #include <ostream>
@@ -27,6 +29,8 @@ struct GlossyBenchOptions {
     int samples = 256; // GGX truth samples per pixel
     std::vector<AddedReflector> addedReflectors;
     bool progress = true;
+    bool timing = true;    // the GPU reflector pass of each method, against the mirror envmap
+    int timingRounds = 15; // interleaved rounds; the median of as many frames per method
 };
 
 struct GlossyBenchRow {
@@ -34,12 +38,17 @@ struct GlossyBenchRow {
     std::string method;
     double psnr = 0.0;
     double noiseFloorPsnr = 0.0; // +inf at roughness 0 (the truth is exact there)
+    double ratioToEnvmap = -1.0; // pass time / the mirror envmap's; < 0: not timed
+    double memoryMiB = 0.0;      // texture memory the method holds (GlossyTextures)
 };
 
 struct GlossyBenchResult {
     std::vector<GlossyBenchRow> rows;
     long mirrorPixels = 0; // reflector pixels evaluated per roughness
     double bakeSeconds = 0.0;
+    double envmapMs = 0.0; // the mirror envmap pass the ratios divide by (0: not timed)
+    std::string timer;     // what clock timed the passes
+    std::size_t storeBytes = 0, expectedStoreBytes = 0; // see GlossyTiming
 };
 
 // The method names, in the order of the rows of each roughness.

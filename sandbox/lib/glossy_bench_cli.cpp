@@ -34,9 +34,18 @@ constexpr const char* kGlossyDescription =
     "the GGX directional albedo E(n.v, roughness), as the shaders do; the light field's lookup\n"
     "includes it. At roughness 0 every lookup is its mirror lookup.\n"
     "\n"
-    "Writes DIR/glossy.csv (roughness, method, psnr, noise_floor_psnr; PSNR in dB on the\n"
-    "eroded reflector pixels) and prints the table. No GPU work and no timing: the pass-time\n"
-    "ratios of the methods come from `specula-sandbox bench`.\n";
+    "Cost: unless --no-timing, the GPU reflector pass of every method with a shader (envmap+\n"
+    "chain, boxproj+chain and rectified (footprint level): the distance shader's glossy path\n"
+    "with the envmap, boxproj and secant methods; light field glossy: the light-field\n"
+    "shader's) is timed per roughness from the scene's camera, in interleaved rounds, against\n"
+    "the classic environment map's mirror pass of the same run: ratio_to_envmap (rectified\n"
+    "(roughness level) has no shader: none). On a software rasteriser only the ratios mean\n"
+    "anything. memory_mib: the textures the method holds (the composite cube and sky, at\n"
+    "roughness > 0 the GGX chain and the albedo table; the light field's atlas, its mips and\n"
+    "the table). The mirror methods' whole-frame figures come from `specula-sandbox bench`.\n"
+    "\n"
+    "Writes DIR/glossy.csv (roughness, method, psnr, noise_floor_psnr, ratio_to_envmap,\n"
+    "memory_mib; PSNR in dB on the eroded reflector pixels) and prints the tables.\n";
 
 struct GlossyArgs {
     GlossyBenchOptions o;
@@ -76,6 +85,11 @@ void addGlossyCommand(cli::ToolCli& tool) {
     sub->add_option("--samples", o.samples, "GGX truth samples per pixel (default 256)")
         ->check(CLI::Range(1, 65536));
     sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
+    sub->add_flag("!--no-timing", o.timing, "skip the GPU pass timing (ratio_to_envmap: none)");
+    sub->add_option("--rounds", o.timingRounds,
+                    "interleaved timing rounds: the median of as many frames per method "
+                    "(default 15)")
+        ->check(CLI::Range(1, 1000));
     addReflectorOption(sub, a->addedReflectors);
 }
 

@@ -21,14 +21,21 @@ using namespace specula::test;
 // specula-sandbox glossy ARGS through the shell.
 const ToolSubcommand glossy{fs::path(SPECULA_BIN_DIR) / "specula-sandbox", "glossy"};
 
-// The psnr and noise_floor_psnr fields of the row of `roughness` and `method`; empty when
-// there is no such row.
-std::string valuesOf(const std::vector<std::string>& rows, const std::string& roughness,
+// The fields after roughness and method of the row of `roughness` and `method` (psnr,
+// noise_floor_psnr, ratio_to_envmap, memory_mib); empty when there is no such row.
+std::string fieldsOf(const std::vector<std::string>& rows, const std::string& roughness,
                      const std::string& method) {
     const std::string prefix = roughness + ",\"" + method + "\",";
     for (const std::string& row : rows)
         if (row.rfind(prefix, 0) == 0) return row.substr(prefix.size());
     return {};
+}
+
+// The psnr and noise_floor_psnr fields of that row.
+std::string valuesOf(const std::vector<std::string>& rows, const std::string& roughness,
+                     const std::string& method) {
+    const std::string fields = fieldsOf(rows, roughness, method);
+    return fields.substr(0, fields.find(',', fields.find(',') + 1));
 }
 
 TEST(SandboxGlossy, WritesARowPerRoughnessAndMethodAndTheRectifiedModesAgreeAtRoughnessZero) {
@@ -41,7 +48,7 @@ TEST(SandboxGlossy, WritesARowPerRoughnessAndMethodAndTheRectifiedModesAgreeAtRo
     EXPECT_TRUE(fs::exists(out / "probes/lightfield/manifest.json"));
     const std::vector<std::string> rows = fileLines(out / "glossy.csv");
     ASSERT_EQ(rows.size(), 1u + 2u * 5u);
-    EXPECT_EQ(rows[0], "roughness,method,psnr,noise_floor_psnr");
+    EXPECT_EQ(rows[0], "roughness,method,psnr,noise_floor_psnr,ratio_to_envmap,memory_mib");
     for (const std::string roughness : {"0", "0.2"})
         for (const std::string method :
              {"envmap+chain", "boxproj+chain", "rectified (roughness level)",
@@ -57,6 +64,13 @@ TEST(SandboxGlossy, WritesARowPerRoughnessAndMethodAndTheRectifiedModesAgreeAtRo
     EXPECT_NE(noise, "inf");
     EXPECT_NE(noise, "none");
     EXPECT_GT(std::stod(noise), 10.0) << rough;
+    // The cost columns: the roughness-level search has no shader, so no pass time; the
+    // footprint level's shader is timed against the mirror envmap; both hold memory.
+    const std::string cpuOnly = fieldsOf(rows, "0.2", "rectified (roughness level)");
+    const std::string shaded = fieldsOf(rows, "0.2", "rectified (footprint level)");
+    EXPECT_NE(cpuOnly.find(",none,"), std::string::npos) << cpuOnly;
+    EXPECT_EQ(shaded.find("none"), std::string::npos) << shaded;
+    EXPECT_GT(std::stod(shaded.substr(shaded.rfind(',') + 1)), 0.0) << shaded;
     // The printed table names every method.
     EXPECT_NE(r.out.find("light field glossy"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("rectified (footprint level)"), std::string::npos) << r.out;

@@ -1,0 +1,144 @@
+#include "glossy_timing.h"
+
+#include "components/reflection_probe/distance/distance_textures.h"
+#include "components/reflection_probe/lightfield/lightfield_mips.h"
+#include "components/reflection_probe/lightfield/lightfield_probe.h"
+#include "engine/gpu/timer.h"
+#include "engine/image/ggx_albedo.h"
+#include "sandbox/lib/frame_renderer.h"
+#include "sandbox/lib/reflection_scene.h"
+
+#include <algorithm>
+#include <array>
+#include <optional>
+
+namespace specula::sandbox {
+
+namespace {
+
+constexpr std::array<GlossyBenchMethod, 4> kGpuMethods{
+    GlossyBenchMethod::EnvmapChain, GlossyBenchMethod::BoxprojChain,
+    GlossyBenchMethod::RectifiedFootprint, GlossyBenchMethod::LightField};
+
+} // namespace
+
+bool hasGpuPath(GlossyBenchMethod method) {
+    return std::find(kGpuMethods.begin(), kGpuMethods.end(), method) != kGpuMethods.end();
+}
+
+std::size_t GlossyTextures::bytes(GlossyBenchMethod method, float roughness) const {
+    const bool rough = roughness > 0.f;
+    if (method == GlossyBenchMethod::LightField) return atlas + (rough ? mips + albedoTable : 0);
+    return cube + sky + (rough ? chain + albedoTable : 0);
+}
+
+GlossyTextures glossyTextures(const DistanceProbeAsset& distance, const CubeChain& chain,
+                              const LightFieldAsset& lightField) {
+    GlossyTextures t;
+    t.cube = cubeArrayBytes(distance.faceRes, 1);
+    t.sky = distance.sky.empty() ? 0 : skyTextureBytes(distance.sky);
+    t.chain = chainArrayBytes(chain);
+    t.atlas = lightField.gpuBytes();
+    if (lightFieldMaxLevel(lightField.res, lightField.compression) > 0)
+        t.mips = buildLightFieldMips(lightField)
+                     .gpuBytes(lightField.atlasSize(), lightField.compression);
+    t.albedoTable = std::size_t(kGgxAlbedoTableSize) * kGgxAlbedoTableSize * sizeof(float);
+    return t;
+}
+
+GlossyTiming timeGlossyPasses(ReflectionScene& rs, const std::string& distanceManifest,
+                              const std::string& lightFieldManifest, const DistanceProbe& search,
+                              const CameraView& camera, const std::vector<float>& roughness,
+                              const GlossyTextures& textures, int rounds) {
+    ecs::Registry& reg = rs.registry();
+    // One probe entity per method on the same assets: the envmap one carries the reflectors.
+    DistanceProbe envmap = search, boxproj = search;
+    envmap.method = DistanceMethod::Envmap;
+    boxproj.method = DistanceMethod::BoxProj;
+    const ecs::Entity envmapProbe = rs.attachProbe(distanceManifest, envmap);
+    const auto probeOn = [&](const std::string& manifest) {
+        const ecs::Entity e = reg.create();
+        reg.emplace<ReflectionProbe>(e, ReflectionProbe{manifest});
+        return e;
+    };
+    const ecs::Entity boxprojProbe = probeOn(distanceManifest);
+    reg.emplace<DistanceProbe>(boxprojProbe, boxproj);
+    const ecs::Entity searchProbe = probeOn(distanceManifest);
+    reg.emplace<DistanceProbe>(searchProbe, search);
+    const ecs::Entity lightFieldProbe = probeOn(lightFieldManifest);
+    reg.emplace<LightFieldProbe>(lightFieldProbe, LightFieldProbe{});
+    const auto probeOf = [&](GlossyBenchMethod m) {
+        switch (m) {
+        case GlossyBenchMethod::BoxprojChain:
+            return boxprojProbe;
+        case GlossyBenchMethod::RectifiedFootprint:
+            return searchProbe;
+        case GlossyBenchMethod::LightField:
+            return lightFieldProbe;
+        default:
+            return envmapProbe;
+        }
+    };
+
+    struct Config {
+        float roughness = 0.f;
+        std::optional<GlossyBenchMethod> method; // none: the mirror envmap reference
+        ecs::Entity probe;
+        std::vector<double> samples;
+    };
+    std::vector<Config> configs{{0.f, std::nullopt, envmapProbe, {}}};
+    for (const float r : roughness)
+        for (const GlossyBenchMethod m : kGpuMethods)
+            configs.push_back({r, m, probeOf(m), {}});
+
+    GlossyTiming timing;
+    {
+        FrameRenderer fr(rs, camera.width, camera.height);
+        timing.timer = fr.timerSource();
+        const auto use = [&](const Config& c) {
+            reg.view<Reflector>().each([&](ecs::Entity, Reflector& r) {
+                r.probe = c.probe;
+                r.roughness = c.roughness;
+            });
+        };
+        for (const Config& c : configs) { // warm-up: every variant compiled, every chain made
+            use(c);
+            fr.draw(camera);
+        }
+        for (int round = 0; round < rounds; ++round)
+            for (Config& c : configs) {
+                use(c);
+                fr.draw(camera); // what a switch costs lands outside the timed frame
+                fr.draw(camera);
+                c.samples.push_back(fr.passMs());
+            }
+        timing.storeBytes = fr.stats().probeGpuBytes;
+    }
+    timing.envmapMs = gpu::medianMs(configs.front().samples);
+    for (Config& c : configs) {
+        if (!c.method) continue;
+        GlossyPassTime t;
+        t.roughness = c.roughness;
+        t.method = *c.method;
+        t.ms = gpu::medianMs(c.samples);
+        t.frames = int(c.samples.size());
+        t.ratioToEnvmap = timing.envmapMs > 0 ? t.ms / timing.envmapMs : 0.0;
+        timing.passes.push_back(t);
+    }
+    // What the stores hold: three distance probes (composite and sky; with the chain once a
+    // rough reflector drew) and the light field (with its mips likewise). The albedo tables
+    // are the stores' own, outside their probes' count.
+    const bool rough =
+        std::any_of(roughness.begin(), roughness.end(), [](float r) { return r > 0.f; });
+    timing.expectedStoreBytes = 3 * (textures.cube + textures.sky + (rough ? textures.chain : 0)) +
+                                textures.atlas + (rough ? textures.mips : 0);
+    reg.view<Reflector>().each([&](ecs::Entity, Reflector& r) {
+        r.probe = envmapProbe;
+        r.roughness = 0.f;
+    });
+    for (const ecs::Entity e : {boxprojProbe, searchProbe, lightFieldProbe})
+        reg.destroy(e);
+    return timing;
+}
+
+} // namespace specula::sandbox
