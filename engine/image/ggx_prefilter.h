@@ -28,7 +28,7 @@
 // blur, measured against brute-force integration in tests/image/ggx_prefilter_test.cpp.
 // Everything that gathers texels weights them by their exact solid angle, and every fetch
 // reads across face edges by direction (never clamps to a face's edge), so the chain has no
-// seams.
+// seams. The filter's inner loop is engine/image/ggx_lobe_filter.h.
 //
 // Distances. Distance is never blended with radiance weights: a mean of a hit and dInf is
 // meaningless. Each level stores, per texel, the min and max of the finite (< dInf)
