@@ -1,7 +1,7 @@
 #include "bake_command.h"
 
-#include "assetcooker/lib/cook.h"
-#include "assetcooker/lib/level_bake.h"
+#include "assetcooker/lib/bake_args.h"
+#include "assetcooker/lib/slurm_command.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
 
@@ -54,7 +54,13 @@ constexpr const char* kBakeDescription =
     "the probes whose geometry in reach, options or sky changed, and says which and why.\n"
     "\n"
     "A level's bake options can live in a file beside the scene: --config FILE (TOML or INI)\n"
-    "with a [bake] section, e.g. face-res = 128; flags on the command line win.\n";
+    "with a [bake] section, e.g. face-res = 128; flags on the command line win.\n"
+    "\n"
+    "--slurm bakes a level on a Slurm cluster: a job array of `specula-cook bake-shard` over\n"
+    "the shards DIR/.shards lacks, then `specula-cook merge` (--dependency=afterok), with a\n"
+    "progress bar; failed shards are resubmitted (--retries) and then reported by index and\n"
+    "reason. DIR must be a folder shared by every node (same path everywhere), as must SCENE\n"
+    "and this executable. The result is the plain bake's, byte for byte.\n";
 
 constexpr const char* kBakeFooter =
     "Signals: SIGINT/SIGTERM at any moment before the final rename leave DIR as it was and\n"
@@ -64,29 +70,6 @@ constexpr const char* kBakeFooter =
     "\n"
     "exit status: 0 ok, 1 the scene could not be baked, 2 bad command line, 130 cancelled\n"
     "by SIGINT/SIGTERM (DIR left as it was)\n";
-
-// What the bake's flags set; defaults are the help's.
-struct BakeArgs {
-    std::string scene, out, flavour = "distance";
-    std::vector<std::string> probes; // --probe, repeatable
-    std::optional<std::string> probeList, sky;
-    // distance and pem
-    std::optional<int> faceRes; // distance: 256, pem: 128
-    // distance
-    std::string layers = "plan", glossy = "auto";
-    // lightfield
-    std::optional<float> cellSize;
-    std::optional<std::string> cellCentre;
-    int cameras = 8, imageRes = 64;
-    std::string compress = "none";
-    // pem
-    int samples = 8, supersample = 1;
-    std::string imageSize = "640x480", geometry = "distance";
-    float prior = 0.05f, smoothness = 0.02f;
-    std::string parameter = "viewpoint", path = "orbit";
-    // The options that belong to some flavours only, with their names ("distance|pem").
-    std::vector<std::pair<const CLI::Option*, std::string>> flavourOnly;
-};
 
 extern "C" void onSignal(int) {
     requestCancel();
@@ -109,53 +92,13 @@ struct SignalGuard {
     }
 };
 
-// The cooking options the flags give (the flavour's settings by --flavour).
-CookOptions cookOptions(const BakeArgs& a) {
-    CookOptions o;
-    o.scene = a.scene;
-    o.out = a.out;
-    if (a.sky) o.sky = *a.sky;
-    if (a.probes.size() == 1) o.probeCentre = cli::parseVec3(a.probes.front());
-    if (a.flavour == "lightfield") {
-        LightFieldCookSettings s;
-        if (a.cellCentre) s.cellCentre = cli::parseVec3(*a.cellCentre);
-        s.cellSize = a.cellSize;
-        s.cameras = a.cameras;
-        s.imageRes = a.imageRes;
-        s.compression =
-            a.compress == "bc1" ? LightFieldCompression::BC1 : LightFieldCompression::None;
-        o.flavour = s;
-    } else if (a.flavour == "pem") {
-        PemCookSettings s;
-        s.samples = a.samples;
-        s.faceRes = a.faceRes.value_or(s.faceRes);
-        s.supersample = a.supersample;
-        cli::parseSize(a.imageSize, s.imageWidth, s.imageHeight); // validated by the option
-        s.parameter = a.parameter;
-        s.path = a.path;
-        s.geometry = a.geometry;
-        s.priorWeight = a.prior;
-        s.regularisation = a.smoothness;
-        o.flavour = s;
-    } else {
-        DistanceCookSettings s;
-        s.faceRes = a.faceRes.value_or(s.faceRes);
-        s.planned = a.layers == "plan";
-        s.glossy = a.glossy == "on"    ? GlossyBake::On
-                   : a.glossy == "off" ? GlossyBake::Off
-                                       : GlossyBake::Auto; // validated by the option
-        o.flavour = s;
-    }
-    return o;
-}
-
 void printLightFieldSummary(const BakeArgs& a, const CookResult& r, double seconds,
                             std::ostream& out) {
     const auto& asset = std::get<LightFieldAsset>(r.asset);
     out << "baked light field: 6 slabs x " << a.cameras << "^2 cameras x " << a.imageRes
         << "^2 px, cell " << r.cellSize << " m, " << toString(asset.compression) << ", "
         << asset.diskBytes() << " bytes on disk, " << asset.gpuBytes()
-        << " bytes of GPU memory, bake " << asset.bakeSeconds << " s, total " << seconds << " s -> "
+        << " bytes of GPU memory, bake " << r.bakeSeconds << " s, total " << seconds << " s -> "
         << a.out << "/manifest.json\n";
     for (int k = 0; k < 6; ++k) {
         const LightFieldSlab& s = asset.slabs[std::size_t(k)];
@@ -225,30 +168,6 @@ void printPemSummary(const BakeArgs& a, const CookResult& r, double seconds, std
     out << line;
 }
 
-// A flag of other flavours is refused, not ignored.
-void refuseOtherFlavoursOptions(const BakeArgs& a) {
-    for (const auto& [option, flavours] : a.flavourOnly) {
-        std::string names = flavours;
-        std::replace(names.begin(), names.end(), '|', ' ');
-        std::istringstream words(names);
-        bool mine = false;
-        for (std::string w; words >> w;)
-            mine = mine || w == a.flavour;
-        if (option->count() > 0 && !mine)
-            throw UsageError(option->get_name(), "applies to --flavour " + flavours +
-                                                     " only, not to --flavour " + a.flavour);
-    }
-}
-
-// The flavour's settings as text: a change re-bakes a level's probes (the options checksum).
-std::string optionsText(const BakeArgs& a) {
-    std::ostringstream t;
-    t << a.flavour << " face_res " << (a.faceRes ? *a.faceRes : 0) << " layers " << a.layers
-      << " cell_size " << (a.cellSize ? *a.cellSize : 0.f) << " cameras " << a.cameras
-      << " image_res " << a.imageRes << " compress " << a.compress << " glossy " << a.glossy;
-    return t.str();
-}
-
 void printLevelSummary(const LevelCookResult& r, std::ostream& out) {
     std::size_t baked = 0;
     double bakeSeconds = 0;
@@ -261,47 +180,16 @@ void printLevelSummary(const LevelCookResult& r, std::ostream& out) {
         << r.index << "\n";
 }
 
-// A level: the scene has several probes, or the command line gives several (--probe twice,
-// --probes FILE).
-bool isLevel(const BakeArgs& a, const ProbeScene& scene) {
-    return a.probeList || a.probes.size() > 1 || scene.markup.probes.size() > 1;
-}
-
-int runBake(const BakeArgs& a, std::ostream& out) {
-    refuseOtherFlavoursOptions(a);
+int runBake(const BakeArgs& a, const SlurmArgs& s, std::ostream& out) {
+    if (s.slurm) return runSlurmBake(a, s, out);
     const bool lightField = a.flavour == "lightfield";
-    if (lightField && a.cameras * a.imageRes > 16384)
-        throw UsageError("--cameras",
-                         "NUM x --image-res RES = " + std::to_string(a.cameras * a.imageRes) +
-                             " exceeds 16384 (the 2D texture side)");
-    const CookOptions options = cookOptions(a);
-    // A PEM setting the flags got wrong (say --path line with the viewpoint parameter) is a
-    // usage error naming the flag, found before the scene is opened.
-    if (const auto* pem = std::get_if<PemCookSettings>(&options.flavour)) {
-        try {
-            validatePemCookSettings(*pem, a.scene);
-        } catch (const Error& e) {
-            throw UsageError(e.field(), e.message()); // the tool names the field's flag
-        }
-    }
+    const CookOptions options = checkedCookOptions(a);
     const SignalGuard guard; // first: a signal during the load and the plan is honoured too
     const auto start = std::chrono::steady_clock::now();
     ProbeScene scene(options.scene, options.sky);
     throwIfCancelled(options.out);
     if (isLevel(a, scene)) {
-        if (a.flavour == "pem")
-            throw UsageError("--flavour", "pem bakes one probe's camera path, not a level of " +
-                                              std::to_string(std::max<std::size_t>(
-                                                  a.probes.size(), scene.markup.probes.size())) +
-                                              " probes: give one --probe");
-        LevelCookOptions level;
-        level.cook = options;
-        level.cook.probeCentre.reset();
-        level.optionsText = optionsText(a);
-        for (const std::string& p : a.probes)
-            level.sources.positions.push_back(cli::parseVec3(p));
-        if (a.probeList) level.sources.file = *a.probeList;
-        printLevelSummary(cookLevel(scene, level, &out), out);
+        printLevelSummary(cookLevel(scene, levelCookOptions(a, options, scene), &out), out);
         return cli::kExitOk;
     }
     const CookResult r = cookProbe(scene, options, &out);
@@ -316,139 +204,16 @@ int runBake(const BakeArgs& a, std::ostream& out) {
     return cli::kExitOk;
 }
 
-// BC1 blocks (4x4 texels) must not straddle two cameras of an atlas.
-CLI::Validator multipleOfFour() {
-    return CLI::Validator(
-        [](std::string& text) -> std::string {
-            int v = 0;
-            return CLI::detail::lexical_cast(text, v) && v % 4 == 0
-                       ? std::string()
-                       : "expected a multiple of 4 (BC1 blocks), got '" + text + "'";
-        },
-        "");
-}
-
 } // namespace
 
 void addBakeCommand(cli::ToolCli& tool) {
     auto a = std::make_shared<BakeArgs>();
+    auto s = std::make_shared<SlurmArgs>();
     CLI::App* sub = tool.addSubcommand(
         "bake", "bake a scene's reflection probe into a cooked folder", kBakeDescription,
-        kBakeFooter, [a](std::ostream& out) { return runBake(*a, out); });
-    sub->add_option("SCENE", a->scene, "the glTF/GLB scene")->required();
-    sub->add_option("--out", a->out, "output folder (replaced atomically; never half-written)")
-        ->required()
-        ->check(cli::nonEmpty("a folder"));
-    sub->add_option("--flavour", a->flavour, "probe flavour")
-        ->check(CLI::IsMember({"distance", "lightfield", "pem"}));
-    sub->add_option("--probe", a->probes,
-                    "probe centre in world space (overrides the markup's); repeat it for a "
-                    "level of several probes")
-        ->check(cli::vec3Text());
-    sub->add_option("--probes", a->probeList,
-                    "a probe list (JSON: {\"probes\": [{\"name\", \"position\", \"proxy\", "
-                    "\"influence\", \"blend_distance\", \"priority\", \"cell_size\"}]}): "
-                    "bakes a level")
-        ->check(CLI::ExistingFile);
-    sub->add_option("--sky", a->sky,
-                    "equirectangular panorama for the distant environment (default: black)");
-
-    auto only = [&](CLI::Option* o, const char* flavour) {
-        std::string group = flavour;
-        std::replace(group.begin(), group.end(), '|', '/');
-        o->group(group + " options");
-        a->flavourOnly.emplace_back(o, flavour);
-        return o;
-    };
-    only(sub->add_option("--face-res", a->faceRes,
-                         "cube face resolution (distance: default 256; pem: default 128, at most "
-                         "1024)"),
-         "distance|pem")
-        ->check(CLI::Range(1, 4096));
-    only(sub->add_option("--layers", a->layers,
-                         "plan: the layers and methods of the effect plan (specula-cook plan); "
-                         "objects: one layer per object"),
-         "distance")
-        ->check(CLI::IsMember({"plan", "objects"}));
-    only(sub->add_option("--glossy", a->glossy,
-                         "the composite's GGX prefiltered chain for glossy reflectors (5 levels, "
-                         "roughness 0.2 .. 1, layer_00_ggx_<i>.exr): auto (default) when a "
-                         "reflector has roughness > 0, on, off"),
-         "distance")
-        ->check(CLI::IsMember({"auto", "on", "off"}));
-    only(sub->add_option("--cell-size", a->cellSize,
-                         "cell side in metres (default: the probe's cell_size, else 1.5)"),
-         "lightfield")
-        ->check(cli::finiteRange(1e-3, 1e4));
-    only(sub->add_option("--cell-center", a->cellCentre,
-                         "cell centre in world space (default: the probe position)"),
-         "lightfield")
-        ->check(cli::vec3Text());
-    only(sub->add_option("--cameras", a->cameras, "cameras per side of a slab"), "lightfield")
-        ->check(CLI::Range(2, 256));
-    only(sub->add_option("--image-res", a->imageRes, "pixels per side of a camera image"),
-         "lightfield")
-        ->check(CLI::Range(4, 4096))
-        ->check(multipleOfFour());
-    only(sub->add_option("--compress", a->compress,
-                         "none: sRGB RGB8; bc1: DXT1 (bc7 is not supported: no BC7 encoder)"),
-         "lightfield")
-        ->check(CLI::IsMember({"none", "bc1"}));
-    only(sub->add_option("--samples", a->samples,
-                         "parameter samples: one inferred map per viewpoint t = k/N (default 8)"),
-         "pem")
-        ->check(CLI::Range(1, kMaxPemSamples));
-    only(sub->add_option("--image-size", a->imageSize,
-                         "the camera image the maps are inferred for: bake at the frame size "
-                         "they will be drawn at (default 640x480, the walk's)"),
-         "pem")
-        ->check(cli::sizeText());
-    only(sub->add_option("--supersample", a->supersample,
-                         "S x S rays per reflector pixel (default 1: the pixel centres the "
-                         "rasteriser shades)"),
-         "pem")
-        ->check(CLI::Range(1, 16));
-    only(sub->add_option("--geometry", a->geometry,
-                         "the maps' geometry: distance (rectified against the environment's "
-                         "distance cube, traced at the face resolution; default) or box (the "
-                         "environment's bounding box)"),
-         "pem")
-        ->check(CLI::IsMember({"box", "distance"}));
-    only(sub->add_option("--prior", a->prior,
-                         "distance geometry: weight pulling texels towards the radiance captured "
-                         "at the centre, where the camera sees nothing (default 0.05; 0: none)"),
-         "pem")
-        ->check(cli::finiteRange(0.0, 100.0));
-    only(sub->add_option("--smoothness", a->smoothness,
-                         "weight of the rows tying every texel to its neighbours (default 0.02)"),
-         "pem")
-        ->check(cli::finiteRange(0.0, 100.0));
-    only(sub->add_option("--parameter", a->parameter,
-                         "what the maps vary with: viewpoint (the camera moves, default) or "
-                         "reflector (the reflectors move before the scene camera)"),
-         "pem")
-        ->check(CLI::IsMember({"viewpoint", "reflector"}));
-    only(sub->add_option("--path", a->path,
-                         "the path the parameter runs along: orbit (the walk's camera orbit, or "
-                         "the reflectors' orbit), line or figure8 (reflector only); camera (a "
-                         "glTF camera animation) is refused: not read yet"),
-         "pem");
-
-    // Library code names the fields it read; these are the flags that set them.
-    tool.mapField("face_res", "--face-res");
-    tool.mapField("centre", "--probe");
-    tool.mapField("cell_centre", "--cell-center");
-    tool.mapField("cell.size", "--cell-size");
-    tool.mapField("cameras", "--cameras");
-    tool.mapField("image_res", "--image-res");
-    tool.mapField("samples", "--samples");
-    tool.mapField("supersample", "--supersample");
-    tool.mapField("image_size", "--image-size");
-    tool.mapField("parameter", "--parameter");
-    tool.mapField("path", "--path");
-    tool.mapField("geometry", "--geometry");
-    tool.mapField("prior_weight", "--prior");
-    tool.mapField("regularisation", "--smoothness");
+        kBakeFooter, [a, s](std::ostream& out) { return runBake(*a, *s, out); });
+    addBakeOptions(tool, sub, *a);
+    addSlurmOptions(sub, *s);
 }
 
 } // namespace specula::cook

@@ -3,6 +3,7 @@
 #include "assetcooker/lib/bake_command.h"
 #include "assetcooker/lib/inspect.h"
 #include "assetcooker/lib/plan_command.h"
+#include "assetcooker/lib/shard_commands.h"
 
 #include <memory>
 
@@ -33,6 +34,7 @@ int runCli(std::span<const std::string> args, std::ostream& out, std::ostream& e
     addInspectCommand(tool);
     addBakeCommand(tool);
     addPlanCommand(tool);
+    addShardCommands(tool);
     return tool.run(args, out, err);
 }
 

@@ -114,6 +114,9 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const LightFieldCookSetti
         return bakeLightFieldProbe(scene.registry, scene.markup, b);
     });
     result.bakeSeconds = secondsSince(start);
+    // A cooked folder's bytes depend on its inputs only (a sharded bake merges to the same
+    // bytes, shard_bake.h): the time is the result's, not the manifest's.
+    asset.bakeSeconds = 0.0;
     writeLightFieldProbe(asset, o.out, scene.path);
     result.cellCentre = b.cellCentre;
     result.cellSize = b.cellSize;

@@ -1,6 +1,5 @@
 #include "level_bake.h"
 
-#include "assetcooker/lib/probe_sanity.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
@@ -10,147 +9,23 @@
 #include "engine/scene/mesh_bounds.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
-#include <cmath>
+#include <exception>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <set>
-#include <span>
 #include <sstream>
+
+#include <tbb/parallel_for.h>
 
 namespace specula {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// A probe being gathered, with the markup objects to apply onto it in order (later wins).
-struct PendingProbe {
-    ProbeVolume volume;
-    std::vector<std::tuple<json, std::string, std::string>> members; // (members, file, field)
-};
-
-// The probe list file's entries merged into `probes` (see LevelProbeSources::file).
-void mergeProbeList(std::vector<PendingProbe>& probes, const std::string& file) {
-    const json doc = parseManifestJson(readManifestText(file), file);
-    const json& list = doc.is_object() && doc.contains("probes") ? doc["probes"] : doc;
-    if (!list.is_array()) throw Error(file, "probes", "expected an array of probes");
-    for (std::size_t i = 0; i < list.size(); ++i) {
-        const json& p = list[i];
-        const std::string field = "probes[" + std::to_string(i) + "]";
-        if (!p.is_object()) throw Error(file, field, "expected an object");
-        std::string name = "probe_list_" + std::to_string(i);
-        if (p.contains("name")) {
-            if (!p["name"].is_string() || p["name"].get<std::string>().empty())
-                throw Error(file, field + ".name", "expected a non-empty string");
-            name = p["name"].get<std::string>();
-        }
-        PendingProbe* target = nullptr;
-        for (PendingProbe& q : probes)
-            if (q.volume.name == name) target = &q;
-        if (!target) {
-            if (!p.contains("position"))
-                throw Error(file, field + ".position", "missing (a new probe needs a position)");
-            probes.push_back({});
-            target = &probes.back();
-            target->volume.name = name;
-        }
-        if (p.contains("position"))
-            target->volume.position = probeVec3(p["position"], file, field + ".position");
-        json members = p;
-        members.erase("name");
-        members.erase("position");
-        target->members.emplace_back(std::move(members), file, field);
-    }
-}
-
-// The default proxy: the room the probe stands in, measured so that furniture does not shrink
-// it. Each side of the box reaches as far as the axis ray from the probe (the scene's bound
-// where it escapes), and farther when a 16 x 16 grid of rays over that face of the cube about
-// the probe sees a farther plane across the axis on which a good share of them end (at least
-// 4 rays, and a quarter of the most any such plane holds, within 5 cm): the side lies on the
-// median of those hits, a planar wall's own coordinate, so an empty box room gets its box
-// exactly. Why: the axis ray alone stops at the first table or cupboard in its way, while the
-// wall behind still fills a good part of the view; a high percentile of all the hits would run
-// out through any doorway or window filling a tenth of the face; and the axis ray keeps a long
-// hall past its pillars and arches one room (a row of probes along it shares its influences
-// out only within one proxy). Only hits on surfaces facing along the axis count (a floor or
-// side wall met at a slant is no wall of this side) and, in a second round, only those inside
-// the first round's box on the other two axes (a wall seen through a window or past a jamb
-// lies outside it; that first box takes an axis ray only where it finds no plane, for axis
-// rays run out through windows).
-Aabb measuredProxy(const EmbreeScene& env, const Aabb& sceneBounds, glm::vec3 p) {
-    if (sceneBounds.empty()) return Aabb::cube(p, 0.75f);
-    constexpr int kGrid = 16;
-    constexpr float kPlane = 0.05f; // metres: hits this close along the axis are one plane
-    struct Ray {
-        float along;  // the hit's coordinate along the side's axis, times the side's sign
-        bool across;  // on a surface facing along the axis
-        glm::vec3 at; // the hit point
-    };
-    std::array<std::vector<Ray>, 6> rays; // per side: -x, +x, -y, +y, -z, +z; the axis ray first
-    for (int side = 0; side < 6; ++side) {
-        const int axis = side / 2;
-        const float sign = side % 2 ? 1.f : -1.f;
-        for (int i = -1; i < kGrid * kGrid; ++i) {
-            glm::vec3 dir(0.f);
-            dir[axis] = sign;
-            if (i >= 0) {
-                dir[(axis + 1) % 3] = (2.f * float(i % kGrid) + 1.f) / kGrid - 1.f;
-                dir[(axis + 2) % 3] = (2.f * float(i / kGrid) + 1.f) / kGrid - 1.f;
-            }
-            const float bound = sign > 0 ? sceneBounds.max[axis] : sceneBounds.min[axis];
-            if (const std::optional<Hit> hit = env.intersect(p, dir))
-                rays[side].push_back({sign * p[axis] + hit->t,
-                                      std::abs(hit->geometricNormal[axis]) > 0.7f, hit->position});
-            else
-                rays[side].push_back({sign * bound, false, p});
-        }
-    }
-    Aabb box = sceneBounds;
-    for (int round = 0; round < 2; ++round) {
-        Aabb measured;
-        for (int side = 0; side < 6; ++side) {
-            const int axis = side / 2;
-            const float sign = side % 2 ? 1.f : -1.f;
-            std::vector<float> walls;
-            for (const Ray& r : std::span(rays[side]).subspan(1)) {
-                bool wall = r.across;
-                for (int k = 1; k < 3; ++k) {
-                    const int o = (axis + k) % 3;
-                    wall = wall && r.at[o] >= box.min[o] - kPlane && r.at[o] <= box.max[o] + kPlane;
-                }
-                if (wall) walls.push_back(r.along);
-            }
-            std::sort(walls.begin(), walls.end(), std::greater<float>());
-            std::vector<std::size_t> plane(walls.size()); // hits within kPlane nearer, from each
-            for (std::size_t i = 0, j = 0; i < walls.size(); plane[i] = j - i, ++i)
-                while (j < walls.size() && walls[j] >= walls[i] - kPlane)
-                    ++j;
-            const std::size_t most = plane.empty() ? 0 : *std::ranges::max_element(plane);
-            const std::size_t need = std::max<std::size_t>(4, (most + 3) / 4);
-            const auto found =
-                std::ranges::find_if(plane, [&](std::size_t n) { return n >= need; });
-            const float axisRay = rays[side][0].along;
-            float along = axisRay;
-            if (found != plane.end()) {
-                const std::size_t i = std::size_t(found - plane.begin());
-                along = walls[i + plane[i] / 2]; // the median of the plane's hits
-                if (round == 1) along = std::max(along, axisRay);
-            }
-            const float bound = sign > 0 ? sceneBounds.max[axis] : sceneBounds.min[axis];
-            const float reach = std::clamp(along - sign * p[axis], 0.01f, // never a flat box
-                                           std::max(0.01f, sign * (bound - p[axis])));
-            (sign > 0 ? measured.max : measured.min)[axis] = p[axis] + sign * reach;
-        }
-        box = measured;
-    }
-    return box;
-}
 
 template <class T> std::string checksumOf(const std::vector<T>& v) {
     return bytesChecksum(v.data(), v.size() * sizeof(T));
@@ -192,7 +67,10 @@ std::optional<LevelIndex> previousLevel(const std::string& dir, std::vector<std:
     if (!fs::is_directory(dir, ec)) throw Error(dir, "", "exists and is not a folder");
     const fs::path index = fs::path(dir) / "level.json";
     if (!fs::exists(index, ec)) {
-        if (fs::directory_iterator(dir, ec) != fs::directory_iterator())
+        // The shard store (shard_bake.h) is the level's own.
+        if (std::ranges::any_of(fs::directory_iterator(dir, ec), [](const fs::directory_entry& f) {
+                return f.path().filename() != ".shards";
+            }))
             throw Error(dir, "",
                         "holds files but no level.json: a level is written only into a new, "
                         "empty or level folder");
@@ -229,100 +107,6 @@ std::string staleReason(const std::optional<LevelIndex>& previous, const fs::pat
 }
 
 } // namespace
-
-GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sources) {
-    const std::string& file = scene.path;
-    std::vector<PendingProbe> pending;
-    for (const ProbeMarkup& m : scene.markup.probes) {
-        PendingProbe p;
-        p.volume.name = m.node;
-        p.volume.position = m.position;
-        p.members.emplace_back(m.options, file, "nodes[" + m.node + "].extras.specula_probe");
-        pending.push_back(std::move(p));
-    }
-    for (std::size_t i = 0; i < sources.positions.size(); ++i) {
-        if (i >= pending.size()) {
-            pending.push_back({});
-            pending.back().volume.name = "probe_" + std::to_string(i);
-        }
-        pending[i].volume.position = sources.positions[i];
-    }
-    if (!sources.file.empty()) mergeProbeList(pending, sources.file);
-    if (pending.empty()) {
-        pending.push_back({});
-        pending.back().volume.name = "probe";
-        pending.back().volume.position =
-            markupProbeCentre(scene.registry, scene.markup, scene.loaded);
-    }
-
-    const EmbreeScene env(scene.registry,
-                          [&](ecs::Entity e) { return scene.markup.mirrorEntities.count(e) == 0; });
-    const Aabb sceneBounds{scene.loaded.boundsMin, scene.loaded.boundsMax};
-    GatheredProbes out;
-    std::vector<bool> influenceDefaulted;
-    for (PendingProbe& p : pending) {
-        ProbeVolume& v = p.volume;
-        v.proxy = Aabb{};
-        v.influence.box = Aabb{};
-        for (const auto& [members, from, field] : p.members)
-            applyProbeMarkup(v, members, from, field);
-        if (v.proxy.empty()) v.proxy = measuredProxy(env, sceneBounds, v.position);
-        influenceDefaulted.push_back(v.influence.shape == ProbeInfluence::Shape::Box &&
-                                     v.influence.box.empty());
-        // A defaulted influence is the proxy grown by one blend distance: the weight is 1
-        // throughout the room the probe owns and fades outside it. Fading inside would hand
-        // the sky a share of every reflector near a wall, floor or table top of a closed room.
-        if (influenceDefaulted.back())
-            v.influence.box = Aabb{v.proxy.min - glm::vec3(v.blendDistance),
-                                   v.proxy.max + glm::vec3(v.blendDistance)};
-    }
-    // Probes in one room (a row along a hall) would share one proxy and so one influence:
-    // a defaulted influence is cut half-way to every other probe inside its proxy, on the
-    // axis that separates them most, reaching one blend distance past the half-way point:
-    // neighbours overlap by twice the blend distance, so wherever one fades out the other
-    // still weighs 1 and no sky shows between them (engine-style blending leaves to the sky
-    // what the probes' weights do not cover).
-    for (std::size_t i = 0; i < pending.size(); ++i) {
-        if (!influenceDefaulted[i]) continue;
-        ProbeVolume& v = pending[i].volume;
-        for (std::size_t j = 0; j < pending.size(); ++j) {
-            const glm::vec3 d = pending[j].volume.position - v.position;
-            if (j == i || !v.proxy.contains(pending[j].volume.position)) continue;
-            const glm::vec3 a = glm::abs(d);
-            const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
-            if (a[axis] <= 0.f) continue;
-            const float mid = v.position[axis] + 0.5f * d[axis];
-            if (d[axis] > 0.f)
-                v.influence.box.max[axis] =
-                    std::min(v.influence.box.max[axis], mid + v.blendDistance);
-            else
-                v.influence.box.min[axis] =
-                    std::max(v.influence.box.min[axis], mid - v.blendDistance);
-        }
-    }
-    for (PendingProbe& p : pending) {
-        ProbeVolume& v = p.volume;
-        validateProbeVolume(v, file, "probe " + v.name);
-        // The bake's own placement measurement (probe_sanity.h), at a coarser sampling: the
-        // bake itself refuses such a probe later, this names it before any work.
-        const ProbePlacement placed =
-            measureProbePlacement(scene.registry, scene.markup, v.position, 256);
-        if (placed.hits > 0 && 2 * placed.backHits > placed.hits)
-            out.warnings.push_back("probe " + v.name + " lies inside solid geometry (" +
-                                   std::to_string(placed.backHits) + " of " +
-                                   std::to_string(placed.hits) +
-                                   " rays from it meet the back of a surface first)");
-        for (const ProbeVolume& q : out.probes) {
-            if (q.name == v.name) throw Error(file, "probe " + v.name, "two probes have this name");
-            if (q.priority == v.priority && q.proxy == v.proxy && q.influence == v.influence)
-                out.warnings.push_back("probes " + q.name + " and " + v.name +
-                                       " have equal priority and identical volumes: " +
-                                       std::min(q.name, v.name) + " is blended first (by name)");
-        }
-        out.probes.push_back(v);
-    }
-    return out;
-}
 
 LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& env,
                                   const ProbeVolume& probe, const std::string& options) {
@@ -366,33 +150,27 @@ LevelCookResult cookLevel(const LevelCookOptions& options, std::ostream* log) {
     return cookLevel(scene, options, log);
 }
 
-LevelCookResult cookLevel(ProbeScene& scene, const LevelCookOptions& options, std::ostream* log) {
-    const auto start = Clock::now();
+LevelPlan planLevel(ProbeScene& scene, const LevelCookOptions& options, std::ostream* log) {
     if (std::holds_alternative<PemCookSettings>(options.cook.flavour))
         throw Error(scene.path, "flavour",
                     "a level bakes distance or lightfield probes; a PEM follows one camera "
                     "path: bake it per probe with one --probe");
     const fs::path dir = options.cook.out;
-    LevelCookResult result;
-    const std::optional<LevelIndex> previous = previousLevel(dir.string(), result.warnings);
+    LevelPlan plan;
+    plan.previous = previousLevel(dir.string(), plan.warnings);
     GatheredProbes gathered = gatherLevelProbes(scene, options.sources);
-    result.warnings.insert(result.warnings.end(), gathered.warnings.begin(),
-                           gathered.warnings.end());
+    plan.warnings.insert(plan.warnings.end(), gathered.warnings.begin(), gathered.warnings.end());
     if (log)
-        for (const std::string& w : result.warnings)
+        for (const std::string& w : plan.warnings)
             *log << "warning: " << w << '\n';
-    fs::create_directories(dir);
-
-    LevelIndex index;
-    index.source = scene.path;
-    index.flavour = std::visit(
+    plan.index.source = scene.path;
+    plan.index.flavour = std::visit(
         [](const auto& s) -> std::string {
             using S = std::decay_t<decltype(s)>;
             return std::is_same_v<S, LightFieldCookSettings> ? "lightfield" : "distance";
         },
         options.cook.flavour);
     std::set<std::string> folders;
-    std::vector<std::pair<LevelProbeEntry, std::string>> plan; // (entry, reason; empty: fresh)
     const EmbreeScene env(scene.registry,
                           [&](ecs::Entity e) { return scene.markup.mirrorEntities.count(e) == 0; });
     for (const ProbeVolume& v : gathered.probes) {
@@ -402,78 +180,125 @@ LevelCookResult cookLevel(ProbeScene& scene, const LevelCookOptions& options, st
         for (int k = 2; folders.count(e.folder); ++k)
             e.folder = folderNameFor(v.name) + "_" + std::to_string(k);
         folders.insert(e.folder);
-        e.inputs = levelProbeInputs(scene, env, v, index.flavour + ' ' + options.optionsText);
-        std::string reason = staleReason(previous, dir, e.folder, v, e.inputs);
-        if (reason.empty() && previous)
-            for (const LevelProbeEntry& old : previous->probes)
+        e.inputs = levelProbeInputs(scene, env, v, plan.index.flavour + ' ' + options.optionsText);
+        std::string reason = staleReason(plan.previous, dir, e.folder, v, e.inputs);
+        if (reason.empty() && plan.previous)
+            for (const LevelProbeEntry& old : plan.previous->probes)
                 if (old.volume.name == v.name) e.manifestChecksum = old.manifestChecksum;
-        plan.emplace_back(std::move(e), std::move(reason));
+        plan.index.probes.push_back(std::move(e));
+        plan.reasons.push_back(std::move(reason));
     }
+    return plan;
+}
+
+CookOptions levelProbeCookOptions(const ProbeScene& scene, const LevelCookOptions& options,
+                                  const LevelProbeEntry& entry, const std::string& out) {
+    CookOptions o = options.cook;
+    o.scene = scene.path;
+    o.out = out;
+    o.probeCentre = entry.volume.position;
+    o.cellSize = entry.volume.cellSize;
+    o.proxy = entry.volume.proxy;
+    // The plan reads this probe's own markup (none for a probe no node holds).
+    o.markupProbe = -1;
+    for (std::size_t m = 0; m < scene.markup.probes.size(); ++m)
+        if (scene.markup.probes[m].node == entry.volume.name) o.markupProbe = int(m);
+    o.progress = false;
+    o.progressHook = nullptr;
+    return o;
+}
+
+void warnOfDroppedProbes(const LevelPlan& plan, const std::string& dir,
+                         std::vector<std::string>& warnings, std::ostream* log) {
+    if (!plan.previous) return;
+    for (const LevelProbeEntry& old : plan.previous->probes)
+        if (std::ranges::none_of(plan.index.probes, [&](const LevelProbeEntry& e) {
+                return e.folder == old.folder;
+            })) {
+            warnings.push_back(
+                "probe " + old.volume.name + " is no longer in the level: its folder " +
+                (fs::path(dir) / old.folder).string() + " is left as it was (delete it by hand)");
+            if (log) *log << "warning: " << warnings.back() << '\n';
+        }
+}
+
+LevelCookResult cookLevel(ProbeScene& scene, const LevelCookOptions& options, std::ostream* log) {
+    const auto start = Clock::now();
+    const fs::path dir = options.cook.out;
+    LevelPlan plan = planLevel(scene, options, log);
+    LevelCookResult result;
+    result.warnings = plan.warnings;
+    fs::create_directories(dir);
     // The index as it stands: fresh probes keep their entries, stale ones their old entry
     // until re-baked (or none), so an interrupted bake leaves a true index behind.
-    for (const auto& [e, reason] : plan) {
-        if (reason.empty()) {
+    LevelIndex index = plan.index;
+    index.probes.clear();
+    std::vector<std::size_t> stale;
+    for (std::size_t i = 0; i < plan.index.probes.size(); ++i) {
+        const LevelProbeEntry& e = plan.index.probes[i];
+        result.probes.push_back({e.volume.name, e.folder, !plan.reasons[i].empty(),
+                                 plan.reasons[i].empty() ? "up to date" : plan.reasons[i], 0.0});
+        if (plan.reasons[i].empty()) {
             index.probes.push_back(e);
             continue;
         }
-        if (previous)
-            for (const LevelProbeEntry& old : previous->probes)
+        stale.push_back(i);
+        if (plan.previous)
+            for (const LevelProbeEntry& old : plan.previous->probes)
                 if (old.volume.name == e.volume.name && old.folder == e.folder)
                     index.probes.push_back(old);
     }
 
-    std::size_t stale = 0;
-    for (const auto& item : plan)
-        stale += item.second.empty() ? 0 : 1;
     std::optional<ProgressBar> bar;
-    if (options.cook.progress && stale > 0)
-        bar.emplace("baking " + std::to_string(stale) + " of " + std::to_string(plan.size()) +
-                    " probes of " + fs::path(scene.path).filename().string());
-    std::size_t done = 0;
-    for (auto& [entry, reason] : plan) {
-        LevelProbeOutcome outcome{entry.volume.name, entry.folder, !reason.empty(),
-                                  reason.empty() ? "up to date" : reason, 0.0};
-        if (!reason.empty()) {
-            const auto probeStart = Clock::now();
-            CookOptions o = options.cook;
-            o.scene = scene.path;
-            o.out = (dir / entry.folder).string();
-            o.probeCentre = entry.volume.position;
-            o.cellSize = entry.volume.cellSize;
-            o.proxy = entry.volume.proxy;
-            // The plan reads this probe's own markup (none for a probe no node holds).
-            o.markupProbe = -1;
-            for (std::size_t m = 0; m < scene.markup.probes.size(); ++m)
-                if (scene.markup.probes[m].node == entry.volume.name) o.markupProbe = int(m);
-            o.progress = false;
-            if (bar) o.progressHook = [&](double f) { bar->update((double(done) + f) / stale); };
-            const CookResult r = cookProbe(scene, o, log);
+    if (options.cook.progress && !stale.empty())
+        bar.emplace("baking " + std::to_string(stale.size()) + " of " +
+                    std::to_string(plan.index.probes.size()) + " probes of " +
+                    fs::path(scene.path).filename().string());
+    // The stale probes are the level's shards (shard_bake.h), run in-process with TBB; each
+    // probe folder is replaced atomically and the index committed after each. A failing
+    // probe does not stop the others: its error is thrown once all are done, the first in
+    // the scene's order.
+    std::mutex mutex;
+    std::vector<double> fractions(stale.size(), 0.0);
+    std::vector<std::exception_ptr> errors(stale.size());
+    tbb::parallel_for(std::size_t(0), stale.size(), [&](std::size_t k) {
+        LevelProbeEntry& entry = plan.index.probes[stale[k]];
+        const auto probeStart = Clock::now();
+        CookOptions o = levelProbeCookOptions(scene, options, entry, (dir / entry.folder).string());
+        if (bar)
+            o.progressHook = [&, k](double f) {
+                const std::lock_guard lock(mutex);
+                fractions[k] = f;
+                double sum = 0;
+                for (double x : fractions)
+                    sum += x;
+                bar->update(sum / double(stale.size()));
+            };
+        std::ostringstream probeLog;
+        try {
+            const CookResult r = cookProbe(scene, o, log ? &probeLog : nullptr);
+            const std::lock_guard lock(mutex);
             entry.manifestChecksum = fileChecksum(r.manifest);
-            outcome.seconds = std::chrono::duration<double>(Clock::now() - probeStart).count();
-            ++done;
+            result.probes[stale[k]].seconds =
+                std::chrono::duration<double>(Clock::now() - probeStart).count();
             // Replace this probe's entry (or add it) and commit the index now.
             std::erase_if(index.probes, [&](const LevelProbeEntry& e) {
                 return e.volume.name == entry.volume.name;
             });
             index.probes.push_back(entry);
             writeLevelIndex(index, (dir / "level.json").string());
+        } catch (...) {
+            errors[k] = std::current_exception();
         }
-        result.probes.push_back(outcome);
-    }
+        const std::lock_guard lock(mutex);
+        if (log) *log << probeLog.str();
+    });
     bar.reset();
+    for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
     // The final index lists the probes in the scene's order.
-    index.probes.clear();
-    for (const auto& item : plan)
-        index.probes.push_back(item.first);
-    writeLevelIndex(index, (dir / "level.json").string());
-    if (previous)
-        for (const LevelProbeEntry& old : previous->probes)
-            if (!folders.count(old.folder)) {
-                result.warnings.push_back(
-                    "probe " + old.volume.name + " is no longer in the level: its folder " +
-                    (dir / old.folder).string() + " is left as it was (delete it by hand)");
-                if (log) *log << "warning: " << result.warnings.back() << '\n';
-            }
+    writeLevelIndex(plan.index, (dir / "level.json").string());
+    warnOfDroppedProbes(plan, dir.string(), result.warnings, log);
     if (log) {
         for (const LevelProbeOutcome& p : result.probes) {
             *log << "probe " << p.name << ": ";

@@ -5,43 +5,16 @@
 // whose inputs changed and says which and why; an interrupted bake leaves every probe baked
 // before it intact (each probe folder is replaced atomically, the index after each probe).
 #include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/level_probes.h"
 #include "components/reflection_probe/level_index.h"
 #include "engine/raytrace/embree_scene.h"
 
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
 namespace specula {
-
-// Where a level's probes come from besides the markup.
-struct LevelProbeSources {
-    // `--probe x,y,z`, in order: the i-th replaces the position of the markup's i-th probe
-    // (keeping its other members), or is a new probe "probe_<i>" when the markup has fewer.
-    std::vector<glm::vec3> positions;
-    // `--probes FILE.json`: {"probes": [{"name": .., "position": [..], <markup members>}]}
-    // (or the bare array). An entry named like a probe already gathered overrides the members
-    // it states; others are new probes and need a position. Empty: none.
-    std::string file;
-};
-
-struct GatheredProbes {
-    std::vector<ProbeVolume> probes;
-    std::vector<std::string> warnings;
-};
-
-// Every probe of the scene with its volumes, validated. Members nobody states take defaults:
-// the proxy is the room the probe stands in, measured with rays (each side as far as the
-// axis ray from the probe reaches, the environment's bounds where it escapes, or farther to
-// the wall that a grid of rays sees behind furniture in the ray's way: a measured room, not
-// a guess), the influence is the proxy cut half-way to every other probe inside it (on the
-// axis separating them most, reaching one blend distance past the half-way point: a row of
-// probes along one hall shares it out), the blend distance 0.5 m, the priority 0, the cell
-// 1.5 m. A scene with no probe anywhere gets one at markupProbeCentre named "probe". Throws
-// Error naming the file and field on bad input; warns (names both nodes) when two probes
-// have equal priority and identical volumes, and (names the node) when a probe lies inside
-// solid geometry.
-GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sources);
 
 // The checksums a probe is baked from: the meshes within its reach (the environment meshes
 // the probe sees along 6 x 32 x 32 directions, those overlapping its proxy, and every
@@ -70,6 +43,25 @@ struct LevelCookResult {
     std::vector<std::string> warnings;
     double seconds = 0;
 };
+
+// A level planned against what its folder holds: every probe's index entry in the scene's
+// order (a fresh probe's with its manifest checksum) and why each is stale (empty: up to
+// date); the placement warnings (also on `log`). Throws Error naming the file and field.
+struct LevelPlan {
+    LevelIndex index;
+    std::vector<std::string> reasons;
+    std::optional<LevelIndex> previous;
+    std::vector<std::string> warnings;
+};
+LevelPlan planLevel(ProbeScene& scene, const LevelCookOptions& options, std::ostream* log);
+
+// The cooking options of one probe of the level, baked into `out`.
+CookOptions levelProbeCookOptions(const ProbeScene& scene, const LevelCookOptions& options,
+                                  const LevelProbeEntry& entry, const std::string& out);
+
+// A warning (also on `log`) for each probe of the previous index no longer in the level.
+void warnOfDroppedProbes(const LevelPlan& plan, const std::string& dir,
+                         std::vector<std::string>& warnings, std::ostream* log);
 
 // Bakes the stale probes of the level into options.cook.out (see above); a line per probe
 // on `log`. The folder must be missing, empty or a level folder (it holds level.json).

@@ -1,0 +1,245 @@
+#include "bake_args.h"
+
+#include "engine/core/error.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace specula::cook {
+
+namespace {
+
+CookOptions cookOptions(const BakeArgs& a) {
+    CookOptions o;
+    o.scene = a.scene;
+    o.out = a.out;
+    if (a.sky) o.sky = *a.sky;
+    if (a.probes.size() == 1) o.probeCentre = cli::parseVec3(a.probes.front());
+    if (a.flavour == "lightfield") {
+        LightFieldCookSettings s;
+        if (a.cellCentre) s.cellCentre = cli::parseVec3(*a.cellCentre);
+        s.cellSize = a.cellSize;
+        s.cameras = a.cameras;
+        s.imageRes = a.imageRes;
+        s.compression =
+            a.compress == "bc1" ? LightFieldCompression::BC1 : LightFieldCompression::None;
+        o.flavour = s;
+    } else if (a.flavour == "pem") {
+        PemCookSettings s;
+        s.samples = a.samples;
+        s.faceRes = a.faceRes.value_or(s.faceRes);
+        s.supersample = a.supersample;
+        cli::parseSize(a.imageSize, s.imageWidth, s.imageHeight); // validated by the option
+        s.parameter = a.parameter;
+        s.path = a.path;
+        s.geometry = a.geometry;
+        s.priorWeight = a.prior;
+        s.regularisation = a.smoothness;
+        o.flavour = s;
+    } else {
+        DistanceCookSettings s;
+        s.faceRes = a.faceRes.value_or(s.faceRes);
+        s.planned = a.layers == "plan";
+        s.glossy = a.glossy == "on"    ? GlossyBake::On
+                   : a.glossy == "off" ? GlossyBake::Off
+                                       : GlossyBake::Auto; // validated by the option
+        o.flavour = s;
+    }
+    return o;
+}
+
+// A flag of other flavours is refused, not ignored.
+void refuseOtherFlavoursOptions(const BakeArgs& a) {
+    for (const auto& [option, flavours] : a.flavourOnly) {
+        std::string names = flavours;
+        std::replace(names.begin(), names.end(), '|', ' ');
+        std::istringstream words(names);
+        bool mine = false;
+        for (std::string w; words >> w;)
+            mine = mine || w == a.flavour;
+        if (option->count() > 0 && !mine)
+            throw UsageError(option->get_name(), "applies to --flavour " + flavours +
+                                                     " only, not to --flavour " + a.flavour);
+    }
+}
+
+// BC1 blocks (4x4 texels) must not straddle two cameras of an atlas.
+CLI::Validator multipleOfFour() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            int v = 0;
+            return CLI::detail::lexical_cast(text, v) && v % 4 == 0
+                       ? std::string()
+                       : "expected a multiple of 4 (BC1 blocks), got '" + text + "'";
+        },
+        "");
+}
+
+} // namespace
+
+CookOptions checkedCookOptions(const BakeArgs& a) {
+    refuseOtherFlavoursOptions(a);
+    if (a.flavour == "lightfield" && a.cameras * a.imageRes > 16384)
+        throw UsageError("--cameras",
+                         "NUM x --image-res RES = " + std::to_string(a.cameras * a.imageRes) +
+                             " exceeds 16384 (the 2D texture side)");
+    CookOptions options = cookOptions(a);
+    // A PEM setting the flags got wrong (say --path line with the viewpoint parameter) is a
+    // usage error naming the flag, found before the scene is opened.
+    if (const auto* pem = std::get_if<PemCookSettings>(&options.flavour)) {
+        try {
+            validatePemCookSettings(*pem, a.scene);
+        } catch (const Error& e) {
+            throw UsageError(e.field(), e.message()); // the tool names the field's flag
+        }
+    }
+    return options;
+}
+
+std::string optionsText(const BakeArgs& a) {
+    std::ostringstream t;
+    t << a.flavour << " face_res " << (a.faceRes ? *a.faceRes : 0) << " layers " << a.layers
+      << " cell_size " << (a.cellSize ? *a.cellSize : 0.f) << " cameras " << a.cameras
+      << " image_res " << a.imageRes << " compress " << a.compress << " glossy " << a.glossy;
+    return t.str();
+}
+
+bool isLevel(const BakeArgs& a, const ProbeScene& scene) {
+    return a.probeList || a.probes.size() > 1 || scene.markup.probes.size() > 1;
+}
+
+LevelCookOptions levelCookOptions(const BakeArgs& a, const CookOptions& options,
+                                  const ProbeScene& scene) {
+    if (a.flavour == "pem")
+        throw UsageError("--flavour", "pem bakes one probe's camera path, not a level of " +
+                                          std::to_string(std::max<std::size_t>(
+                                              a.probes.size(), scene.markup.probes.size())) +
+                                          " probes: give one --probe");
+    LevelCookOptions level;
+    level.cook = options;
+    level.cook.probeCentre.reset();
+    level.optionsText = optionsText(a);
+    for (const std::string& p : a.probes)
+        level.sources.positions.push_back(cli::parseVec3(p));
+    if (a.probeList) level.sources.file = *a.probeList;
+    return level;
+}
+
+void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
+    sub->add_option("SCENE", a.scene, "the glTF/GLB scene")->required();
+    sub->add_option("--out", a.out, "output folder (replaced atomically; never half-written)")
+        ->required()
+        ->check(cli::nonEmpty("a folder"));
+    sub->add_option("--flavour", a.flavour, "probe flavour")
+        ->check(CLI::IsMember({"distance", "lightfield", "pem"}));
+    sub->add_option("--probe", a.probes,
+                    "probe centre in world space (overrides the markup's); repeat it for a "
+                    "level of several probes")
+        ->check(cli::vec3Text());
+    sub->add_option("--probes", a.probeList,
+                    "a probe list (JSON: {\"probes\": [{\"name\", \"position\", \"proxy\", "
+                    "\"influence\", \"blend_distance\", \"priority\", \"cell_size\"}]}): "
+                    "bakes a level")
+        ->check(CLI::ExistingFile);
+    sub->add_option("--sky", a.sky,
+                    "equirectangular panorama for the distant environment (default: black)");
+
+    auto only = [&](CLI::Option* o, const char* flavour) {
+        std::string group = flavour;
+        std::replace(group.begin(), group.end(), '|', '/');
+        o->group(group + " options");
+        a.flavourOnly.emplace_back(o, flavour);
+        return o;
+    };
+    only(sub->add_option("--face-res", a.faceRes,
+                         "cube face resolution (distance: default 256; pem: default 128, at most "
+                         "1024)"),
+         "distance|pem")
+        ->check(CLI::Range(1, 4096));
+    only(sub->add_option("--layers", a.layers,
+                         "plan: the layers and methods of the effect plan (specula-cook plan); "
+                         "objects: one layer per object"),
+         "distance")
+        ->check(CLI::IsMember({"plan", "objects"}));
+    only(sub->add_option("--glossy", a.glossy,
+                         "the composite's GGX prefiltered chain for glossy reflectors (5 levels, "
+                         "roughness 0.2 .. 1, layer_00_ggx_<i>.exr): auto (default) when a "
+                         "reflector has roughness > 0, on, off"),
+         "distance")
+        ->check(CLI::IsMember({"auto", "on", "off"}));
+    only(sub->add_option("--cell-size", a.cellSize,
+                         "cell side in metres (default: the probe's cell_size, else 1.5)"),
+         "lightfield")
+        ->check(cli::finiteRange(1e-3, 1e4));
+    only(sub->add_option("--cell-center", a.cellCentre,
+                         "cell centre in world space (default: the probe position)"),
+         "lightfield")
+        ->check(cli::vec3Text());
+    only(sub->add_option("--cameras", a.cameras, "cameras per side of a slab"), "lightfield")
+        ->check(CLI::Range(2, 256));
+    only(sub->add_option("--image-res", a.imageRes, "pixels per side of a camera image"),
+         "lightfield")
+        ->check(CLI::Range(4, 4096))
+        ->check(multipleOfFour());
+    only(sub->add_option("--compress", a.compress,
+                         "none: sRGB RGB8; bc1: DXT1 (bc7 is not supported: no BC7 encoder)"),
+         "lightfield")
+        ->check(CLI::IsMember({"none", "bc1"}));
+    only(sub->add_option("--samples", a.samples,
+                         "parameter samples: one inferred map per viewpoint t = k/N (default 8)"),
+         "pem")
+        ->check(CLI::Range(1, kMaxPemSamples));
+    only(sub->add_option("--image-size", a.imageSize,
+                         "the camera image the maps are inferred for: bake at the frame size "
+                         "they will be drawn at (default 640x480, the walk's)"),
+         "pem")
+        ->check(cli::sizeText());
+    only(sub->add_option("--supersample", a.supersample,
+                         "S x S rays per reflector pixel (default 1: the pixel centres the "
+                         "rasteriser shades)"),
+         "pem")
+        ->check(CLI::Range(1, 16));
+    only(sub->add_option("--geometry", a.geometry,
+                         "the maps' geometry: distance (rectified against the environment's "
+                         "distance cube, traced at the face resolution; default) or box (the "
+                         "environment's bounding box)"),
+         "pem")
+        ->check(CLI::IsMember({"box", "distance"}));
+    only(sub->add_option("--prior", a.prior,
+                         "distance geometry: weight pulling texels towards the radiance captured "
+                         "at the centre, where the camera sees nothing (default 0.05; 0: none)"),
+         "pem")
+        ->check(cli::finiteRange(0.0, 100.0));
+    only(sub->add_option("--smoothness", a.smoothness,
+                         "weight of the rows tying every texel to its neighbours (default 0.02)"),
+         "pem")
+        ->check(cli::finiteRange(0.0, 100.0));
+    only(sub->add_option("--parameter", a.parameter,
+                         "what the maps vary with: viewpoint (the camera moves, default) or "
+                         "reflector (the reflectors move before the scene camera)"),
+         "pem")
+        ->check(CLI::IsMember({"viewpoint", "reflector"}));
+    only(sub->add_option("--path", a.path,
+                         "the path the parameter runs along: orbit (the walk's camera orbit, or "
+                         "the reflectors' orbit), line or figure8 (reflector only); camera (a "
+                         "glTF camera animation) is refused: not read yet"),
+         "pem");
+
+    // Library code names the fields it read; these are the flags that set them.
+    tool.mapField("face_res", "--face-res");
+    tool.mapField("centre", "--probe");
+    tool.mapField("cell_centre", "--cell-center");
+    tool.mapField("cell.size", "--cell-size");
+    tool.mapField("cameras", "--cameras");
+    tool.mapField("image_res", "--image-res");
+    tool.mapField("samples", "--samples");
+    tool.mapField("supersample", "--supersample");
+    tool.mapField("image_size", "--image-size");
+    tool.mapField("parameter", "--parameter");
+    tool.mapField("path", "--path");
+    tool.mapField("geometry", "--geometry");
+    tool.mapField("prior_weight", "--prior");
+    tool.mapField("regularisation", "--smoothness");
+}
+
+} // namespace specula::cook

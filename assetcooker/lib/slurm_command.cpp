@@ -1,0 +1,71 @@
+#include "slurm_command.h"
+
+#include "assetcooker/lib/shard_bake.h"
+#include "assetcooker/lib/slurm_bake.h"
+#include "engine/core/error.h"
+
+#include <filesystem>
+
+namespace specula::cook {
+
+void addSlurmOptions(CLI::App* bake, SlurmArgs& s) {
+    CLI::Option* slurm = bake->add_flag(
+        "--slurm", s.slurm,
+        "bake a level's probes as a Slurm job array (sbatch, squeue and scancel in PATH): one\n"
+        "task a shard (see `specula-cook shards`), then a merge job once all succeeded. DIR,\n"
+        "SCENE, the sky and this specula-cook must be visible at the same paths on every node\n"
+        "(a shared folder); jobs run in the current directory. Re-running resumes: shards\n"
+        "already in DIR/.shards are not resubmitted. Batch scripts and logs go to\n"
+        "DIR/.shards/slurm/");
+    bake->add_option("--partition", s.partition,
+                     "with --slurm: the partition (default: the "
+                     "cluster's default)")
+        ->needs(slurm)
+        ->check(cli::nonEmpty("a partition name"));
+    bake->add_option("--max-parallel", s.maxParallel,
+                     "with --slurm: at most N shards run at once (the array's %N; 0: no limit)")
+        ->needs(slurm)
+        ->check(CLI::Range(0, 1000000));
+    bake->add_option("--time", s.time,
+                     "with --slurm: each job's time limit, in Slurm's format (e.g. 30, 1:00:00)")
+        ->needs(slurm)
+        ->check(cli::nonEmpty("a time limit"));
+    bake->add_option("--retries", s.retries,
+                     "with --slurm: a failed, cancelled or timed-out shard is resubmitted up to N "
+                     "times, then reported by index and reason (nothing is merged)")
+        ->needs(slurm)
+        ->check(CLI::Range(0, 100))
+        ->capture_default_str();
+}
+
+int runSlurmBake(const BakeArgs& a, const SlurmArgs& s, std::ostream& out) {
+    const CookOptions options = checkedCookOptions(a);
+    ProbeScene scene(options.scene, options.sky);
+    if (!isLevel(a, scene))
+        throw UsageError("--slurm", a.scene + " has one probe: --slurm bakes a level (several "
+                                              "probes, --probe twice or --probes FILE)");
+    const ShardList list = writeShardList(scene, levelCookOptions(a, options, scene), &out);
+    out << list.shards.size() << " shards -> " << shardListPath(a.out) << "\n";
+    SlurmOptions o;
+    o.partition = s.partition;
+    o.time = s.time;
+    o.maxParallel = s.maxParallel;
+    o.retries = s.retries;
+    SystemProcessRunner runner;
+    const SlurmBakeResult r = bakeOnSlurm(a.out, o, runner, &out);
+    if (!r.merged) {
+        out << slurmFailureReport(r);
+        throw Error(shardListPath(a.out), "shards",
+                    r.failures.empty() ? "the merge job failed (see above)"
+                                       : std::to_string(r.failures.size()) +
+                                             " shards failed every attempt; nothing was merged "
+                                             "(see above)");
+    }
+    out << "level: " << list.shards.size() << " shards, " << r.shardsBaked << " baked on slurm in "
+        << r.arrays.size() << " submissions (" << r.shardWallSeconds << " s, shards' own bake "
+        << r.shardComputeSeconds << " s), merged, total " << r.seconds << " s -> "
+        << (std::filesystem::path(a.out) / "level.json").string() << "\n";
+    return cli::kExitOk;
+}
+
+} // namespace specula::cook

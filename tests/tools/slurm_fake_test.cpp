@@ -1,0 +1,176 @@
+// bakeOnSlurm's bookkeeping against a stand-in scheduler (no Slurm needed): the fake answers
+// sbatch, squeue and scancel, "runs" a task by putting a manifest in the store, and fails the
+// shards it is told to. Checked: only the shards the store lacks are submitted; a failed shard
+// is resubmitted up to --retries times, alone; one that fails every time is reported by index,
+// probe, state and log, and the merge job is cancelled each time, never left to run.
+#include "assetcooker/lib/shard_bake.h"
+#include "assetcooker/lib/slurm_bake.h"
+#include "support/scratch_dir_test.h"
+#include "tools/level_files.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace specula {
+namespace {
+
+namespace fs = std::filesystem;
+
+class FakeSlurm : public ProcessRunner {
+public:
+    explicit FakeSlurm(std::string dir) : dir_(std::move(dir)) {}
+
+    std::map<int, int> failuresLeft; // shard -> how many more times it fails
+    std::vector<std::string> cancelled;
+    int pauses = 0;
+
+    ProcessResult run(const std::vector<std::string>& argv) override {
+        if (argv[0] == "sbatch") return sbatch(argv);
+        if (argv[0] == "scancel") {
+            cancelled.push_back(argv[1]);
+            jobs_[argv[1]] = "CANCELLED";
+            return {};
+        }
+        EXPECT_EQ(argv[0], "squeue");
+        std::string out;
+        for (const auto& [id, state] : jobs_)
+            out += id + "|" + state + "\n";
+        // Each look moves every pending job to its end.
+        for (auto& [id, state] : jobs_)
+            if (state == "PENDING") state = finish(id);
+        return {0, out};
+    }
+    void pause(double) override { ++pauses; }
+
+private:
+    ProcessResult sbatch(const std::vector<std::string>& argv) {
+        const std::string id = std::to_string(next_++);
+        bool merge = false;
+        for (const std::string& a : argv) {
+            if (a.rfind("--array=", 0) == 0) {
+                std::istringstream list(a.substr(8));
+                for (std::string i; std::getline(list, i, ',');)
+                    jobs_[id + "_" + i] = "PENDING";
+            }
+            merge |= a.ends_with("merge.sh");
+        }
+        if (merge) jobs_[id] = "PENDING";
+        return {0, id + "\n"};
+    }
+
+    std::string finish(const std::string& id) {
+        const std::size_t bar = id.find('_');
+        if (bar == std::string::npos) return "COMPLETED"; // the merge: only run when all passed
+        const int shard = std::stoi(id.substr(bar + 1));
+        if (failuresLeft[shard] > 0) {
+            --failuresLeft[shard];
+            std::ofstream(fs::path(dir_) / ".shards/slurm/logs" /
+                          ("shard-" + std::to_string(shard) + "-job" + id.substr(0, bar) + ".log"))
+                << "loading\nerror: the disk is full\n";
+            return "FAILED";
+        }
+        const fs::path folder =
+            fs::path(shardStore(dir_)) / readShardList(dir_).shards[std::size_t(shard)].hash;
+        fs::create_directories(folder);
+        std::ofstream(folder / "manifest.json") << "{}";
+        return "COMPLETED";
+    }
+
+    std::string dir_;
+    int next_ = 100;
+    std::map<std::string, std::string> jobs_;
+};
+
+class SlurmFake : public test::ScratchDirTest {
+protected:
+    SlurmFake() : ScratchDirTest("specula-slurm-fake") {}
+    void SetUp() override {
+        ScratchDirTest::SetUp();
+        dir_ = (root_ / "level").string();
+        LevelCookOptions o;
+        o.cook.scene = test::kTwoRooms;
+        o.cook.out = dir_;
+        DistanceCookSettings d;
+        d.faceRes = 16;
+        o.cook.flavour = d;
+        o.cook.progress = false;
+        ProbeScene scene(test::kTwoRooms, "");
+        writeShardList(scene, o, nullptr);
+    }
+    SlurmOptions options(int retries) const {
+        SlurmOptions o;
+        o.cook = "/opt/specula-cook";
+        o.retries = retries;
+        o.progress = false;
+        return o;
+    }
+    std::string dir_;
+};
+
+TEST_F(SlurmFake, AllShardsPassThenTheMergeRuns) {
+    FakeSlurm slurm(dir_);
+    const SlurmBakeResult r = bakeOnSlurm(dir_, options(2), slurm, nullptr);
+    EXPECT_TRUE(r.merged);
+    EXPECT_EQ(r.mergeState, "COMPLETED");
+    EXPECT_EQ(r.arrays, (std::vector<std::vector<int>>{{0, 1}}));
+    EXPECT_TRUE(r.failures.empty());
+    EXPECT_TRUE(slurm.cancelled.empty());
+    std::ifstream script(fs::path(dir_) / ".shards/slurm/shard.sh");
+    std::stringstream text;
+    text << script.rdbuf();
+    EXPECT_NE(text.str().find("'/opt/specula-cook' bake-shard '" + dir_ +
+                              "' --shard \"$SLURM_ARRAY_TASK_ID\""),
+              std::string::npos)
+        << text.str();
+}
+
+TEST_F(SlurmFake, AFlakyShardIsResubmittedAloneAndTheLevelMerges) {
+    FakeSlurm slurm(dir_);
+    slurm.failuresLeft[1] = 1;
+    const SlurmBakeResult r = bakeOnSlurm(dir_, options(2), slurm, nullptr);
+    EXPECT_TRUE(r.merged);
+    EXPECT_EQ(r.arrays, (std::vector<std::vector<int>>{{0, 1}, {1}}));
+    EXPECT_EQ(slurm.cancelled, (std::vector<std::string>{"101"})); // the first merge job
+}
+
+TEST_F(SlurmFake, AShardThatAlwaysFailsIsReportedAndNothingMerges) {
+    FakeSlurm slurm(dir_);
+    slurm.failuresLeft[0] = 100;
+    const SlurmBakeResult r = bakeOnSlurm(dir_, options(2), slurm, nullptr);
+    EXPECT_FALSE(r.merged);
+    EXPECT_EQ(r.arrays, (std::vector<std::vector<int>>{{0, 1}, {0}, {0}}));
+    // Every merge job was cancelled: none ever ran.
+    EXPECT_EQ(slurm.cancelled, (std::vector<std::string>{"101", "103", "105"}));
+    ASSERT_EQ(r.failures.size(), 1u);
+    EXPECT_EQ(r.failures[0].index, 0);
+    EXPECT_EQ(r.failures[0].probe, "room_a_probe");
+    EXPECT_EQ(r.failures[0].state, "FAILED");
+    EXPECT_TRUE(r.failures[0].log.ends_with("shard-0-job104.log")) << r.failures[0].log;
+    EXPECT_NE(r.failures[0].logTail.find("the disk is full"), std::string::npos);
+    const std::string report = slurmFailureReport(r);
+    EXPECT_NE(report.find("shard 0 (probe room_a_probe): FAILED"), std::string::npos) << report;
+    EXPECT_FALSE(fs::exists(fs::path(dir_) / "level.json"));
+}
+
+TEST_F(SlurmFake, AResumeSubmitsOnlyTheShardsTheStoreLacks) {
+    FakeSlurm first(dir_);
+    first.failuresLeft[1] = 100;
+    EXPECT_FALSE(bakeOnSlurm(dir_, options(0), first, nullptr).merged);
+    FakeSlurm again(dir_);
+    const SlurmBakeResult r = bakeOnSlurm(dir_, options(0), again, nullptr);
+    EXPECT_TRUE(r.merged);
+    EXPECT_EQ(r.arrays, (std::vector<std::vector<int>>{{1}}));
+    // Everything there: only the merge is submitted.
+    FakeSlurm third(dir_);
+    const SlurmBakeResult done = bakeOnSlurm(dir_, options(0), third, nullptr);
+    EXPECT_TRUE(done.merged);
+    EXPECT_TRUE(done.arrays.empty());
+    EXPECT_EQ(done.jobs.size(), 1u);
+}
+
+} // namespace
+} // namespace specula
