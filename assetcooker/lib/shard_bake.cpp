@@ -80,6 +80,13 @@ bool shardPresent(const std::string& dir, const Shard& s) {
     return fs::is_regular_file(fs::path(shardStore(dir)) / s.hash / "manifest.json", ec);
 }
 
+// {"format": "specula-shard-time", "version": 1, "what": ..., "seconds": ...}, atomically.
+void writeTime(const std::string& file, const std::string& what, double seconds) {
+    const json doc = {
+        {"format", "specula-shard-time"}, {"version", 1}, {"what", what}, {"seconds", seconds}};
+    writeFileAtomically(file, doc.dump(2) + "\n");
+}
+
 // DIR/<folder> replaced atomically by a copy of the store's shard folder.
 void installShard(const fs::path& from, const fs::path& to, const std::string& scene) {
     writeProbeFolder(to.string(), scene, [&](const fs::path& tmp) {
@@ -172,6 +179,14 @@ ShardList writeShardList(ProbeScene& scene, const LevelCookOptions& options, std
     return list;
 }
 
+std::string shardTimePath(const std::string& dir, const Shard& s) {
+    return (fs::path(shardStore(dir)) / (s.hash + ".time.json")).string();
+}
+
+std::string mergeTimePath(const std::string& dir) {
+    return (fs::path(shardStore(dir)) / "merge.time.json").string();
+}
+
 ShardList readShardList(const std::string& dir) {
     const std::string file = shardListPath(dir);
     std::error_code ec;
@@ -235,6 +250,10 @@ ShardOutcome bakeShard(const std::string& dir, int index, std::ostream* log) {
     cookProbe(scene, o, log);
     outcome.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    writeTime(shardTimePath(dir, s),
+              "shard " + std::to_string(index) + " (probe " +
+                  list.level.probes[std::size_t(s.probe)].volume.name + ")",
+              outcome.seconds);
     return outcome;
 }
 
@@ -275,6 +294,7 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
     warnOfDroppedProbes(plan, dir, result.warnings, log);
     result.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    writeTime(mergeTimePath(dir), "merge", result.seconds);
     return result;
 }
 

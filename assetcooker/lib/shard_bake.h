@@ -9,6 +9,10 @@
 //                             the planned level index and each shard's kind, probe, part, hash
 //   DIR/.shards/<hash>/       one computed shard: the probe's cooked folder, exactly as a
 //                             plain bake writes it (bakeShard: written beside, then renamed)
+//   DIR/.shards/<hash>.time.json  the seconds bakeShard took for it (load + bake), for the farm
+//                             simulation (farm_sim.h); beside the folder, so merge never
+//                             installs it and the merged bytes do not depend on it
+//   DIR/.shards/merge.time.json   the seconds the last mergeShards took
 //
 // mergeShards installs every shard's folder as DIR/<probe folder>/ and writes DIR/level.json:
 // the same files, byte for byte, as cookLevel (level_bake.h), which runs the same shards
@@ -45,6 +49,10 @@ CookFlavour cookSettingsFromJson(const nlohmann::json& j, const std::string& fil
 // DIR/.shards: the store; DIR/.shards/shards.json: the list.
 std::string shardStore(const std::string& dir);
 std::string shardListPath(const std::string& dir);
+
+// DIR/.shards/<hash>.time.json and DIR/.shards/merge.time.json (see above).
+std::string shardTimePath(const std::string& dir, const Shard& s);
+std::string mergeTimePath(const std::string& dir);
 
 // Plans the level (options.cook.out is DIR) and writes the shard list atomically; returns it.
 // Throws Error naming the file and field.

@@ -1,8 +1,14 @@
 #include "shard_commands.h"
 
 #include "assetcooker/lib/bake_args.h"
+#include "assetcooker/lib/farm_sim.h"
 #include "assetcooker/lib/shard_bake.h"
 #include "engine/core/error.h"
+#include "engine/image/image_io.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
 
 #include <memory>
 
@@ -30,6 +36,16 @@ constexpr const char* kMergeDescription =
     "`specula-cook bake` writes. Refuses, naming them and writing nothing, when shards are\n"
     "missing. The store is kept (a re-run of bake-shard skips what it holds).\n";
 
+constexpr const char* kFarmDescription =
+    "Predicts a sharded bake's wall time on a farm of N identical nodes, from the seconds\n"
+    "bake-shard recorded for each shard (DIR/.shards/<hash>.time.json) and merge's own\n"
+    "(DIR/.shards/merge.time.json; 0 when not recorded). The model: the shards longest first,\n"
+    "each onto the node free first (list scheduling), each paying the scheduling overhead S on\n"
+    "its node; then the merge job (S + the merge's seconds). The ideal is the shards' total /\n"
+    "N. Prints nodes, predicted wall, ideal and their ratio for each DIR; writes them as CSV\n"
+    "(--csv) and as a plot (--plot). Every shard needs a recorded time: the missing ones are\n"
+    "named.\n";
+
 constexpr const char* kFooter =
     "exit status: 0 ok, 1 the input could not be processed, 2 bad command line\n";
 
@@ -42,6 +58,57 @@ int runShards(const BakeArgs& a, std::ostream& out) {
                                             "--probes FILE)");
     const ShardList list = writeShardList(scene, levelCookOptions(a, options, scene), &out);
     out << list.shards.size() << " shards -> " << shardListPath(a.out) << "\n";
+    return cli::kExitOk;
+}
+
+struct FarmArgs {
+    std::vector<std::string> dirs;
+    std::vector<int> nodes{1, 4, 16, 64};
+    double overhead = 0.8;
+    std::string csv, plot;
+};
+
+int runFarm(FarmArgs a, std::ostream& out) {
+    std::sort(a.nodes.begin(), a.nodes.end());
+    a.nodes.erase(std::unique(a.nodes.begin(), a.nodes.end()), a.nodes.end());
+    std::vector<FarmLevel> levels;
+    for (const std::string& dir : a.dirs) {
+        FarmLevel l;
+        l.label = std::filesystem::path(dir).lexically_normal().filename().string();
+        if (l.label.empty()) l.label = std::filesystem::path(dir).parent_path().filename().string();
+        l.times = readFarmTimes(dir);
+        l.rows = simulateFarm(l.times, a.nodes, a.overhead);
+        levels.push_back(std::move(l));
+    }
+    char line[160];
+    for (const FarmLevel& l : levels) {
+        std::snprintf(line, sizeof line,
+                      "%s: %zu shards, %.3f s in all (longest %.3f s), merge %.3f s%s, "
+                      "overhead %.3g s a shard\n",
+                      l.label.c_str(), l.times.shards.size(), l.times.total(),
+                      l.times.shards.empty()
+                          ? 0.0
+                          : std::max_element(l.times.shards.begin(), l.times.shards.end(),
+                                             [](auto& x, auto& y) { return x.seconds < y.seconds; })
+                                ->seconds,
+                      l.times.mergeSeconds, l.times.mergeRecorded ? "" : " (not recorded)",
+                      a.overhead);
+        out << line;
+        out << "  nodes   wall s  ideal s  wall/ideal\n";
+        for (const FarmRow& r : l.rows) {
+            std::snprintf(line, sizeof line, "  %5d %8.3f %8.3f %10.2f\n", r.nodes, r.wall, r.ideal,
+                          r.ratio);
+            out << line;
+        }
+    }
+    const std::string csv =
+        a.csv.empty() ? (std::filesystem::path(a.dirs.front()) / "farm.csv").string() : a.csv;
+    writeFarmCsv(csv, levels);
+    out << "table -> " << csv << "\n";
+    if (!a.plot.empty()) {
+        writeImage(a.plot, farmPlot(levels, a.overhead));
+        out << "plot -> " << a.plot << "\n";
+    }
     return cli::kExitOk;
 }
 
@@ -84,6 +151,23 @@ void addShardCommands(cli::ToolCli& tool) {
             return cli::kExitOk;
         });
     merge->add_option("DIR", *dir, "the level folder holding .shards/")->required();
+
+    auto f = std::make_shared<FarmArgs>();
+    CLI::App* farm = tool.addSubcommand(
+        "farm", "predict a sharded bake's wall time on 1 .. N farm nodes from its shard times",
+        kFarmDescription, kFooter, [f](std::ostream& out) { return runFarm(*f, out); });
+    farm->add_option("DIR", f->dirs,
+                     "level folders whose shards were baked with bake-shard (one line each)")
+        ->required();
+    farm->add_option("--nodes", f->nodes, "node counts to simulate (default 1,4,16,64)")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 1000000));
+    farm->add_option("--overhead", f->overhead,
+                     "scheduling overhead a shard, seconds (default 0.8: the one-node Slurm "
+                     "cluster of scripts/local-slurm, BENCH.md)")
+        ->check(CLI::Range(0.0, 1e6));
+    farm->add_option("--csv", f->csv, "the table as CSV (default: the first DIR's farm.csv)");
+    farm->add_option("--plot", f->plot, "wall time against nodes as an image (e.g. farm.png)");
 }
 
 } // namespace specula::cook

@@ -1,32 +1,17 @@
 #include "accuracy_plot.h"
 
+#include "engine/image/plot_canvas.h"
 #include "sandbox/lib/bench_methods.h"
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <map>
 
 namespace specula {
 
 namespace {
-
-const std::string& plotFont() {
-    static const std::string font = [] {
-        for (const char* f : {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-                              "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
-                              "/usr/share/fonts/truetype/freefont/FreeSans.ttf"})
-            if (std::filesystem::exists(f)) return std::string(f);
-        return std::string();
-    }();
-    return font;
-}
 
 // One colour per method, the same in every panel: the flavours' method tables give it; a
 // method they do not list gets grey.
@@ -36,44 +21,7 @@ std::array<float, 3> methodColour(const std::string& method) {
     return {0.60f, 0.60f, 0.60f};
 }
 
-struct Canvas {
-    OIIO::ImageBuf buf;
-    void line(int x0, int y0, int x1, int y1, const std::array<float, 3>& c) {
-        OIIO::ImageBufAlgo::render_line(buf, x0, y0, x1, y1, c);
-    }
-    void thickLine(int x0, int y0, int x1, int y1, const std::array<float, 3>& c) {
-        for (int d = -1; d <= 1; ++d) {
-            line(x0 + d, y0, x1 + d, y1, c);
-            line(x0, y0 + d, x1, y1 + d, c);
-        }
-    }
-    void dashed(int x0, int y0, int x1, int y1, const std::array<float, 3>& c) {
-        const double len = std::hypot(double(x1 - x0), double(y1 - y0));
-        const int n = std::max(1, int(len / 6.0));
-        for (int i = 0; i < n; i += 2) {
-            const double a = double(i) / n, b = double(std::min(i + 1, n)) / n;
-            line(int(x0 + a * (x1 - x0)), int(y0 + a * (y1 - y0)), int(x0 + b * (x1 - x0)),
-                 int(y0 + b * (y1 - y0)), c);
-        }
-    }
-    void box(int x0, int y0, int x1, int y1, const std::array<float, 3>& c, bool fill) {
-        OIIO::ImageBufAlgo::render_box(buf, x0, y0, x1, y1, c, fill);
-    }
-    void text(int x, int y, const std::string& s, int size, const std::array<float, 3>& c,
-              OIIO::ImageBufAlgo::TextAlignX ax = OIIO::ImageBufAlgo::TextAlignX::Left,
-              OIIO::ImageBufAlgo::TextAlignY ay = OIIO::ImageBufAlgo::TextAlignY::Baseline) {
-        if (plotFont().empty()) return; // no font on this machine: the plot has no text
-        OIIO::ImageBufAlgo::render_text(buf, x, y, s, size, plotFont(), c, ax, ay);
-    }
-};
-
-std::string fmt(const char* f, double v) {
-    char b[64];
-    std::snprintf(b, sizeof b, f, v);
-    return b;
-}
-
-void drawPanel(Canvas& cv, int ox, int pw, int ph, const PlotPanel& panel) {
+void drawPanel(PlotCanvas& cv, int ox, int pw, int ph, const PlotPanel& panel) {
     using OIIO::ImageBufAlgo::TextAlignX;
     using OIIO::ImageBufAlgo::TextAlignY;
     const std::array<float, 3> axis{0.8f, 0.8f, 0.8f}, grid{0.07f, 0.07f, 0.08f},
@@ -105,14 +53,14 @@ void drawPanel(Canvas& cv, int ox, int pw, int ph, const PlotPanel& panel) {
         const int x = X(std::exp2(l));
         cv.line(x, top, x, bottom, grid);
         cv.line(x, bottom, x, bottom + 5, axis);
-        cv.text(x, bottom + 20, fmt(l >= 0 ? "%.0f" : "%.3g", std::exp2(l)), 13, axis,
+        cv.text(x, bottom + 20, plotNumber(l >= 0 ? "%.0f" : "%.3g", std::exp2(l)), 13, axis,
                 TextAlignX::Center);
     }
     for (double v = std::ceil(y0 / 5.0) * 5.0; v <= y1; v += 5) {
         const int y = Y(v);
         cv.line(left, y, right, y, grid);
         cv.line(left - 5, y, left, y, axis);
-        cv.text(left - 8, y + 5, fmt("%.0f", v), 13, axis, TextAlignX::Right);
+        cv.text(left - 8, y + 5, plotNumber("%.0f", v), 13, axis, TextAlignX::Right);
     }
     cv.box(left, top, right, bottom, axis, false);
     cv.text((left + right) / 2, ph - 12, "reflector pass time / envmap (log scale)", 14, axis,
@@ -181,16 +129,10 @@ std::vector<std::size_t> paretoFront(const std::vector<PlotPoint>& points) {
 
 Image accuracyPlot(const std::vector<PlotPanel>& panels, int pw, int ph) {
     const int n = std::max<int>(1, int(panels.size()));
-    Canvas cv;
-    cv.buf.reset(OIIO::ImageSpec(pw * n, ph, 3, OIIO::TypeDesc::FLOAT));
-    const float bg[3] = {0.035f, 0.035f, 0.04f};
-    OIIO::ImageBufAlgo::fill(cv.buf, bg);
+    PlotCanvas cv(pw * n, ph);
     for (int i = 0; i < int(panels.size()); ++i)
         drawPanel(cv, i * pw, pw, ph, panels[std::size_t(i)]);
-    Image out(pw * n, ph, 3);
-    cv.buf.get_pixels(OIIO::ROI(0, pw * n, 0, ph, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
-                      out.pixels.data());
-    return out;
+    return cv.image();
 }
 
 } // namespace specula

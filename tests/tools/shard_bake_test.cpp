@@ -119,11 +119,13 @@ TEST_F(ShardBake, ABakedShardIsSkippedTheSecondTime) {
     EXPECT_TRUE(again.skipped);
     EXPECT_EQ(again.folder, first.folder);
     EXPECT_EQ(fs::last_write_time(manifest), stamp);
-    // Nothing but the list and the one shard in the store: no temporaries left beside it.
+    // Nothing but the list, the one shard and its recorded time in the store: no temporaries
+    // left beside it.
     std::size_t entries = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(shardStore(dir)))
         ++entries;
-    EXPECT_EQ(entries, 2u);
+    EXPECT_EQ(entries, 3u);
+    EXPECT_TRUE(fs::is_regular_file(shardTimePath(dir, readShardList(dir).shards[1])));
 }
 
 TEST_F(ShardBake, AMergeWithAShardMissingNamesItAndWritesNothing) {
