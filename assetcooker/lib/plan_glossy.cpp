@@ -1,25 +1,17 @@
 #include "plan_glossy.h"
 
-#include "engine/core/glsl_host.h"
+#include "components/reflection_probe/distance/distance_glossy_cpu.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
 namespace specula {
-namespace glsl {
-namespace {
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#include "components/reflection_probe/distance/shaders/distance_glossy.glsl.h"
-#pragma GCC diagnostic pop
-} // namespace
-} // namespace glsl
 
 float ggxLobeHalfWidthDeg(float roughness) {
     if (!(roughness > 0.f)) return 0.f; // NaN too
     const float r = std::min(roughness, 1.f);
-    return glsl::glossyLobeHalfAngle(r * r) * 180.f / 3.14159265f;
+    return glossyLobeHalfAngle(r * r) * 180.f / 3.14159265f;
 }
 
 SharpestLobe planReflectors(const SceneMarkup& markup, std::vector<PlannedReflector>& out) {

@@ -33,6 +33,27 @@ double clampedPsnr(const ImageStats& s) {
     return s.hasPsnr ? std::min(s.psnr, 99.0) : 0.0;
 }
 
+// A line a roughness (the rows hold one per method, in `methods` order), a column a method.
+template <class Cell>
+void printByRoughness(std::ostream& log, const std::vector<std::string>& methods,
+                      const std::vector<GlossyBenchRow>& rows, bool noiseColumn, Cell cell) {
+    log << std::left << std::setw(6) << "r";
+    if (noiseColumn) log << std::setw(8) << "noise";
+    for (const std::string& m : methods)
+        log << " | " << std::setw(27) << m;
+    log << '\n';
+    for (std::size_t i = 0; i + methods.size() <= rows.size(); i += methods.size()) {
+        std::ostringstream r;
+        r << rows[i].roughness;
+        log << std::setw(6) << r.str();
+        if (noiseColumn) log << std::setw(8) << formatPsnr(rows[i].noiseFloorPsnr);
+        for (std::size_t m = 0; m < methods.size(); ++m)
+            log << " | " << std::setw(27) << cell(rows[i + m]);
+        log << '\n';
+    }
+    log << std::right;
+}
+
 } // namespace
 
 const std::vector<std::string>& glossyBenchMethods() {
@@ -198,45 +219,23 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
     // The table: a row per roughness, a column per method.
     log << "\nPSNR (dB) against the GGX truth (environment only, " << o.samples
         << " samples) on the reflector pixels\n";
-    log << std::left << std::setw(6) << "r" << std::setw(8) << "noise";
-    for (const std::string& m : methods)
-        log << " | " << std::setw(27) << m;
-    log << '\n';
-    for (std::size_t i = 0; i < result.rows.size(); i += methods.size()) {
-        std::ostringstream r;
-        r << result.rows[i].roughness;
-        log << std::setw(6) << r.str() << std::setw(8) << formatPsnr(result.rows[i].noiseFloorPsnr);
-        for (std::size_t m = 0; m < methods.size(); ++m)
-            log << " | " << std::setw(27) << formatPsnr(result.rows[i + m].psnr);
-        log << '\n';
-    }
+    printByRoughness(log, methods, result.rows, true,
+                     [](const GlossyBenchRow& row) { return formatPsnr(row.psnr); });
     log << "\nreflector pass / mirror envmap pass"
         << (result.timer.empty() ? std::string(" (not timed)")
                                  : " (" + result.timer + "; the mirror envmap pass " +
                                        std::to_string(result.envmapMs) + " ms)")
         << "; texture MiB\n";
-    log << std::left << std::setw(6) << "r";
-    for (const std::string& m : methods)
-        log << " | " << std::setw(27) << m;
-    log << '\n';
-    for (std::size_t i = 0; i < result.rows.size(); i += methods.size()) {
-        std::ostringstream r;
-        r << result.rows[i].roughness;
-        log << std::setw(6) << r.str();
-        for (std::size_t m = 0; m < methods.size(); ++m) {
-            const GlossyBenchRow& row = result.rows[i + m];
-            std::ostringstream cell;
-            cell << std::fixed << std::setprecision(2);
-            if (row.ratioToEnvmap >= 0.0)
-                cell << row.ratioToEnvmap << "x";
-            else
-                cell << "-";
-            cell << ", " << row.memoryMiB << " MiB";
-            log << " | " << std::setw(27) << cell.str();
-        }
-        log << '\n';
-    }
-    log << std::right;
+    printByRoughness(log, methods, result.rows, false, [](const GlossyBenchRow& row) {
+        std::ostringstream cell;
+        cell << std::fixed << std::setprecision(2);
+        if (row.ratioToEnvmap >= 0.0)
+            cell << row.ratioToEnvmap << "x";
+        else
+            cell << "-";
+        cell << ", " << row.memoryMiB << " MiB";
+        return cell.str();
+    });
     writeFileAtomically((fs::path(o.out) / "glossy.csv").string(), csv.str());
     log << "-> " << o.out << "/glossy.csv\n";
     return result;

@@ -1,8 +1,6 @@
 // The effect plan on small canonical scenes whose right answer is known.
 #include "assetcooker/lib/effect_plan.h"
-#include "engine/scene/components.h"
-#include "engine/scene/gltf_loader.h"
-#include "engine/scene/transform_system.h"
+#include "plan/code_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -12,62 +10,10 @@ using namespace specula;
 
 namespace {
 
-// Builds scenes in code: each add* makes one root node (one environment object).
-struct SceneBuilder {
-    ecs::Registry reg;
-    LoadedScene scene;
-
-    ecs::Entity node(const std::string& name, glm::vec3 at, std::shared_ptr<MeshData> mesh,
-                     const std::string& extras = "") {
-        const ecs::Entity e = reg.create();
-        reg.emplace<Name>(e, Name{name});
-        Transform t;
-        t.translation = at;
-        reg.emplace<Transform>(e, t);
-        if (mesh) {
-            Mesh m;
-            m.name = name;
-            m.primitives.push_back({mesh, std::make_shared<MaterialData>()});
-            reg.emplace<Mesh>(e, m);
-        }
-        if (!extras.empty()) reg.emplace<Extras>(e, Extras{extras});
-        scene.entities.push_back(e);
-        scene.roots.push_back(e);
-        return e;
-    }
-    static std::shared_ptr<MeshData> box(glm::vec3 half) {
-        auto m = std::make_shared<MeshData>();
-        for (int i = 0; i < 8; ++i)
-            m->positions.push_back(glm::vec3((i & 1) ? half.x : -half.x, (i & 2) ? half.y : -half.y,
-                                             (i & 4) ? half.z : -half.z));
-        const unsigned quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
-                                      {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
-        for (const auto& q : quads)
-            for (unsigned k : {q[0], q[1], q[2], q[0], q[2], q[3]})
-                m->indices.push_back(k);
-        m->normals.assign(8, glm::vec3(0, 1, 0));
-        return m;
-    }
-    static std::shared_ptr<MeshData> sphere(float r) {
-        auto m = std::make_shared<MeshData>();
-        const int n = 16;
-        for (int i = 0; i <= n; ++i)
-            for (int j = 0; j <= 2 * n; ++j) {
-                const float th = 3.14159265f * float(i) / float(n);
-                const float ph = 3.14159265f * float(j) / float(n);
-                const glm::vec3 d(std::sin(th) * std::cos(ph), std::cos(th),
-                                  std::sin(th) * std::sin(ph));
-                m->positions.push_back(r * d);
-                m->normals.push_back(d);
-            }
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; j < 2 * n; ++j) {
-                const unsigned a = unsigned(i * (2 * n + 1) + j), b = a + unsigned(2 * n + 1);
-                for (unsigned k : {a, b, a + 1, a + 1, b, b + 1})
-                    m->indices.push_back(k);
-            }
-        return m;
-    }
+// A code scene with the planner's entry points: reflectorAndProbe() adds the usual pair.
+struct SceneBuilder : test::CodeScene {
+    static std::shared_ptr<MeshData> box(glm::vec3 half) { return test::boxMesh(half); }
+    static std::shared_ptr<MeshData> sphere(float r) { return test::sphereMesh(r); }
     // A mirror sphere at the probe, radius 0.5, and the probe node (cell 1.5 m).
     void
     reflectorAndProbe(const std::string& probeExtras = "{\"specula_probe\": {\"cell_size\": 1.5}}",

@@ -18,6 +18,10 @@ namespace {
 } // namespace
 } // namespace glsl
 
+float glossyLobeHalfAngle(float alpha) {
+    return glsl::glossyLobeHalfAngle(alpha);
+}
+
 namespace {
 
 DistanceProbe withMethod(DistanceProbe p, DistanceMethod m) {

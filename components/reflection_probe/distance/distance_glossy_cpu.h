@@ -34,6 +34,10 @@ inline constexpr std::array<GlossyMode, 4> kGlossyModes{
     GlossyMode::RectifiedFootprint};
 const char* glossyModeName(GlossyMode mode);
 
+// The half-width (radians) of the GGX lobe of `alpha` (= roughness^2) that the footprint
+// level is taken from: the shader's glossyLobeHalfAngle, for the planner.
+float glossyLobeHalfAngle(float alpha);
+
 class CpuGlossyDistanceProbe {
 public:
     // `search`: the rectified modes' method (Bisection or Secant; else Error) and d_e. The
