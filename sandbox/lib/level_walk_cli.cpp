@@ -113,7 +113,7 @@ void addLevelCommand(cli::ToolCli& tool) {
     sub->add_option("--k", o.k, "probes blended per pixel at most (default 4)")
         ->check(CLI::Range(1, 8));
     sub->add_option("--method", o.method, "each probe's lookup (default secant)")
-        ->check(CLI::IsMember({"envmap", "boxproj", "bisection", "secant"}));
+        ->check(CLI::IsMember({"envmap", "boxproj", "bisection", "secant", "march"}));
     sub->add_option("--de", o.tolerance, "rectification tolerance d_e in metres (default 0.01)")
         ->check(cli::finiteRange(1e-5, 10.0));
     sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");

@@ -66,8 +66,10 @@ void checkCase(const std::string& name, const DistanceProbeAsset& asset,
             int fetches = 0;
             want.push_back(ref(m, r.x, r.d));
             cpu.add(twin.radiance(r.x, r.d, fetches), want.back());
-            // The search may not spend more than N fetches per layer, plus radiance and sky.
-            EXPECT_LE(fetches, (cfg.params.maxSteps + 1) * std::max(1, cfg.params.layerCount) + 1)
+            // The search may not spend more than N fetches per layer (the march: its steps and
+            // refinements), plus radiance and sky.
+            EXPECT_LE(fetches,
+                      (searchFetchCap(m, cfg) + 1) * std::max(1, cfg.params.layerCount) + 1)
                 << name << " " << toString(m);
             gr.push_back({r.x, r.d});
         }
@@ -176,6 +178,7 @@ TEST(DistanceHardCases, LookupsAlongCubeEdgesAndCorners) {
                {DistanceMethod::BoxProj, 0.02},
                {DistanceMethod::Bisection, 0.05},
                {DistanceMethod::Secant, 0.05},
+               {DistanceMethod::March, 0.05},
                {DistanceMethod::AvgDist, 0.02},
                {DistanceMethod::Layered, 0.05}});
 }
@@ -204,11 +207,13 @@ TEST(DistanceHardCases, ReflectorTouchingTheEnvironment) {
               {{DistanceMethod::BoxProj, 0.02},
                {DistanceMethod::Bisection, 0.1},
                {DistanceMethod::Secant, 0.1},
+               {DistanceMethod::March, 0.1},
                {DistanceMethod::Layered, 0.1}});
     checkCase("reflector touching env (grazing)", boxProbe(), grazing, boxIdeal(boxProbe()),
               {{DistanceMethod::BoxProj, 0.02},
                {DistanceMethod::Bisection, 1.39},
                {DistanceMethod::Secant, 1.39},
+               {DistanceMethod::March, 1.39},
                {DistanceMethod::Layered, 1.39}});
 }
 
@@ -231,6 +236,7 @@ TEST(DistanceHardCases, RaysThatHitNothing) {
               [&](DistanceMethod, glm::vec3 x, glm::vec3 d) { return ob.trace(x, d); },
               {{DistanceMethod::Bisection, 1e-6},
                {DistanceMethod::Secant, 1e-6},
+               {DistanceMethod::March, 1e-6},
                {DistanceMethod::Layered, 1e-6}});
 }
 
@@ -254,8 +260,8 @@ TEST(DistanceHardCases, SilhouettesAgainstDInf) {
         const glm::vec3 target = s.c + perp * (s.r * (1.f + 0.25f * u(rng)));
         rays.push_back({x, glm::normalize(target - x)});
     }
-    for (DistanceMethod m :
-         {DistanceMethod::Bisection, DistanceMethod::Secant, DistanceMethod::Layered}) {
+    for (DistanceMethod m : {DistanceMethod::Bisection, DistanceMethod::Secant,
+                             DistanceMethod::March, DistanceMethod::Layered}) {
         const DistanceProbeAsset al =
             m == DistanceMethod::Layered ? withObjectLayer(a, "bisection") : a;
         const DistanceLookupConfig cfg = configFor(al, m);
@@ -319,6 +325,7 @@ TEST(DistanceHardCases, ToleranceToZero) {
         checkCase(name, boxProbe(), rays, boxIdeal(boxProbe()),
                   {{DistanceMethod::Bisection, 0.2},
                    {DistanceMethod::Secant, 0.2},
+                   {DistanceMethod::March, 0.2},
                    {DistanceMethod::Layered, 0.2}},
                   de);
     }
@@ -343,6 +350,7 @@ TEST(DistanceHardCases, RangeSmallerThanTheScene) {
                   {{DistanceMethod::Envmap, 1.39},
                    {DistanceMethod::Bisection, 1.39},
                    {DistanceMethod::Secant, 1.39},
+                   {DistanceMethod::March, 1.39},
                    {DistanceMethod::Layered, 1.39}},
                   0.01f, D);
     }
@@ -367,6 +375,7 @@ TEST(DistanceHardCases, RangeFarLargerThanTheScene) {
         checkCase(name, boxProbe(), rays, exact,
                   {{DistanceMethod::Bisection, bound},
                    {DistanceMethod::Secant, bound},
+                   {DistanceMethod::March, bound},
                    {DistanceMethod::Layered, bound}},
                   0.01f, D);
     }
@@ -387,6 +396,7 @@ TEST(DistanceHardCases, ReflectorOnTheCellBoundary) {
                {DistanceMethod::BoxProj, 0.02},
                {DistanceMethod::Bisection, 0.2},
                {DistanceMethod::Secant, 0.2},
+               {DistanceMethod::March, 0.2},
                {DistanceMethod::AvgDist, 0.02},
                {DistanceMethod::Layered, 0.2}});
 }
@@ -538,7 +548,8 @@ TEST(DistanceHardCases, HalfFloatDistanceStorage) {
         return room().trace(x, d);
     };
     for (float de : {0.01f, 0.001f})
-        for (DistanceMethod m : {DistanceMethod::Bisection, DistanceMethod::Secant}) {
+        for (DistanceMethod m :
+             {DistanceMethod::Bisection, DistanceMethod::Secant, DistanceMethod::March}) {
             Worst w[2];
             for (int k = 0; k < 2; ++k) {
                 const DistanceProbeAsset& a = k == 0 ? boxProbe() : half;

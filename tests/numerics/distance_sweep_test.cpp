@@ -63,7 +63,8 @@ TEST(DistanceSweep, TenMillionRandomRaysPerMethod) {
     const std::map<DistanceMethod, double> bound = {
         {DistanceMethod::Envmap, 0.03},   {DistanceMethod::BoxProj, 0.03},
         {DistanceMethod::Bisection, 0.1}, {DistanceMethod::Secant, 0.1},
-        {DistanceMethod::AvgDist, 0.03},  {DistanceMethod::Layered, 0.1}};
+        {DistanceMethod::AvgDist, 0.03},  {DistanceMethod::Layered, 0.1},
+        {DistanceMethod::March, 0.1}};
     const float avg = box.layers[0].avgDistance;
     double total = 0.0;
     for (DistanceMethod m : kAllMethods) {

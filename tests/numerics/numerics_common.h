@@ -161,9 +161,18 @@ inline const char* methodName(DistanceMethod m) {
     return toString(m);
 }
 
-inline constexpr DistanceMethod kAllMethods[] = {
-    DistanceMethod::Envmap, DistanceMethod::BoxProj, DistanceMethod::Bisection,
-    DistanceMethod::Secant, DistanceMethod::AvgDist, DistanceMethod::Layered};
+// March last: the peer (Szirmay-Kalos et al. 2005) the searches are measured against.
+inline constexpr DistanceMethod kAllMethods[] = {DistanceMethod::Envmap,    DistanceMethod::BoxProj,
+                                                 DistanceMethod::Bisection, DistanceMethod::Secant,
+                                                 DistanceMethod::AvgDist,   DistanceMethod::Layered,
+                                                 DistanceMethod::March};
+
+// Most distance fetches one layer's search may spend: N for bisection and secant, the march
+// steps and refinements for the march.
+inline int searchFetchCap(DistanceMethod m, const DistanceLookupConfig& c) {
+    return m == DistanceMethod::March ? glsl::kMarchSteps + glsl::kMarchRefineSteps
+                                      : c.params.maxSteps;
+}
 
 inline DistanceLookupConfig configFor(const DistanceProbeAsset& a, DistanceMethod m,
                                       float de = 0.01f, float range = 0.f) {
@@ -177,8 +186,8 @@ inline DistanceLookupConfig configFor(const DistanceProbeAsset& a, DistanceMetho
 
 // What each method computes when nothing numerical goes wrong, for a box-room probe
 // centred at the origin: envmap and avgdist look the room up from the centre along a
-// direction (l-hat, or x + d-bar l-hat); box projection, bisection, secant and layered
-// find the true reflection.
+// direction (l-hat, or x + d-bar l-hat); box projection, bisection, secant, march and
+// layered find the true reflection.
 inline glm::vec3 idealBox(const AnalyticBox& box, DistanceMethod m, float avgDistance, glm::vec3 x,
                           glm::vec3 d) {
     switch (m) {

@@ -6,6 +6,7 @@
 #include "twin_agreement.h"
 
 #include <cstdio>
+#include <iterator>
 
 using namespace specula;
 using specula::test::RoomProbe;
@@ -14,7 +15,9 @@ namespace {
 
 const DistanceMethod kMethods[] = {DistanceMethod::Envmap,    DistanceMethod::BoxProj,
                                    DistanceMethod::Bisection, DistanceMethod::Secant,
-                                   DistanceMethod::AvgDist,   DistanceMethod::Layered};
+                                   DistanceMethod::AvgDist,   DistanceMethod::Layered,
+                                   DistanceMethod::March}; // the peer (Szirmay-Kalos 2005)
+constexpr int kMethodCount = int(std::size(kMethods));
 
 double psnrOf(const Image& a, const Image& b, const Image& mask) {
     return compareImages(a, b, &mask).psnr;
@@ -51,8 +54,8 @@ TEST_F(RoomProbe, RectificationBeatsEnvmapAndBoxProjAgainstGroundTruth) {
     const GroundTruthImage envOnly = scene_->groundTruth(cam, true);
     const GroundTruthImage full = scene_->groundTruth(cam, false);
     const Image mask = erodedMask(envOnly.mirrorMask);
-    double psnr[6] = {};
-    for (int i = 0; i < 6; ++i) {
+    double psnr[kMethodCount] = {};
+    for (int i = 0; i < kMethodCount; ++i) {
         useProbe(probeFor(kMethods[i]));
         const Image img = renderer_->render(cam);
         psnr[i] = psnrOf(img, envOnly.color, mask);
@@ -69,6 +72,7 @@ TEST_F(RoomProbe, RectificationBeatsEnvmapAndBoxProjAgainstGroundTruth) {
     EXPECT_GT(bisection, envmap + 6.0) << "bisection " << bisection << " dB, envmap " << envmap;
     EXPECT_GT(bisection, boxproj + 3.0) << "bisection " << bisection << " dB, boxproj " << boxproj;
     EXPECT_GT(psnr[3], envmap + 6.0) << "secant";
+    EXPECT_GT(psnr[6], envmap + 6.0) << "march";
 }
 
 TEST_F(RoomProbe, LayersShowOcclusionAndParallaxLikeTheGroundTruth) {

@@ -52,7 +52,7 @@ TEST(BenchMethods, EnvmapFirstGroundTruthLastEveryToleranceSwept) {
     std::set<std::string> seen;
     for (const auto& r : rows)
         seen.insert(r.method + " " + r.params);
-    for (const char* m : {"bisection", "secant", "layered"})
+    for (const char* m : {"bisection", "secant", "march", "layered"})
         for (float de : sweep.tolerances)
             EXPECT_TRUE(seen.count(std::string(m) + " " + formatTolerance(de))) << m;
     EXPECT_TRUE(seen.count("boxproj -"));

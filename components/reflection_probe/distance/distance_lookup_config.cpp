@@ -20,7 +20,8 @@ static_assert(kDistanceMethods[0].glslIndex == glsl::kMethodEnvmap &&
               kDistanceMethods[1].glslIndex == glsl::kMethodBoxProj &&
               kDistanceMethods[2].glslIndex == glsl::kMethodBisection &&
               kDistanceMethods[3].glslIndex == glsl::kMethodSecant &&
-              kDistanceMethods[4].glslIndex == glsl::kMethodAvgDist);
+              kDistanceMethods[4].glslIndex == glsl::kMethodAvgDist &&
+              kDistanceMethods[5].glslIndex == glsl::kMethodMarch);
 
 const DistanceMethodInfo& info(DistanceMethod m) {
     for (const DistanceMethodInfo& row : kDistanceMethods)
@@ -122,7 +123,7 @@ DistanceLookupConfig makeLookupConfig(const DistanceProbe& probe, const Distance
             const DistanceMethodInfo* row = perLayerMethod(a.layers[i].method);
             if (!row)
                 throw Error(manifest, "layers[" + std::to_string(i) + "].method",
-                            "expected envmap, boxproj, bisection, secant or avgdist, got '" +
+                            "expected envmap, boxproj, bisection, secant, avgdist or march, got '" +
                                 a.layers[i].method + "'");
             return row->glslIndex;
         };

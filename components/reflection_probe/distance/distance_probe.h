@@ -17,6 +17,7 @@ enum class DistanceMethod {
     Bisection, // per-pixel rectification by bisection (Wang et al. 2012)
     Secant,    // bisection bracket refined by the secant rule
     AvgDist,   // one fetch at x + d-bar l
+    March,     // linear march + secant refinement (Szirmay-Kalos et al. 2005), the peer
     Layered,   // object layers near to far, each with its own method, sky last
     Planned,   // whatever the cooked effect plan chose (mode and per-layer methods)
 };
@@ -50,8 +51,9 @@ inline constexpr std::uint32_t kFeatureFresnel = 1u << 6;
 // A rough reflector (Reflector::roughness > 0): the composite's GGX prefiltered chain read at
 // the hit (shaders/distance_glossy_lookup.glsl.h). Per reflector, like Fresnel.
 inline constexpr std::uint32_t kFeatureGlossy = 1u << 7;
+// The method bits are 1 << 0..4 and 1 << 8 (march, added after the feature bits above).
 
-inline constexpr std::array<DistanceMethodInfo, 7> kDistanceMethods = {{
+inline constexpr std::array<DistanceMethodInfo, 8> kDistanceMethods = {{
     {DistanceMethod::Envmap,
      {"envmap", {0.90f, 0.10f, 0.08f}, "classic environment map: direction only, no parallax"},
      0,
@@ -87,6 +89,13 @@ inline constexpr std::array<DistanceMethodInfo, 7> kDistanceMethods = {{
      "HAS_AVGDIST",
      true,
      false},
+    {DistanceMethod::March,
+     {"march", {0.95f, 0.30f, 0.65f}, "linear march + secant refinement (Szirmay-Kalos 2005)"},
+     5,
+     1u << 8,
+     "HAS_MARCH",
+     true,
+     true},
     {DistanceMethod::Layered,
      {"layered", {0.55f, 0.20f, 0.90f}, "object layers near to far, each with its method"},
      -1,

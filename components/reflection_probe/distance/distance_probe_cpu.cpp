@@ -75,6 +75,7 @@ struct TwinFetches {
 #define HAS_BISECTION 1
 #define HAS_SECANT 1
 #define HAS_AVGDIST 1
+#define HAS_MARCH 1
 
 #define HAS_LAYERS 0
 struct TwinSingle : TwinFetches {

@@ -11,8 +11,8 @@
 //   float layerAvgDistance(int layer)          d-bar of each layer
 //   vec3  layerBoxMin(int layer), layerBoxMax(int layer)   probe-local bounds of a layer
 //   float layerReach(int layer)                the closest layers layer.. come to the centre
-// and defines HAS_ENVMAP, HAS_BOXPROJ, HAS_BISECTION, HAS_SECANT, HAS_AVGDIST, HAS_LAYERS
-// as 0 or 1: a method the probe does not use is not compiled into its shader.
+// and defines HAS_ENVMAP, HAS_BOXPROJ, HAS_BISECTION, HAS_SECANT, HAS_AVGDIST, HAS_MARCH,
+// HAS_LAYERS as 0 or 1: a method the probe does not use is not compiled into its shader.
 //
 // Layer 0 is the composite (every environment object, sky in the texels that see none);
 // layers 1..layerCount are single objects or groups, sorted near to far.
@@ -143,6 +143,84 @@ LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan sp
 }
 #endif
 
+#if HAS_MARCH
+// The peer the searches above are measured against: Szirmay-Kalos et al. 2005,
+// "Approximate ray-tracing on the GPU with distance impostors" (GPU Gems 3, ch. 17). March
+// kMarchSteps points along the span until f = stored distance - |l| turns from > 0 to < 0
+// (the ray has passed the surface), then at most kMarchRefineSteps secant (false position)
+// steps between the last two march points; a march or refinement point within d_e of its
+// stored distance ends the search early. No crossing in the span: the last march point
+// (t1) answers through the same d_inf rule as the other searches.
+//
+// Parameterisation: like Szirmay-Kalos, the march is uniform in the ray's projection, not
+// in t. With u = t - t0 and the ray's start q = x + t0 lhat, the point q + u lhat has the
+// direction of (1 - a) q + a s lhat for u = s a / (1 - a): uniform steps in a are uniform
+// steps along the straight segment from q to s lhat, whose central projection is what the
+// cube map indexes, so the steps are dense near the start (where the direction from the
+// centre turns fastest) and sparse far out (where it hardly changes any more). The scale s
+// is |q| (the segment then joins two points equally far from the centre, near uniform in
+// angle) but at least a quarter of the span: from a start near the centre the direction
+// barely turns, and s = |q| -> 0 would put every step at the start. For the single-layer
+// span (0, 2D) that is s = max(|x|, D/2), the first step at about D/60 and the last one
+// about 0.29 D long (uniform steps would be 2D/30 = 0.067 D).
+LayerHit lookupMarch(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
+    float width = max(span.t1 - span.t0, 0.0f);
+    float s = max(max(length(x + span.t0 * lhat), 0.25f * width), 1e-6f);
+    float aMax = width / (width + s); // < 1: the last step lands on t1
+    float ta = span.t0;
+    float fa = 0.0f;
+    bool haveA = false; // ta: last march point before the surface with a finite distance
+    float tb = span.t1;
+    float fb = 0.0f;
+    bool crossed = false;
+    vec3 l = x + span.t0 * lhat;
+    float d = p.dInf;
+    int fetches = 0;
+    for (int k = 1; k <= kMarchSteps; ++k) {
+        float a = aMax * float(k) / float(kMarchSteps);
+        float t = span.t0 + s * a / (1.0f - a);
+        l = x + t * lhat;
+        d = fetchDistance(layer, l);
+        fetches += 1;
+        float f = d - length(l);
+        if (abs(f) < p.tolerance) return finishRectified(layer, x, lhat, l, d, fetches, p.dInf);
+        if (f < 0.0f) {
+            tb = t;
+            fb = f;
+            crossed = true;
+            break;
+        }
+        ta = t;
+        fa = f;
+        haveA = !isInfiniteDistance(d, p.dInf);
+    }
+    if (!crossed) return finishRectified(layer, x, lhat, l, d, fetches, p.dInf);
+    for (int n = 1; n <= kMarchRefineSteps; ++n) {
+        // The secant through both ends; the midpoint where the near end saw only d_inf (or
+        // is the span start, never fetched) or rounding puts the secant outside the bracket.
+        float t = 0.5f * (ta + tb);
+        if (haveA) {
+            float candidate = ta + fa * (tb - ta) / (fa - fb);
+            if (candidate > ta && candidate < tb) t = candidate;
+        }
+        l = x + t * lhat;
+        d = fetchDistance(layer, l);
+        fetches += 1;
+        float f = d - length(l);
+        if (abs(f) < p.tolerance) break;
+        if (f > 0.0f) {
+            ta = t;
+            fa = f;
+            haveA = !isInfiniteDistance(d, p.dInf);
+        } else {
+            tb = t;
+            fb = f;
+        }
+    }
+    return finishRectified(layer, x, lhat, l, d, fetches, p.dInf);
+}
+#endif
+
 #if HAS_LAYERS
 // Where the ray x + t lhat (t >= 0) enters and leaves the layer's bounding box; enter > leave
 // when it misses. A layer the ray misses, or enters only behind a nearer hit, costs no fetch
@@ -182,6 +260,9 @@ LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, DistanceParams p,
 #endif
 #if HAS_SECANT
     if (method == kMethodSecant) return lookupSecant(layer, x, lhat, p, span);
+#endif
+#if HAS_MARCH
+    if (method == kMethodMarch) return lookupMarch(layer, x, lhat, p, span);
 #endif
 #if HAS_BOXPROJ
     if (method == kMethodBoxProj) {

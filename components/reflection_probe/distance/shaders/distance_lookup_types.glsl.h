@@ -10,6 +10,7 @@ SHARED_CONST int kMethodBoxProj = 1;
 SHARED_CONST int kMethodBisection = 2;
 SHARED_CONST int kMethodSecant = 3;
 SHARED_CONST int kMethodAvgDist = 4;
+SHARED_CONST int kMethodMarch = 5;
 
 struct LayerHit {
     vec3 radiance;

@@ -13,6 +13,13 @@
 SHARED_CONST int kMaxDistanceLayers = 64;
 // The uniform-buffer binding point the block is read from.
 SHARED_CONST int kDistanceParamsBinding = 0;
+// The linear march (kMethodMarch, lookupMarch in distance_lookup.glsl.h; Szirmay-Kalos et
+// al. 2005): march points along the ray and at most this many secant refinements once one
+// has passed the surface. Constants rather than block fields: the block is a full std140
+// layout shared with the PEM and level lookups, and 30 and 6 are what an open engine
+// implementation of the method uses. Its fetches are at most their sum plus the radiance.
+SHARED_CONST int kMarchSteps = 30;
+SHARED_CONST int kMarchRefineSteps = 6;
 
 // What the lookup of every layer reads.
 struct DistanceParams {

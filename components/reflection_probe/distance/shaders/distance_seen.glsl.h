@@ -52,7 +52,8 @@ SeenSample probeSampleSeen(vec3 x, vec3 lhat, DistanceParams p) {
         s.fetches += 1;
     } else {
         s.radiance = h.radiance;
-        if (p.method == kMethodBisection || p.method == kMethodSecant) {
+        if (p.method == kMethodBisection || p.method == kMethodSecant ||
+            p.method == kMethodMarch) {
             s.visibility *= surfaceAgreement(x + h.t * lhat, p);
             s.fetches += 1;
         }

@@ -44,6 +44,7 @@ vec3 fetchSky(vec3 dir) {
 #define HAS_BISECTION 0
 #define HAS_SECANT 1
 #define HAS_AVGDIST 0
+#define HAS_MARCH 0
 #define HAS_LAYERS 0
 #include "components/reflection_probe/distance/shaders/distance_lookup.glsl.h"
 #undef HAS_ENVMAP
@@ -51,6 +52,7 @@ vec3 fetchSky(vec3 dir) {
 #undef HAS_BISECTION
 #undef HAS_SECANT
 #undef HAS_AVGDIST
+#undef HAS_MARCH
 #undef HAS_LAYERS
 
 // The search parameters of a PEM distance geometry as the distance lookup takes them; the
