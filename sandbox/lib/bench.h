@@ -4,6 +4,7 @@
 // and strip_<scene>.png into the output folder.
 #include "components/reflection_probe/added_reflector.h"
 
+#include <limits>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -26,6 +27,11 @@ struct BenchOptions {
 struct BenchRow {
     std::string scene, method, params;
     double msMedian = 0, ratioToEnvmap = 0;
+    // The whole frame (scene and reflectors; FrameRenderer::frameMs) and its ratio to the
+    // envmap row's frame of the same scene: what the pass ratio means for a player. NaN for
+    // the ground truth (no frame).
+    double frameMsMedian = std::numeric_limits<double>::quiet_NaN();
+    double frameRatioToEnvmap = std::numeric_limits<double>::quiet_NaN();
     double psnr = 0, rmse = 0;         // vs environment-only ground truth
     double psnrFull = 0, rmseFull = 0; // vs the full (multi-bounce) ground truth
     double fetchesPerPixel = 0;

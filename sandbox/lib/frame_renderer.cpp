@@ -24,22 +24,31 @@ Image FrameRenderer::render(const CameraView& camera, int output) {
 }
 
 void FrameRenderer::draw(const CameraView& camera, int output) {
+    using Clock = std::chrono::steady_clock;
+    const auto ms = [](Clock::time_point a, Clock::time_point b) {
+        return std::chrono::duration<double, std::milli>(b - a).count();
+    };
     ecs::Registry& reg = scene_.registry();
+    glFinish(); // the previous frame's work stays out of this one's
+    const auto frameStart = Clock::now();
     renderer_.sync(reg);
     probes_.sync(reg);
     renderer_.render(camera, target_, [&](ecs::Entity e) { return reg.has<Reflector>(e); });
     if (!wallClock_) {
         probes_.render(reg, camera, renderer_, target_, output);
+        glFinish();
+        frameMs_ = ms(frameStart, Clock::now());
         return;
     }
     // The environment's work must not land inside the measured interval, nor the pass's
     // outside it.
     glFinish();
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     probes_.render(reg, camera, renderer_, target_, output);
     glFinish();
-    wallMs_ =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const auto t1 = Clock::now();
+    wallMs_ = ms(t0, t1);
+    frameMs_ = ms(frameStart, t1);
 }
 
 double FrameRenderer::passMs() const {
@@ -50,16 +59,17 @@ double FrameRenderer::passMs() const {
 // 2 % (after minFrames), or maxFrames. The first frames after a probe change are warm-up
 // (shader compile, texture upload; llvmpipe's first timer query can be garbage) and dropped.
 double timeReflectorPass(FrameRenderer& fr, const CameraView& cam, int minFrames, int maxFrames,
-                         int& frames) {
+                         int& frames, double* frameMs) {
     for (int i = 0; i < 2; ++i)
         fr.draw(cam);
-    std::vector<double> samples;
+    std::vector<double> samples, frameSamples;
     double previous = std::numeric_limits<double>::quiet_NaN();
     const int batch = std::max(2, minFrames / 2);
     while (int(samples.size()) < maxFrames) {
         for (int i = 0; i < batch && int(samples.size()) < maxFrames; ++i) {
             fr.draw(cam);
             samples.push_back(fr.passMs());
+            frameSamples.push_back(fr.frameMs());
         }
         const double m = gpu::medianMs(samples);
         if (int(samples.size()) >= minFrames && std::isfinite(m) && std::isfinite(previous) &&
@@ -69,6 +79,7 @@ double timeReflectorPass(FrameRenderer& fr, const CameraView& cam, int minFrames
     }
     frames = int(
         std::count_if(samples.begin(), samples.end(), [](double s) { return std::isfinite(s); }));
+    if (frameMs) *frameMs = gpu::medianMs(frameSamples);
     return gpu::medianMs(samples);
 }
 

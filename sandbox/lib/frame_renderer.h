@@ -26,6 +26,10 @@ public:
     // rasterisation (llvmpipe answers ~30 ns for most frames), the wall clock between two
     // glFinish calls around the pass. SPECULA_TIMER=gl|wall forces either.
     double passMs() const;
+    // Time of the last draw's whole frame (the environment, the sky and the reflectors, their
+    // per-frame uploads included): the wall clock between glFinish calls before and after it,
+    // on any renderer, so it holds what a player waits for, not one pass's GPU time.
+    double frameMs() const { return frameMs_; }
     const char* timerSource() const {
         return wallClock_ ? "wall clock around the pass (glFinish)" : "GL timer query";
     }
@@ -40,13 +44,15 @@ private:
     gpu::RenderTarget target_;
     bool wallClock_ = false;
     double wallMs_ = 0.0;
+    double frameMs_ = 0.0;
 };
 
 // Median reflector-pass time over enough frames: batches until the median moves by less than
-// 2 % (after minFrames), or maxFrames; `frames` gets the samples it rests on. The first
-// frames after a probe change are warm-up (shader compile, texture upload) and dropped.
+// 2 % (after minFrames), or maxFrames; `frames` gets the samples it rests on, `frameMs` (when
+// given) the median whole-frame time of the same frames. The first frames after a probe
+// change are warm-up (shader compile, texture upload) and dropped.
 double timeReflectorPass(FrameRenderer& fr, const CameraView& cam, int minFrames, int maxFrames,
-                         int& frames);
+                         int& frames, double* frameMs = nullptr);
 
 // GL_RENDERER names a CPU rasteriser (llvmpipe, softpipe, SwiftShader).
 bool softwareRasteriser();

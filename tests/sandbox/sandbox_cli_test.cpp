@@ -242,7 +242,15 @@ TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
         EXPECT_TRUE(std::isfinite(rmse) && rmse > 0.0) << method;
         EXPECT_GT(bytes, 0.0) << method;
         EXPECT_GT(num(row, "bake_s"), 0.0) << method;
+        // The whole frame holds the reflector pass (wall clock on llvmpipe; a GPU's pass
+        // time is its share of the frame's).
+        const double frameMs = num(row, "frame_ms_median");
+        const double frameRatio = num(row, "frame_ratio_to_envmap");
+        EXPECT_TRUE(std::isfinite(frameMs) && frameMs >= ms)
+            << method << " " << frameMs << " " << ms;
+        EXPECT_TRUE(std::isfinite(frameRatio) && frameRatio > 0) << scene << " " << method;
         if (method == "envmap") {
+            EXPECT_EQ(frameRatio, 1.0);
             EXPECT_EQ(ratio, 1.0);
             EXPECT_NEAR(fetches, 1.0, 1e-9); // one direction lookup, sky included
         }
