@@ -42,10 +42,10 @@ std::string meshKey(const ecs::Registry& reg, ecs::Entity e) {
             key << ' ' << checksumOf(p.mesh->positions) << checksumOf(p.mesh->normals)
                 << checksumOf(p.mesh->uvs) << checksumOf(p.mesh->indices);
         if (const MaterialData* m = p.material.get()) {
-            const float factors[] = {m->baseColorFactor.r,      m->baseColorFactor.g,
-                                     m->baseColorFactor.b,      m->baseColorFactor.a,
-                                     m->metallicFactor,         m->roughnessFactor,
-                                     m->doubleSided ? 1.f : 0.f};
+            const float factors[] = {
+                m->baseColorFactor.r,      m->baseColorFactor.g, m->baseColorFactor.b,
+                m->baseColorFactor.a,      m->metallic(),        m->roughness(),
+                m->doubleSided ? 1.f : 0.f};
             key << ' ' << bytesChecksum(factors, sizeof factors);
             if (m->baseColorTexture) key << checksumOf(m->baseColorTexture->pixels);
         }

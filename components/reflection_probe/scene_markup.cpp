@@ -122,8 +122,8 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const 
         for (ecs::Entity me : subtreeMeshes(e))
             excluded.insert(me);
     const auto qualifies = [&](const Primitive& p) {
-        return p.material && p.material->metallicFactor >= rule.minMetallic &&
-               p.material->roughnessFactor <= rule.maxRoughness;
+        return p.material && p.material->metallic() >= rule.minMetallic &&
+               p.material->roughness() <= rule.maxRoughness;
     };
     for (ecs::Entity e : scene.entities) {
         const Mesh* mesh = reg.find<Mesh>(e);
@@ -134,7 +134,7 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const 
         for (const Primitive& p : mesh->primitives) {
             const glm::vec4& c = p.material->baseColorFactor;
             luminance += 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
-            roughness += p.material->roughnessFactor;
+            roughness += p.material->roughness();
         }
         ReflectorMarkup refl;
         refl.node = nameOf(reg, e);

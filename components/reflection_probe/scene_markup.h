@@ -5,14 +5,15 @@
 //   "specula_reflector": false       no mesh of the node's subtree is a mirror by its material
 //   "specula_layer": "name"          groups the node's subtree with others of that name
 // A scene without our markup still has mirrors: a node whose mesh has, on every primitive,
-// a material with metallicFactor >= ReflectorRule::minMetallic and roughnessFactor <=
-// ReflectorRule::maxRoughness (0.9 and 0.1 by default; the factors decide, the
-// metallic-roughness texture is not read) is a reflector of its own, named after the node,
-// with f0 = the Rec. 709 luminance of the base colour factor (0.2126 R + 0.7152 G + 0.0722 B,
-// clamped to [0, 1]; of the primitives' mean when they differ). The markup takes precedence:
-// meshes claimed by a `true`/{f0} node stay in that node's reflector, and a `false` node's
-// subtree gets no material reflector (an explicit `true` inside or above it still counts).
-// Every other mesh is environment. Environment objects are the root nodes' subtrees (a
+// a material with metallic >= ReflectorRule::minMetallic and roughness <=
+// ReflectorRule::maxRoughness (0.9 and 0.1 by default; each factor times the mean of its
+// channel in the metallic-roughness texture where there is one, MaterialData::metallic()
+// and roughness()) is a reflector of its own, named after the node, with f0 = the Rec. 709
+// luminance of the base colour factor (0.2126 R + 0.7152 G + 0.0722 B, clamped to [0, 1];
+// of the primitives' mean when they differ) and that roughness (the primitives' mean). The markup
+// takes precedence: meshes claimed by a `true`/{f0} node stay in that node's reflector, and a
+// `false` node's subtree gets no material reflector (an explicit `true` inside or above it still
+// counts). Every other mesh is environment. Environment objects are the root nodes' subtrees (a
 // single mesh-less root wrapping the whole scene is looked through), so each object can be
 // its own probe layer.
 #include "engine/ecs/registry.h"

@@ -43,11 +43,17 @@ struct MeshData {
 struct MaterialData {
     glm::vec4 baseColorFactor{1.f};
     std::shared_ptr<const Image> baseColorTexture; // linear RGBA float, may be null
-    // pbrMetallicRoughness factors, glTF's defaults when absent. The metallic-roughness
-    // texture is not loaded: the factors alone describe the material (readSceneMarkup uses
-    // them to find mirrors).
+    // pbrMetallicRoughness factors, glTF's defaults when absent.
     float metallicFactor = 1.f;
     float roughnessFactor = 1.f;
+    // The metallicRoughnessTexture's means over its texels (metalness in B, roughness in G,
+    // linear), 1 without one: the texture multiplies the factors texel by texel, and a
+    // reflector takes one roughness, so the mean is what reaches it (readSceneMarkup). Not
+    // weighted by how the mesh's UVs use the texels: a summary, not a per-pixel roughness.
+    float metallicTextureMean = 1.f;
+    float roughnessTextureMean = 1.f;
+    float metallic() const { return metallicFactor * metallicTextureMean; }
+    float roughness() const { return roughnessFactor * roughnessTextureMean; }
     std::string name;
     bool doubleSided = false; // glTF: its back faces are surface too, not the inside of a solid
 };

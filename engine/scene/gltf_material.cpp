@@ -10,14 +10,14 @@ namespace specula::gltf_internal {
 
 // Images are decoded here, not by tinygltf: only the images a material uses, and only
 // after the bufferView range they come from has been checked.
-std::shared_ptr<const Image> MaterialCache::baseColorImage(int textureIndex,
-                                                           const std::string& from) {
+std::shared_ptr<const Image> MaterialCache::textureImage(int textureIndex, const std::string& from,
+                                                         bool srgb) {
     const tinygltf::Model& m = ctx_.model();
     const auto& tex = ctx_.at(m.textures, textureIndex, "textures", from);
     const std::string tf = idx("textures", std::size_t(textureIndex));
     const int source = tex.source;
     const auto& img = ctx_.at(m.images, source, "images", tf + ".source");
-    if (auto it = images_.find(source); it != images_.end()) return it->second;
+    if (auto it = images_.find({source, srgb}); it != images_.end()) return it->second;
     const std::string imf = idx("images", std::size_t(source));
     Bytes bytes;
     if (img.bufferView >= 0) {
@@ -27,10 +27,10 @@ std::shared_ptr<const Image> MaterialCache::baseColorImage(int textureIndex,
         if (bytes.size == 0) ctx_.fail(imf + ".uri", "cannot read image '" + img.uri + "'");
     }
     std::string why;
-    auto decoded = decodeTexture8(bytes.data, bytes.size, true, why);
+    auto decoded = decodeTexture8(bytes.data, bytes.size, srgb, why);
     if (!decoded) ctx_.fail(imf, "undecodable image: " + why);
     auto ptr = std::make_shared<const Image>(std::move(*decoded));
-    images_[source] = ptr;
+    images_[{source, srgb}] = ptr;
     return ptr;
 }
 
@@ -54,8 +54,6 @@ std::shared_ptr<const MaterialData> MaterialCache::material(int index, const std
             ctx_.fail(mf + ".pbrMetallicRoughness.baseColorFactor", "non-finite value");
         md->baseColorFactor[c] = float(f[std::size_t(c)]);
     }
-    // The factors only: metallicRoughnessTexture is deliberately not read (a mirror is told
-    // by its factors, and no renderer here shades with the texture).
     const auto readFactor = [&](double v, const char* field) {
         const std::string where = mf + ".pbrMetallicRoughness." + field;
         if (!std::isfinite(v)) ctx_.fail(where, "non-finite value");
@@ -75,7 +73,24 @@ std::shared_ptr<const MaterialData> MaterialCache::material(int index, const std
             ctx_.warn(mf, "baseColorTexture uses TEXCOORD_" + std::to_string(bct.texCoord) +
                               "; only TEXCOORD_0 is loaded");
         md->baseColorTexture =
-            baseColorImage(bct.index, mf + ".pbrMetallicRoughness.baseColorTexture");
+            textureImage(bct.index, mf + ".pbrMetallicRoughness.baseColorTexture", true);
+    }
+    // The metallic-roughness texture reaches the reflectors as its means (MaterialData); no
+    // renderer here shades with it texel by texel.
+    const auto& mrt = mat.pbrMetallicRoughness.metallicRoughnessTexture;
+    if (mrt.index >= 0) {
+        const std::string where = mf + ".pbrMetallicRoughness.metallicRoughnessTexture";
+        const std::shared_ptr<const Image> mr = textureImage(mrt.index, where, false);
+        // decodeTexture8 gives RGBA: roughness in G, metalness in B.
+        double metallic = 0.0, roughness = 0.0;
+        const std::size_t texels = mr->pixels.size() / 4;
+        if (texels == 0) ctx_.fail(where, "an empty image");
+        for (std::size_t i = 0; i < texels; ++i) {
+            roughness += double(mr->pixels[4 * i + 1]);
+            metallic += double(mr->pixels[4 * i + 2]);
+        }
+        md->roughnessTextureMean = float(std::clamp(roughness / double(texels), 0.0, 1.0));
+        md->metallicTextureMean = float(std::clamp(metallic / double(texels), 0.0, 1.0));
     }
     materials_[index] = md;
     return md;

@@ -7,9 +7,11 @@
 #include "engine/scene/transform_system.h"
 #include "support/scratch_dir_test.h"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -22,6 +24,8 @@ namespace {
 
 // A glTF scene of one-triangle meshes, one mesh per node, sharing one buffer.
 struct GltfScene {
+    json images = json::array();   // {"uri": file} beside scene.gltf
+    json textures = json::array(); // {"source": image}
     json materials = json::array();
     json meshes = json::array();
     json nodes = json::array();
@@ -78,8 +82,10 @@ struct GltfScene {
                {"min", {0, 0, 0}},
                {"max", {1, 1, 0}}}}},
         };
+        json full = j;
+        if (!images.empty()) full["images"] = images, full["textures"] = textures;
         const std::filesystem::path path = dir / "scene.gltf";
-        std::ofstream(path) << j.dump();
+        std::ofstream(path) << full.dump();
         return path;
     }
 };
@@ -261,6 +267,59 @@ TEST_F(MaterialReflector, OutOfRangeFactorsAreClampedAndSaid) {
     EXPECT_FLOAT_EQ(md.roughnessFactor, 0.f);
     EXPECT_EQ(scene_.warnings.size(), 2u);
     EXPECT_EQ(m.reflectors.size(), 1u);
+}
+
+// An 8-bit RGB PNG of w x h texels, row by row.
+void writePng(const std::filesystem::path& file, int w, int h,
+              const std::vector<std::uint8_t>& rgb) {
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, rgb.data()));
+    out->close();
+}
+
+// glTF's metallic-roughness texture multiplies the factors: roughness in G, metalness in B,
+// stored linearly (not sRGB). A rough factor over a smooth texture is a smooth metal.
+TEST_F(MaterialReflector, TheMetallicRoughnessTextureScalesTheFactorsByItsMeans) {
+    // Two texels: G codes 10 and 31 (linear mean 20.5/255 = 0.0804, under the rule's 0.1;
+    // decoded as sRGB the mean would be 0.0075), B 255 and 229 (metalness 0.949).
+    writePng(root_ / "mr.png", 2, 1, {0, 10, 255, 0, 31, 229});
+    GltfScene g;
+    g.images.push_back({{"uri", "mr.png"}});
+    g.textures.push_back({{"source", 0}});
+    g.node("textured", g.material("textured", json{{"metallicFactor", 1.0},
+                                                   {"roughnessFactor", 1.0},
+                                                   {"metallicRoughnessTexture", {{"index", 0}}}}));
+    g.node("half", g.material("half", json{{"metallicFactor", 1.0},
+                                           {"roughnessFactor", 0.5},
+                                           {"metallicRoughnessTexture", {{"index", 0}}}}));
+    g.node("untextured", g.metal("untextured", 1.0, 1.0));
+    const SceneMarkup m = read(g);
+    const MaterialData& md = *reg_.get<Mesh>(scene_.entities.at(0)).primitives.at(0).material;
+    EXPECT_NEAR(md.roughnessTextureMean, 20.5f / 255.f, 1e-6f);
+    EXPECT_NEAR(md.metallicTextureMean, 242.f / 255.f, 1e-6f);
+    EXPECT_FLOAT_EQ(md.roughnessFactor, 1.f); // the factor as stated
+    std::map<std::string, float> roughness;
+    for (const ReflectorMarkup& r : m.reflectors)
+        roughness[r.node] = r.roughness;
+    ASSERT_EQ(roughness.size(), 2u) << "the untextured rough metal is no reflector";
+    EXPECT_NEAR(roughness.at("textured"), 20.5f / 255.f, 1e-6f);
+    EXPECT_NEAR(roughness.at("half"), 0.5f * 20.5f / 255.f, 1e-6f);
+}
+
+TEST_F(MaterialReflector, AnUnreadableMetallicRoughnessTextureIsAnErrorNamingTheField) {
+    std::ofstream(root_ / "broken.png") << "not a png";
+    GltfScene g;
+    g.images.push_back({{"uri", "broken.png"}});
+    g.textures.push_back({{"source", 0}});
+    g.node("textured", g.material("textured", json{{"metallicRoughnessTexture", {{"index", 0}}}}));
+    try {
+        read(g);
+        FAIL() << "an undecodable texture was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("images[0]"), std::string::npos) << e.what();
+    }
 }
 
 // The bundled scenes: their materials are all rough dielectrics, so the reflectors are
