@@ -96,6 +96,27 @@ CookOptions checkedCookOptions(const BakeArgs& a) {
     return options;
 }
 
+int checkedShardRows(const BakeArgs& a) {
+    if (!a.shardRows) return 0;
+    if (a.flavour != "lightfield")
+        throw UsageError("--shard-rows",
+                         "applies to --flavour lightfield (a " + a.flavour +
+                             " probe is one shard: its bake is a GPU raster, not rays)");
+    if (*a.shardRows < 1 || *a.shardRows > a.cameras)
+        throw UsageError("--shard-rows", "expected 1 .. NUM = --cameras " +
+                                             std::to_string(a.cameras) + ", got " +
+                                             std::to_string(*a.shardRows));
+    return *a.shardRows;
+}
+
+CLI::Option* addShardRowsOption(CLI::App* sub, std::optional<int>& rows) {
+    return sub->add_option(
+        "--shard-rows", rows,
+        "light field: split each probe into part shards of N camera rows of one slab\n"
+        "(6 x ceil(NUM / N) parts a probe, then the probe's assembly); 1 .. NUM, default NUM\n"
+        "(one part a slab). The probe's bytes do not depend on it");
+}
+
 std::string optionsText(const BakeArgs& a) {
     std::ostringstream t;
     t << a.flavour << " face_res " << (a.faceRes ? *a.faceRes : 0) << " layers " << a.layers

@@ -26,6 +26,8 @@ struct BakeArgs {
     std::optional<std::string> cellCentre;
     int cameras = 8, imageRes = 64;
     std::string compress = "none";
+    // a sharded light-field bake (shards, bake --slurm): camera rows a part shard traces
+    std::optional<int> shardRows;
     // pem
     int samples = 8, supersample = 1;
     std::string imageSize = "640x480", geometry = "distance";
@@ -43,6 +45,13 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a);
 // that need no scene: a flag of another flavour, the light field's atlas size, the PEM
 // settings. Throws UsageError naming the flag.
 CookOptions checkedCookOptions(const BakeArgs& a);
+
+// The --shard-rows of a sharded bake: 0 when not given (NUM: one part a slab), else checked
+// against --cameras (1 .. NUM) and the flavour (light field only). Throws UsageError naming
+// --shard-rows.
+int checkedShardRows(const BakeArgs& a);
+// Adds --shard-rows to `sub` (its help names the part shards).
+CLI::Option* addShardRowsOption(CLI::App* sub, std::optional<int>& rows);
 
 // The flavour's settings as text: a change re-bakes a level's probes (the options checksum).
 std::string optionsText(const BakeArgs& a);

@@ -101,15 +101,8 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
 void cookWith(ProbeScene& scene, const CookOptions& o, const LightFieldCookSettings& s,
               CookResult& result, std::ostream* log) {
     const auto start = Clock::now();
-    LightFieldBakeOptions b;
-    b.cellCentre = s.cellCentre    ? *s.cellCentre
-                   : o.probeCentre ? *o.probeCentre
-                                   : markupProbeCentre(scene.registry, scene.markup, scene.loaded);
-    b.cellSize = s.cellSize ? *s.cellSize : o.cellSize.value_or(markupCellSize(scene.markup));
-    b.cameras = s.cameras;
-    b.res = s.imageRes;
-    b.compression = s.compression;
-    b.sky = scene.sky.empty() ? nullptr : &scene.sky;
+    LightFieldBakeOptions b = lightFieldBakeOptions(scene, o, s);
+    b.blocks = o.lightFieldBlocks;
     LightFieldAsset asset = bakeShared(o, "baking light field", b, result, log, [&] {
         return bakeLightFieldProbe(scene.registry, scene.markup, b);
     });
@@ -148,6 +141,20 @@ CookResult cookPrepared(ProbeScene& scene, const CookOptions& o, std::ostream* l
 }
 
 } // namespace
+
+LightFieldBakeOptions lightFieldBakeOptions(const ProbeScene& scene, const CookOptions& o,
+                                            const LightFieldCookSettings& s) {
+    LightFieldBakeOptions b;
+    b.cellCentre = s.cellCentre    ? *s.cellCentre
+                   : o.probeCentre ? *o.probeCentre
+                                   : markupProbeCentre(scene.registry, scene.markup, scene.loaded);
+    b.cellSize = s.cellSize ? *s.cellSize : o.cellSize.value_or(markupCellSize(scene.markup));
+    b.cameras = s.cameras;
+    b.res = s.imageRes;
+    b.compression = s.compression;
+    b.sky = scene.sky.empty() ? nullptr : &scene.sky;
+    return b;
+}
 
 const char* toString(GlossyBake g) {
     switch (g) {

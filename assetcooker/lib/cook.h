@@ -68,6 +68,9 @@ struct CookOptions {
     bool progress = true; // a progress bar on the terminal while tracing
     // Called with the fraction done instead of drawing a bar (a level draws one bar for all).
     std::function<void(double)> progressHook;
+    // Light field: the probe's blocks, already traced (a sharded bake's parts, shard_bake.h);
+    // null: traced here. The folder written is the same, byte for byte.
+    const std::vector<LightFieldRows>* lightFieldBlocks = nullptr;
 };
 
 struct CookResult {
@@ -92,5 +95,10 @@ struct CookResult {
 CookResult cookProbe(const CookOptions& options, std::ostream* log);
 // The same on a scene already open (options.scene and options.sky are not read).
 CookResult cookProbe(ProbeScene& scene, const CookOptions& options, std::ostream* log);
+
+// The light-field baker's options cookProbe gives it (the cell from the settings, else the
+// options', else the markup's; the sky); no progress, cancel, warnings or blocks.
+LightFieldBakeOptions lightFieldBakeOptions(const ProbeScene& scene, const CookOptions& options,
+                                            const LightFieldCookSettings& settings);
 
 } // namespace specula

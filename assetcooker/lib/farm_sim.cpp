@@ -21,8 +21,10 @@ using nlohmann::json;
 namespace {
 
 // The "seconds" of a specula-shard-time file; throws Error naming the file and the field.
-double recordedSeconds(const std::string& file) {
+// `by`: who recorded it ("bake-shard" when not said, "merge").
+double recordedSeconds(const std::string& file, std::string* by = nullptr) {
     const json doc = parseManifestJson(readManifestText(file), file);
+    if (by && doc.is_object()) *by = doc.value("by", "bake-shard");
     if (!doc.is_object() || doc.value("format", "") != "specula-shard-time")
         throw Error(file, "format", "expected a specula-shard-time file");
     if (!doc.contains("seconds") || !doc["seconds"].is_number() ||
@@ -45,11 +47,29 @@ FarmTimes readFarmTimes(const std::string& dir) {
     FarmTimes times;
     times.dir = dir;
     std::string missing;
-    std::size_t missingCount = 0;
+    std::size_t missingCount = 0, leafCount = 0;
+    for (std::size_t i = 0; i < list.shards.size(); ++i)
+        leafCount += shardDependencies(list, int(i)).empty() ? 1 : 0;
     std::error_code ec;
+    // A light-field probe shard is assembled by the merge job: its time is merge.time.json's
+    // when merge did it, else (bake-shard by hand) added to it.
+    double assembledOutside = 0;
     for (std::size_t i = 0; i < list.shards.size(); ++i) {
         const Shard& s = list.shards[i];
-        const std::string probe = list.level.probes[std::size_t(s.probe)].volume.name;
+        const std::string file = shardTimePath(dir, s);
+        if (shardDependencies(list, int(i)).empty()) continue;
+        std::string by;
+        if (fs::is_regular_file(file, ec)) {
+            const double t = recordedSeconds(file, &by);
+            if (by != "merge") assembledOutside += t;
+        }
+    }
+    for (std::size_t i = 0; i < list.shards.size(); ++i) {
+        const Shard& s = list.shards[i];
+        if (!shardDependencies(list, int(i)).empty()) continue; // not the array's
+        const std::string probe =
+            list.level.probes[std::size_t(s.probe)].volume.name +
+            (s.kind == kLightFieldRowsShard ? " part " + std::to_string(s.part) : "");
         const std::string file = shardTimePath(dir, s);
         if (!fs::is_regular_file(file, ec)) {
             missing += (missing.empty() ? "" : ", ") + std::to_string(i) + " (probe " + probe +
@@ -61,7 +81,7 @@ FarmTimes readFarmTimes(const std::string& dir) {
     }
     if (missingCount > 0)
         throw Error(shardListPath(dir), "shards",
-                    std::to_string(missingCount) + " of " + std::to_string(list.shards.size()) +
+                    std::to_string(missingCount) + " of " + std::to_string(leafCount) +
                         " shards have no recorded time: " + missing +
                         "; run specula-cook bake-shard for each (a shard baked before times were "
                         "recorded: delete its folder in the store and bake it again)");
@@ -69,6 +89,7 @@ FarmTimes readFarmTimes(const std::string& dir) {
         times.mergeSeconds = recordedSeconds(mergeTimePath(dir));
         times.mergeRecorded = true;
     }
+    times.mergeSeconds += assembledOutside;
     return times;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // A simulated render farm for a sharded level bake (shard_bake.h): what the bake's wall time
 // would be on N identical nodes, from the shard times bake-shard recorded in the store
-// (DIR/.shards/<hash>.time.json) and a scheduler's overhead per shard.
+// (DIR/.shards/<hash>.time.json) and a scheduler's overhead per shard. The shards simulated
+// are the leaves a job array runs (distance probes, light-field parts); the assembly of the
+// light-field probes is the merge job's (in merge.time.json when merge did it, else the probe
+// shards' recorded times are added to the merge's).
 //
 // The model: list scheduling, longest shard first (LPT), each shard onto the node that is
 // free first; every shard costs the scheduling overhead plus its recorded seconds on its node;
@@ -16,7 +19,7 @@ namespace specula {
 
 struct FarmShardTime {
     int index = 0;     // in the shard list
-    std::string probe; // the probe's name
+    std::string probe; // the probe's name (and "part P" for a light-field part)
     double seconds = 0;
 };
 
@@ -28,7 +31,7 @@ struct FarmTimes {
     double total() const;       // sum of the shards' seconds
 };
 
-// DIR's shard list and the recorded times. Throws Error naming the list and every shard with
+// DIR's shard list and the recorded times. Throws Error naming the list and every leaf shard with
 // no time (index, probe, expected file), or the time file and field that is malformed.
 FarmTimes readFarmTimes(const std::string& dir);
 

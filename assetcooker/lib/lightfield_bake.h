@@ -7,6 +7,7 @@
 // where a rasterised camera would have it behind it or clipped. Lines that miss the cell
 // start on the camera plane. The same tracer and shading as the ground truth, so the probe
 // can be exact where the light field's sampling allows.
+#include "assetcooker/lib/lightfield_rows.h"
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/scene_markup.h"
 #include "engine/ecs/registry.h"
@@ -34,10 +35,24 @@ struct LightFieldBakeOptions {
     std::function<bool()> cancelled;      // polled per camera; true aborts with Error
     // Where the cell centre's placement warnings go (checkProbePlacement); null: dropped.
     std::vector<std::string>* warnings = nullptr;
+    // Precomputed blocks (traceLightFieldRows, e.g. a sharded bake's parts): when set, nothing
+    // is traced and the probe is assembled from them. They must cover each slab's camera rows
+    // 0 .. cameras - 1 exactly once, with this bake's cameras and res; else Error naming the
+    // rows missing or overlapping. The result is byte-identical to the traced bake.
+    const std::vector<LightFieldRows>* blocks = nullptr;
 };
 
+// Traces the probe (or assembles options.blocks) and finalises each slab: the depth range
+// from the histogram's quantiles, the focal plane and disparity, BC1 if asked.
 LightFieldAsset bakeLightFieldProbe(ecs::Registry& registry, const SceneMarkup& markup,
                                     const LightFieldBakeOptions& options);
+
+// Traces one block: slab `slab` (0 .. 5), camera rows [j0, j1) (0 <= j0 < j1 <= cameras),
+// the same rays and bytes as bakeLightFieldProbe gives those rows. The placement check runs
+// as for the whole probe. options.blocks is ignored; options.progress gets the block's
+// fraction done.
+LightFieldRows traceLightFieldRows(ecs::Registry& registry, const SceneMarkup& markup,
+                                   const LightFieldBakeOptions& options, int slab, int j0, int j1);
 
 // Environment objects whose bounds reach into the cell or into a slab's region between the
 // cell and its extended camera plane (DESIGN §5), with how far (LightFieldIntrusion::depth:

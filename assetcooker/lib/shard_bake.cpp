@@ -5,8 +5,12 @@
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 
 namespace specula {
@@ -16,7 +20,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr int kShardListVersion = 1;
+constexpr int kShardListVersion = 2; // 2: light-field part shards, shard_rows
 
 json settingsJson(const DistanceCookSettings& s) {
     const GgxPrefilterOptions& p = s.prefilter;
@@ -51,10 +55,12 @@ json settingsJson(const PemCookSettings&) {
 
 // The shard's hash: what its bytes depend on (see shard_bake.h), hexadecimal.
 std::string shardHash(const Shard& s, const LevelProbeEntry& e, const json& settings,
-                      const ProbeScene& scene) {
+                      const ProbeScene& scene, int shardRows) {
     std::string text = "specula-shard " + std::to_string(kShardListVersion) + '\n' + s.kind + ' ' +
                        std::to_string(s.part) + '\n' + e.inputs.geometry + '\n' + e.inputs.options +
                        '\n' + e.inputs.sky + '\n' + settings.dump() + '\n';
+    // A part's bytes depend on the rows it covers; the probe's do not.
+    if (s.kind == kLightFieldRowsShard) text += "rows " + std::to_string(shardRows) + '\n';
     // The effect plan reads the probe's own markup members, whatever its volumes say.
     for (const ProbeMarkup& m : scene.markup.probes)
         if (m.node == e.volume.name) text += m.options.dump();
@@ -74,17 +80,33 @@ T member(const json& j, const char* name, const std::string& file, const std::st
     }
 }
 
-// A computed shard: its folder holds the probe's manifest (the last file its writer renames in).
-bool shardPresent(const std::string& dir, const Shard& s) {
-    std::error_code ec;
-    return fs::is_regular_file(fs::path(shardStore(dir)) / s.hash / "manifest.json", ec);
+// {"format": "specula-shard-time", "version": 1, "what": ..., "seconds": ..., "by": ...},
+// atomically; by: "bake-shard" or "merge" (a probe shard assembled by mergeShards, whose time
+// is in merge.time.json too).
+void writeTime(const std::string& file, const std::string& what, double seconds,
+               const std::string& by = "bake-shard") {
+    const json doc = {{"format", "specula-shard-time"},
+                      {"version", 1},
+                      {"what", what},
+                      {"seconds", seconds},
+                      {"by", by}};
+    writeFileAtomically(file, doc.dump(2) + "\n");
 }
 
-// {"format": "specula-shard-time", "version": 1, "what": ..., "seconds": ...}, atomically.
-void writeTime(const std::string& file, const std::string& what, double seconds) {
-    const json doc = {
-        {"format", "specula-shard-time"}, {"version", 1}, {"what", what}, {"seconds", seconds}};
-    writeFileAtomically(file, doc.dump(2) + "\n");
+int blocksPerSlab(int cameras, int rows) {
+    return (cameras + rows - 1) / rows;
+}
+
+// The part's slab and rows from its index and the list's rows a part.
+void setPartRows(Shard& s, int cameras, int rows) {
+    const int blocks = blocksPerSlab(cameras, rows);
+    s.slab = s.part / blocks;
+    s.j0 = (s.part % blocks) * rows;
+    s.j1 = std::min(cameras, s.j0 + rows);
+}
+
+int listCameras(const ShardList& list) {
+    return list.settings.value("cameras", 0);
 }
 
 // DIR/<folder> replaced atomically by a copy of the store's shard folder.
@@ -149,31 +171,49 @@ std::string shardListPath(const std::string& dir) {
     return (fs::path(shardStore(dir)) / "shards.json").string();
 }
 
-ShardList writeShardList(ProbeScene& scene, const LevelCookOptions& options, std::ostream* log) {
-    const LevelPlan plan = planLevel(scene, options, log);
+ShardList writeShardList(ProbeScene& scene, const LevelCookOptions& options, std::ostream* log,
+                         int shardRows) {
     ShardList list;
+    if (const auto* lf = std::get_if<LightFieldCookSettings>(&options.cook.flavour)) {
+        if (shardRows < 0 || shardRows > lf->cameras)
+            throw Error(shardListPath(options.cook.out), "shard_rows",
+                        "expected 1 .. " + std::to_string(lf->cameras) +
+                            " (the cameras a slab side), got " + std::to_string(shardRows));
+        list.shardRows = shardRows == 0 ? lf->cameras : shardRows;
+    }
+    const LevelPlan plan = planLevel(scene, options, log);
     list.scene = scene.path;
     list.sky = scene.skyPath;
     list.settings = cookSettingsToJson(options.cook.flavour);
     list.level = plan.index;
     json shards = json::array();
-    for (std::size_t i = 0; i < list.level.probes.size(); ++i) {
-        LevelProbeEntry& e = list.level.probes[i];
-        e.manifestChecksum.clear(); // known once merged
-        Shard s;
-        s.probe = int(i);
-        s.hash = shardHash(s, e, list.settings, scene);
+    auto add = [&](Shard s, const LevelProbeEntry& e) {
+        s.hash = shardHash(s, e, list.settings, scene, list.shardRows);
         shards.push_back(
             {{"kind", s.kind}, {"probe", s.probe}, {"part", s.part}, {"hash", s.hash}});
         list.shards.push_back(s);
+    };
+    const int cameras = listCameras(list);
+    for (std::size_t i = 0; i < list.level.probes.size(); ++i) {
+        LevelProbeEntry& e = list.level.probes[i];
+        e.manifestChecksum.clear(); // known once merged
+        if (list.shardRows > 0)
+            for (int part = 0; part < 6 * blocksPerSlab(cameras, list.shardRows); ++part) {
+                Shard s;
+                s.kind = kLightFieldRowsShard;
+                s.probe = int(i);
+                s.part = part;
+                setPartRows(s, cameras, list.shardRows);
+                add(s, e);
+            }
+        Shard s;
+        s.probe = int(i);
+        add(s, e);
     }
-    const json doc = {{"format", "specula-shards"},
-                      {"version", kShardListVersion},
-                      {"scene", list.scene},
-                      {"sky", list.sky},
-                      {"settings", list.settings},
-                      {"level", toJson(list.level)},
-                      {"shards", shards}};
+    const json doc = {{"format", "specula-shards"},  {"version", kShardListVersion},
+                      {"scene", list.scene},         {"sky", list.sky},
+                      {"settings", list.settings},   {"shard_rows", list.shardRows},
+                      {"level", toJson(list.level)}, {"shards", shards}};
     fs::create_directories(shardStore(options.cook.out));
     writeFileAtomically(shardListPath(options.cook.out), doc.dump(2) + "\n");
     return list;
@@ -204,7 +244,13 @@ ShardList readShardList(const std::string& dir) {
     list.scene = member<std::string>(doc, "scene", file, "");
     list.sky = member<std::string>(doc, "sky", file, "");
     list.settings = doc.at("settings");
-    cookSettingsFromJson(list.settings, file); // validated here, before any work
+    const CookFlavour flavour = cookSettingsFromJson(list.settings, file); // validated here
+    list.shardRows = member<int>(doc, "shard_rows", file, "");
+    const int cameras = listCameras(list);
+    const bool lightField = std::holds_alternative<LightFieldCookSettings>(flavour);
+    if (lightField ? list.shardRows < 1 || list.shardRows > cameras : list.shardRows != 0)
+        throw Error(file, "shard_rows",
+                    lightField ? "expected 1 .. " + std::to_string(cameras) : "expected 0");
     list.level = levelIndexFromJson(doc.at("level"), file);
     const json& shards = doc.at("shards");
     if (!shards.is_array()) throw Error(file, "shards", "expected an array");
@@ -215,15 +261,161 @@ ShardList readShardList(const std::string& dir) {
         s.probe = member<int>(shards[i], "probe", file, field);
         s.part = member<int>(shards[i], "part", file, field);
         s.hash = member<std::string>(shards[i], "hash", file, field);
-        if (s.kind != "probe" || s.part != 0 || s.probe < 0 ||
-            std::size_t(s.probe) >= list.level.probes.size())
-            throw Error(file, field + "probe", "expected a probe shard of the level's probes");
+        if (s.probe < 0 || std::size_t(s.probe) >= list.level.probes.size())
+            throw Error(file, field + "probe", "expected an index of the level's probes");
+        if (s.kind == kLightFieldRowsShard && lightField) {
+            if (s.part < 0 || s.part >= 6 * blocksPerSlab(cameras, list.shardRows))
+                throw Error(file, field + "part",
+                            "expected 0 .. " +
+                                std::to_string(6 * blocksPerSlab(cameras, list.shardRows) - 1));
+            setPartRows(s, cameras, list.shardRows);
+        } else if (s.kind != kProbeShard || s.part != 0) {
+            throw Error(file, field + "kind",
+                        std::string("expected a probe shard (part 0)") +
+                            (lightField ? " or a lightfield-rows part" : ""));
+        }
         if (s.hash.empty() || s.hash.find_first_of("/\\.") != std::string::npos)
             throw Error(file, field + "hash", "expected a content hash");
         list.shards.push_back(s);
     }
     return list;
 }
+
+std::string shardOutputPath(const std::string& dir, const Shard& s) {
+    const fs::path store(shardStore(dir));
+    return (s.kind == kLightFieldRowsShard ? store / (s.hash + ".rows") : store / s.hash).string();
+}
+
+bool shardPresent(const std::string& dir, const Shard& s) {
+    std::error_code ec;
+    // A probe folder's manifest is the last file its writer renames in; a part's file is
+    // renamed in whole.
+    if (s.kind == kLightFieldRowsShard) return fs::is_regular_file(shardOutputPath(dir, s), ec);
+    return fs::is_regular_file(fs::path(shardOutputPath(dir, s)) / "manifest.json", ec);
+}
+
+std::vector<int> shardDependencies(const ShardList& list, int index) {
+    std::vector<int> deps;
+    const Shard& s = list.shards[std::size_t(index)];
+    if (s.kind != kProbeShard) return deps;
+    for (std::size_t i = 0; i < list.shards.size(); ++i)
+        if (list.shards[i].kind == kLightFieldRowsShard && list.shards[i].probe == s.probe)
+            deps.push_back(int(i));
+    return deps;
+}
+
+std::vector<int> leafShardsToBake(const std::string& dir, const ShardList& list) {
+    std::vector<bool> needed(list.shards.size(), false);
+    for (std::size_t i = 0; i < list.shards.size(); ++i) {
+        if (list.shards[i].kind != kProbeShard || shardPresent(dir, list.shards[i])) continue;
+        const std::vector<int> deps = shardDependencies(list, int(i));
+        if (deps.empty()) needed[i] = true;
+        for (const int d : deps)
+            if (!shardPresent(dir, list.shards[std::size_t(d)])) needed[std::size_t(d)] = true;
+    }
+    std::vector<int> out;
+    for (std::size_t i = 0; i < needed.size(); ++i)
+        if (needed[i]) out.push_back(int(i));
+    return out;
+}
+
+std::string shardLabel(const ShardList& list, int index) {
+    const Shard& s = list.shards[std::size_t(index)];
+    std::string label = "probe " + list.level.probes[std::size_t(s.probe)].volume.name;
+    if (s.kind == kLightFieldRowsShard)
+        label += ", part " + std::to_string(s.part) + ": slab " + std::to_string(s.slab) +
+                 " rows " + std::to_string(s.j0) + " .. " + std::to_string(s.j1 - 1);
+    return label;
+}
+
+std::string describeShards(const ShardList& list) {
+    std::string text = std::to_string(list.shards.size()) + " shards";
+    if (list.shardRows > 0) {
+        std::size_t parts = 0;
+        for (const Shard& s : list.shards)
+            parts += s.kind == kLightFieldRowsShard ? 1 : 0;
+        text += " (" + std::to_string(parts) + " light-field part shards of " +
+                std::to_string(list.shardRows) + " camera rows + " +
+                std::to_string(list.shards.size() - parts) + " probe shards)";
+    }
+    return text;
+}
+
+namespace {
+
+LevelCookOptions shardLevelOptions(const std::string& dir, const ShardList& list) {
+    LevelCookOptions level;
+    level.cook.scene = list.scene;
+    level.cook.sky = list.sky;
+    level.cook.flavour = cookSettingsFromJson(list.settings, shardListPath(dir));
+    level.cook.progress = false;
+    return level;
+}
+
+// Error naming the parts of probe shard `index` the store lacks.
+void checkPartsPresent(const std::string& dir, const ShardList& list, int index) {
+    const std::vector<int> deps = shardDependencies(list, index);
+    std::string missing;
+    std::size_t missingCount = 0;
+    for (const int d : deps)
+        if (!shardPresent(dir, list.shards[std::size_t(d)])) {
+            missing += (missing.empty() ? "" : ", ") + std::to_string(d) + " (" +
+                       shardLabel(list, d) + ", " + list.shards[std::size_t(d)].hash + ")";
+            ++missingCount;
+        }
+    if (missingCount > 0)
+        throw Error(shardListPath(dir), "shards",
+                    "shard " + std::to_string(index) + " (" + shardLabel(list, index) +
+                        ") assembles " + std::to_string(deps.size()) + " part shards; " +
+                        std::to_string(missingCount) + " not baked: " + missing +
+                        "; run specula-cook bake-shard for each");
+}
+
+// The parts of probe shard `index`, read from the store; Error naming the missing ones or
+// the malformed part file.
+std::vector<LightFieldRows> readParts(const std::string& dir, const ShardList& list, int index) {
+    checkPartsPresent(dir, list, index);
+    const std::vector<int> deps = shardDependencies(list, index);
+    const int cameras = listCameras(list);
+    const int res = list.settings.value("image_res", 0);
+    std::vector<LightFieldRows> blocks;
+    for (const int d : deps) {
+        const Shard& p = list.shards[std::size_t(d)];
+        blocks.push_back(
+            readLightFieldRows(shardOutputPath(dir, p), p.slab, p.j0, p.j1, cameras, res));
+    }
+    return blocks;
+}
+
+// Computes shard `index` (not in the store) on `scene`: a part's block, or a probe's folder
+// (a light-field probe's assembled from its parts).
+void computeShard(const std::string& dir, const ShardList& list, int index, ProbeScene& scene,
+                  std::ostream* log) {
+    const Shard& s = list.shards[std::size_t(index)];
+    const LevelCookOptions level = shardLevelOptions(dir, list);
+    CookOptions o = levelProbeCookOptions(scene, level, list.level.probes[std::size_t(s.probe)],
+                                          shardOutputPath(dir, s));
+    if (s.kind == kLightFieldRowsShard) {
+        const LightFieldBakeOptions b =
+            lightFieldBakeOptions(scene, o, std::get<LightFieldCookSettings>(o.flavour));
+        writeLightFieldRows(
+            traceLightFieldRows(scene.registry, scene.markup, b, s.slab, s.j0, s.j1),
+            shardOutputPath(dir, s));
+        return;
+    }
+    std::vector<LightFieldRows> blocks;
+    if (!shardDependencies(list, index).empty()) {
+        blocks = readParts(dir, list, index);
+        o.lightFieldBlocks = &blocks;
+    }
+    cookProbe(scene, o, log);
+}
+
+std::string timeWhat(const ShardList& list, int index) {
+    return "shard " + std::to_string(index) + " (" + shardLabel(list, index) + ")";
+}
+
+} // namespace
 
 ShardOutcome bakeShard(const std::string& dir, int index, std::ostream* log) {
     const ShardList list = readShardList(dir);
@@ -234,46 +426,63 @@ ShardOutcome bakeShard(const std::string& dir, int index, std::ostream* log) {
                         std::to_string(int(list.shards.size()) - 1) + ")");
     const Shard& s = list.shards[std::size_t(index)];
     ShardOutcome outcome;
-    outcome.folder = (fs::path(shardStore(dir)) / s.hash).string();
+    outcome.folder = shardOutputPath(dir, s);
     if (shardPresent(dir, s)) {
         outcome.skipped = true;
         return outcome;
     }
     const auto start = std::chrono::steady_clock::now();
+    // A probe shard's parts are checked before the scene is loaded: a missing one fails fast.
+    if (s.kind == kProbeShard && !shardDependencies(list, index).empty())
+        checkPartsPresent(dir, list, index);
     ProbeScene scene(list.scene, list.sky);
-    LevelCookOptions level;
-    level.cook.scene = list.scene;
-    level.cook.sky = list.sky;
-    level.cook.flavour = cookSettingsFromJson(list.settings, shardListPath(dir));
-    const CookOptions o = levelProbeCookOptions(
-        scene, level, list.level.probes[std::size_t(s.probe)], outcome.folder);
-    cookProbe(scene, o, log);
+    computeShard(dir, list, index, scene, log);
     outcome.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writeTime(shardTimePath(dir, s),
-              "shard " + std::to_string(index) + " (probe " +
-                  list.level.probes[std::size_t(s.probe)].volume.name + ")",
-              outcome.seconds);
+    writeTime(shardTimePath(dir, s), timeWhat(list, index), outcome.seconds);
     return outcome;
 }
 
 LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
     const auto start = std::chrono::steady_clock::now();
     ShardList list = readShardList(dir);
-    std::string missing;
-    std::size_t missingCount = 0;
-    for (std::size_t i = 0; i < list.shards.size(); ++i)
-        if (!shardPresent(dir, list.shards[i])) {
-            const Shard& s = list.shards[i];
-            missing += (missing.empty() ? "" : ", ") + std::to_string(i) + " (probe " +
-                       list.level.probes[std::size_t(s.probe)].volume.name + ", " + s.hash + ")";
-            ++missingCount;
-        }
-    if (missingCount > 0)
+    const std::vector<int> leaves = leafShardsToBake(dir, list);
+    if (!leaves.empty()) {
+        std::string missing;
+        for (const int i : leaves)
+            missing += (missing.empty() ? "" : ", ") + std::to_string(i) + " (" +
+                       shardLabel(list, i) + ", " + list.shards[std::size_t(i)].hash + ")";
         throw Error(shardListPath(dir), "shards",
-                    std::to_string(missingCount) + " of " + std::to_string(list.shards.size()) +
+                    std::to_string(leaves.size()) + " of " + std::to_string(list.shards.size()) +
                         " shards not baked: " + missing +
                         "; run specula-cook bake-shard for each (nothing was merged)");
+    }
+    // The probe shards still missing have all their parts: assemble them here, in parallel
+    // over the probes, before anything is installed (a malformed part stops the merge).
+    std::vector<int> assemble;
+    for (std::size_t i = 0; i < list.shards.size(); ++i)
+        if (!shardPresent(dir, list.shards[i])) assemble.push_back(int(i));
+    if (!assemble.empty()) {
+        if (log) *log << "assembling " << assemble.size() << " probe shards from their parts\n";
+        ProbeScene scene(list.scene, list.sky);
+        std::vector<std::exception_ptr> errors(assemble.size());
+        tbb::parallel_for(std::size_t(0), assemble.size(), [&](std::size_t k) {
+            const auto probeStart = std::chrono::steady_clock::now();
+            try {
+                computeShard(dir, list, assemble[k], scene, nullptr);
+                writeTime(
+                    shardTimePath(dir, list.shards[std::size_t(assemble[k])]),
+                    timeWhat(list, assemble[k]),
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - probeStart)
+                        .count(),
+                    "merge");
+            } catch (...) {
+                errors[k] = std::current_exception();
+            }
+        });
+        for (const std::exception_ptr& e : errors)
+            if (e) std::rethrow_exception(e);
+    }
     LevelPlan plan; // the previous index, for the probes no longer in the level
     std::error_code ec;
     if (fs::is_regular_file(fs::path(dir) / "level.json", ec)) try {
@@ -282,9 +491,10 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
         }
     LevelCookResult result;
     for (const Shard& s : list.shards) {
+        if (s.kind != kProbeShard) continue;
         LevelProbeEntry& e = list.level.probes[std::size_t(s.probe)];
         const fs::path to = fs::path(dir) / e.folder;
-        installShard(fs::path(shardStore(dir)) / s.hash, to, list.scene);
+        installShard(shardOutputPath(dir, s), to, list.scene);
         e.manifestChecksum = fileChecksum((to / "manifest.json").string());
         result.probes.push_back({e.volume.name, e.folder, true, "merged", 0.0});
     }

@@ -18,33 +18,43 @@ namespace {
 
 constexpr const char* kShardsDescription =
     "Writes the shard list of a level's bake: what `specula-cook bake SCENE --out DIR` would\n"
-    "bake, split into independent, deterministic shards (one per probe), each keyed by a\n"
-    "content hash of its inputs (the geometry in the probe's reach, the sky, the options and\n"
-    "the probe's volumes). The list goes to DIR/.shards/shards.json; prints \"N shards\".\n"
-    "Then `specula-cook bake-shard DIR --shard I` for I = 0 .. N-1 (any order, on any\n"
-    "machine that sees DIR and SCENE) and `specula-cook merge DIR`: the merged level is\n"
-    "byte-identical to a plain bake with the same options. Takes every option of `bake`.\n";
+    "bake, split into independent, deterministic shards, each keyed by a content hash of its\n"
+    "inputs (the geometry in the probe's reach, the sky, the options and the probe's\n"
+    "volumes). A distance level: one shard per probe. A light-field level: each probe's rays\n"
+    "are split into 6 x ceil(NUM / --shard-rows) part shards (one slab's block of camera\n"
+    "rows each), then the probe's own shard, which assembles its parts. The list goes to\n"
+    "DIR/.shards/shards.json; prints \"N shards\". Then `specula-cook bake-shard DIR --shard\n"
+    "I` for I = 0 .. N-1 (any order, on any machine that sees DIR and SCENE; a probe shard\n"
+    "after its parts, or leave it to merge) and `specula-cook merge DIR`: the merged level\n"
+    "is byte-identical to a plain bake with the same options, whatever --shard-rows. Takes\n"
+    "every option of `bake`.\n";
 
 constexpr const char* kBakeShardDescription =
     "Computes shard I of DIR's shard list (written by `specula-cook shards`) into the shard\n"
-    "store DIR/.shards/<hash>/: written beside it, then renamed, so a killed run leaves no\n"
-    "half shard; a shard already in the store (same hash) is skipped.\n";
+    "store (a probe's folder DIR/.shards/<hash>/, a light-field part's DIR/.shards/<hash>.rows):\n"
+    "written beside it, then renamed, so a killed run leaves no half shard; a shard already in\n"
+    "the store (same hash) is skipped. A light-field probe shard traces nothing: it assembles\n"
+    "its part shards, which must be in the store (the missing ones are named).\n";
 
 constexpr const char* kMergeDescription =
-    "Assembles the level from DIR's shard store: every probe's folder DIR/<probe>/ (each\n"
-    "replaced atomically) and the level index DIR/level.json, the same bytes a plain\n"
-    "`specula-cook bake` writes. Refuses, naming them and writing nothing, when shards are\n"
-    "missing. The store is kept (a re-run of bake-shard skips what it holds).\n";
+    "Assembles the level from DIR's shard store: first the light-field probe shards not yet\n"
+    "baked, from their part shards (in parallel over the probes); then every probe's folder\n"
+    "DIR/<probe>/ (each replaced atomically) and the level index DIR/level.json, the same\n"
+    "bytes a plain `specula-cook bake` writes. Refuses, naming them and writing nothing, when\n"
+    "shards are missing or a part is malformed. The store is kept (a re-run of bake-shard\n"
+    "skips what it holds).\n";
 
 constexpr const char* kFarmDescription =
     "Predicts a sharded bake's wall time on a farm of N identical nodes, from the seconds\n"
-    "bake-shard recorded for each shard (DIR/.shards/<hash>.time.json) and merge's own\n"
-    "(DIR/.shards/merge.time.json; 0 when not recorded). The model: the shards longest first,\n"
-    "each onto the node free first (list scheduling), each paying the scheduling overhead S on\n"
-    "its node; then the merge job (S + the merge's seconds). The ideal is the shards' total /\n"
-    "N. Prints nodes, predicted wall, ideal and their ratio for each DIR; writes them as CSV\n"
-    "(--csv) and as a plot (--plot). Every shard needs a recorded time: the missing ones are\n"
-    "named.\n";
+    "bake-shard recorded for each leaf shard (DIR/.shards/<hash>.time.json: a distance probe,\n"
+    "a light-field part; the shards a job array runs) and merge's own\n"
+    "(DIR/.shards/merge.time.json, with the light-field probes it assembled; 0 when not\n"
+    "recorded; a probe assembled by bake-shard adds its time to the merge's). The model: the\n"
+    "leaf shards longest first, each onto the node free first (list scheduling), each paying\n"
+    "the scheduling overhead S on its node; then the merge job (S + the merge's seconds). The\n"
+    "ideal is the leaves' total / N. Prints nodes, predicted wall, ideal and their ratio for\n"
+    "each DIR; writes them as CSV (--csv) and as a plot (--plot). Every leaf shard needs a\n"
+    "recorded time: the missing ones are named.\n";
 
 constexpr const char* kFooter =
     "exit status: 0 ok, 1 the input could not be processed, 2 bad command line\n";
@@ -56,8 +66,9 @@ int runShards(const BakeArgs& a, std::ostream& out) {
         throw UsageError("SCENE", a.scene + " has one probe: `specula-cook bake` bakes it (shards "
                                             "split a level: several probes, --probe twice or "
                                             "--probes FILE)");
-    const ShardList list = writeShardList(scene, levelCookOptions(a, options, scene), &out);
-    out << list.shards.size() << " shards -> " << shardListPath(a.out) << "\n";
+    const int rows = checkedShardRows(a);
+    const ShardList list = writeShardList(scene, levelCookOptions(a, options, scene), &out, rows);
+    out << describeShards(list) << " -> " << shardListPath(a.out) << "\n";
     return cli::kExitOk;
 }
 
@@ -120,6 +131,7 @@ void addShardCommands(cli::ToolCli& tool) {
         "shards", "write a level bake's shard list (for bake-shard and merge)", kShardsDescription,
         kFooter, [a](std::ostream& out) { return runShards(*a, out); });
     addBakeOptions(tool, shards, *a);
+    addShardRowsOption(shards, a->shardRows);
 
     struct ShardArgs {
         std::string dir;

@@ -79,12 +79,15 @@ public:
 
     SlurmBakeResult run() {
         const auto start = Clock::now();
-        std::vector<int> todo;
+        // The leaves only: a light-field probe shard is assembled by the merge job.
+        std::vector<int> todo = leafShardsToBake(dir_.string(), list_);
+        leaves_ = todo;
+        std::size_t leafCount = 0;
         for (std::size_t i = 0; i < list_.shards.size(); ++i)
-            if (!present(int(i))) todo.push_back(int(i));
-        if (log_ && todo.size() < list_.shards.size())
-            *log_ << list_.shards.size() - todo.size() << " of " << list_.shards.size()
-                  << " shards already in the store: not resubmitted\n";
+            leafCount += shardDependencies(list_, int(i)).empty() ? 1 : 0;
+        if (log_ && todo.size() < leafCount)
+            *log_ << leafCount - todo.size() << " of " << leafCount
+                  << " leaf shards already in the store (or not needed): not resubmitted\n";
         std::unique_ptr<ProgressBar> bar;
         if (o_.progress) bar = std::make_unique<ProgressBar>("shards on slurm");
         for (int attempt = 0;; ++attempt) {
@@ -114,10 +117,7 @@ public:
 
 private:
     bool present(int index) const {
-        std::error_code ec;
-        return fs::is_regular_file(fs::path(shardStore(dir_.string())) /
-                                       list_.shards[std::size_t(index)].hash / "manifest.json",
-                                   ec);
+        return shardPresent(dir_.string(), list_.shards[std::size_t(index)]);
     }
 
     fs::path shardLog(int index, const std::string& job) const {
@@ -213,11 +213,11 @@ private:
                     *log_ << "shard " << i << ": " << state << "\n";
                 last[i] = state;
             }
-            if (bar) {
+            if (bar && !leaves_.empty()) {
                 std::size_t done = 0;
-                for (std::size_t i = 0; i < list_.shards.size(); ++i)
-                    done += present(int(i)) ? 1 : 0;
-                bar->update(double(done) / double(list_.shards.size()));
+                for (const int i : leaves_)
+                    done += present(i) ? 1 : 0;
+                bar->update(double(done) / double(leaves_.size()));
             }
             if (!running) return last;
             runner_.pause(o_.pollSeconds);
@@ -243,8 +243,10 @@ private:
             if (attempt < o_.retries) continue;
             SlurmShardFailure f;
             f.index = i;
-            f.probe =
-                list_.level.probes[std::size_t(list_.shards[std::size_t(i)].probe)].volume.name;
+            const Shard& shard = list_.shards[std::size_t(i)];
+            f.probe = list_.level.probes[std::size_t(shard.probe)].volume.name;
+            f.part = shard.kind == kLightFieldRowsShard ? shard.part : -1;
+            f.label = shardLabel(list_, i);
             f.state = state == kGone         ? "UNKNOWN (left the queue without its shard)"
                       : state == "COMPLETED" ? "COMPLETED without its shard in the store"
                                              : state;
@@ -285,6 +287,7 @@ private:
     std::ostream* log_;
     fs::path slurmDir_;
     ShardList list_;
+    std::vector<int> leaves_; // the leaves submitted first (the progress bar's)
     SlurmBakeResult result_;
 };
 
@@ -301,8 +304,8 @@ std::string slurmFailureReport(const SlurmBakeResult& r) {
         s << r.failures.size() << " shard" << (r.failures.size() == 1 ? "" : "s")
           << " failed after " << r.arrays.size() << " submissions; nothing was merged:\n";
         for (const SlurmShardFailure& f : r.failures) {
-            s << "  shard " << f.index << " (probe " << f.probe << "): " << f.state << ", log "
-              << f.log << "\n";
+            s << "  shard " << f.index << " (" << (f.label.empty() ? "probe " + f.probe : f.label)
+              << "): " << f.state << ", log " << f.log << "\n";
             std::istringstream lines(f.logTail);
             for (std::string line; std::getline(lines, line);)
                 s << "    | " << line << "\n";

@@ -1,7 +1,9 @@
 #pragma once
 // A level's shards (shard_bake.h) baked on a Slurm cluster: a job array of `specula-cook
-// bake-shard DIR --shard I` over the shards the store lacks, then a job running `specula-cook
-// merge DIR` once the array succeeded (--dependency=afterok). The files, beside the store:
+// bake-shard DIR --shard I` over the leaf shards the store lacks (a distance probe, a
+// light-field part: the shards with no dependencies), then a job running `specula-cook merge
+// DIR` once the array succeeded (--dependency=afterok), which assembles the light-field
+// probes from their parts and installs the level. The files, beside the store:
 //
 //   DIR/.shards/slurm/shard.sh, merge.sh     the batch scripts
 //   DIR/.shards/slurm/logs/shard-I-jobJ.log  task I of array job J (stdout and stderr)
@@ -10,7 +12,7 @@
 // The scheduler is asked through a ProcessRunner (sbatch --parsable, squeue, scancel), so
 // tests can stand in for it. DIR, SCENE and the specula-cook executable must be visible at
 // the same paths on every node (a shared folder); the jobs run in the submitter's working
-// directory. A shard is done when its folder is in the store (renamed in whole by bake-shard),
+// directory. A shard is done when its output is in the store (renamed in whole by bake-shard),
 // so a killed task never leaves half a shard for the merge to take.
 #include "assetcooker/lib/process_runner.h"
 
@@ -33,6 +35,8 @@ struct SlurmOptions {
 struct SlurmShardFailure {
     int index = 0;
     std::string probe;   // the probe's name
+    int part = -1;       // a light-field part shard's part (-1: a whole probe)
+    std::string label;   // "probe NAME[, part P: slab S rows J0 .. J1]" (shardLabel)
     std::string state;   // the task's last state (FAILED, CANCELLED, TIMEOUT, ...)
     std::string log;     // its log file
     std::string logTail; // the log's last lines
@@ -47,18 +51,18 @@ struct SlurmBakeResult {
     bool merged = false;
     double shardWallSeconds = 0;    // first submission to the last shard's end
     double shardComputeSeconds = 0; // the shards' own bake times (from their logs)
-    int shardsBaked = 0;            // shards computed by the jobs
+    int shardsBaked = 0;            // leaf shards computed by the jobs
     double seconds = 0;
 };
 
-// Submits the shards DIR's store lacks (readShardList: DIR/.shards/shards.json must exist)
-// and the merge, follows them to the end and resubmits failed shards up to options.retries
-// times. Never throws for a failed job: failures and the merge's state are in the result.
-// Throws Error naming the command when the scheduler refuses a submission.
+// Submits the leaf shards DIR's store lacks (leafShardsToBake) (readShardList:
+// DIR/.shards/shards.json must exist) and the merge, follows them to the end and resubmits failed
+// shards up to options.retries times. Never throws for a failed job: failures and the merge's state
+// are in the result. Throws Error naming the command when the scheduler refuses a submission.
 SlurmBakeResult bakeOnSlurm(const std::string& dir, const SlurmOptions& options,
                             ProcessRunner& runner, std::ostream* log);
 
-// The report of a bake that did not merge: each failed shard by index, probe, state, log
+// The report of a bake that did not merge: each failed shard by index, probe (and part), state, log
 // and the log's last lines; or the merge job's state and log.
 std::string slurmFailureReport(const SlurmBakeResult& r);
 

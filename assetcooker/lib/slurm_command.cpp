@@ -12,7 +12,8 @@ void addSlurmOptions(CLI::App* bake, SlurmArgs& s) {
     CLI::Option* slurm = bake->add_flag(
         "--slurm", s.slurm,
         "bake a level's probes as a Slurm job array (sbatch, squeue and scancel in PATH): one\n"
-        "task a shard (see `specula-cook shards`), then a merge job once all succeeded. DIR,\n"
+        "task a leaf shard (see `specula-cook shards`: a distance probe, a light-field part),\n"
+        "then a merge job once all succeeded (it assembles the light-field probes). DIR,\n"
         "SCENE, the sky and this specula-cook must be visible at the same paths on every node\n"
         "(a shared folder); jobs run in the current directory. Re-running resumes: shards\n"
         "already in DIR/.shards are not resubmitted. Batch scripts and logs go to\n"
@@ -36,16 +37,20 @@ void addSlurmOptions(CLI::App* bake, SlurmArgs& s) {
         ->needs(slurm)
         ->check(CLI::Range(0, 100))
         ->capture_default_str();
+    addShardRowsOption(bake, s.shardRows)->needs(slurm);
 }
 
-int runSlurmBake(const BakeArgs& a, const SlurmArgs& s, std::ostream& out) {
+int runSlurmBake(const BakeArgs& args, const SlurmArgs& s, std::ostream& out) {
+    BakeArgs a = args;
+    a.shardRows = s.shardRows;
+    const int rows = checkedShardRows(a);
     const CookOptions options = checkedCookOptions(a);
     ProbeScene scene(options.scene, options.sky);
     if (!isLevel(a, scene))
         throw UsageError("--slurm", a.scene + " has one probe: --slurm bakes a level (several "
                                               "probes, --probe twice or --probes FILE)");
-    const ShardList list = writeShardList(scene, levelCookOptions(a, options, scene), &out);
-    out << list.shards.size() << " shards -> " << shardListPath(a.out) << "\n";
+    const ShardList list = writeShardList(scene, levelCookOptions(a, options, scene), &out, rows);
+    out << describeShards(list) << " -> " << shardListPath(a.out) << "\n";
     SlurmOptions o;
     o.partition = s.partition;
     o.time = s.time;

@@ -2,6 +2,7 @@
 // `specula-cook bake --slurm`: a level's bake as a Slurm job array (slurm_bake.h).
 #include "assetcooker/lib/bake_args.h"
 
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -11,9 +12,10 @@ struct SlurmArgs {
     bool slurm = false;
     std::string partition, time;
     int maxParallel = 0, retries = 2;
+    std::optional<int> shardRows; // --shard-rows (light field)
 };
 
-// Adds --slurm, --partition, --max-parallel, --time and --retries to `bake`.
+// Adds --slurm, --partition, --max-parallel, --time, --retries and --shard-rows to `bake`.
 void addSlurmOptions(CLI::App* bake, SlurmArgs& s);
 
 // Writes the shard list and bakes it on the cluster; prints progress and the outcome. Exit

@@ -127,5 +127,38 @@ TEST_F(FarmCli, FarmReadsTheRecordedShardTimesAndNamesTheMissingOnes) {
     EXPECT_EQ(rows, 3);
 }
 
+TEST_F(FarmCli, ALightFieldLevelsArrayIsItsPartsAndTheAssemblyIsTheMerges) {
+    const std::string dir = (root_ / "level").string();
+    ASSERT_EQ(cook({"shards", test::kTwoRooms, "--out", dir, "--flavour", "lightfield", "--cameras",
+                    "2", "--image-res", "8", "--shard-rows", "1"}),
+              0);
+    const ShardList list = readShardList(dir);
+    ASSERT_EQ(list.shards.size(), 26u); // 2 x (6 slabs x 2 rows + the probe)
+    for (int i = 0; i < 26; ++i) {
+        if (shardDependencies(list, i).empty()) {
+            ASSERT_EQ(cook({"bake-shard", dir, "--shard", std::to_string(i)}), 0);
+        }
+    }
+    // Probe room_a_probe assembled by hand, room_b_probe by the merge.
+    ASSERT_EQ(cook({"bake-shard", dir, "--shard", "12"}), 0);
+    ASSERT_EQ(cook({"merge", dir}), 0);
+    const FarmTimes times = readFarmTimes(dir);
+    ASSERT_EQ(times.shards.size(), 24u); // the parts: the array's shards
+    for (const FarmShardTime& s : times.shards) {
+        EXPECT_NE(s.probe.find(" part "), std::string::npos) << s.probe;
+        EXPECT_GT(s.seconds, 0.0) << s.probe;
+    }
+    EXPECT_TRUE(times.mergeRecorded);
+    // The merge job's time: merge's own (with room_b_probe's assembly) and room_a_probe's.
+    std::ifstream in(shardTimePath(dir, list.shards[12]));
+    const double byHand = nlohmann::json::parse(in).at("seconds").get<double>();
+    std::ifstream merge(mergeTimePath(dir));
+    const double merged = nlohmann::json::parse(merge).at("seconds").get<double>();
+    EXPECT_NEAR(times.mergeSeconds, merged + byHand, 1e-9);
+    std::string out;
+    ASSERT_EQ(cook({"farm", dir, "--nodes", "1,64"}, &out), 0) << out;
+    EXPECT_NE(out.find("level: 24 shards"), std::string::npos) << out;
+}
+
 } // namespace
 } // namespace specula

@@ -1,8 +1,10 @@
 // A level's bake as shards (shard_bake.h) on the bundled two-room scene (two probes): the
-// shards baked in reverse order and merged give the same files, byte for byte, as the
-// in-process bake, for the distance and the light-field flavour; a shard already in the
-// store is skipped; a merge with a shard missing names it and writes nothing; an index out of
-// range names the count. Also prints the shards' overhead (not asserted).
+// shards baked in reverse (or shuffled) order and merged give the same files, byte for byte,
+// as the in-process bake, for the distance and the light-field flavour, whatever the
+// light field's rows a part shard; a shard already in the store is skipped; a merge with a
+// shard (or a part) missing names it and writes nothing, and so does one with a part file
+// truncated or with a wrong header; an index out of range names the count; --shard-rows out
+// of range is refused naming it. Also prints the shards' overhead (not asserted).
 #include "assetcooker/lib/cli.h"
 #include "assetcooker/lib/shard_bake.h"
 #include "engine/core/error.h"
@@ -11,11 +13,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iostream>
 #include <iterator>
 #include <map>
+#include <random>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -51,29 +56,44 @@ protected:
         return d;
     }
 
-    static CookFlavour lightField() {
+    static CookFlavour lightField(int cameras = 2) {
         LightFieldCookSettings l;
-        l.cameras = 2;
+        l.cameras = cameras;
         l.imageRes = 8;
         return l;
     }
 
-    // The in-process bake into `plain`, the shards in reverse order and a merge into
-    // `sharded`: every file the same. Prints the timings.
-    void expectShardedEqualsPlain(const CookFlavour& flavour, const std::string& label) {
+    enum class Order { Reverse, Shuffled };
+
+    // The in-process bake into `plain`, the leaf shards in `order` (then the probe shards
+    // too when `probeShards`; else the merge assembles them) and a merge into `sharded`:
+    // every file the same. `expectedShards`: the list's length. Prints the timings.
+    void expectShardedEqualsPlain(const CookFlavour& flavour, const std::string& label,
+                                  std::size_t expectedShards, int shardRows = 0,
+                                  Order order = Order::Reverse, bool probeShards = false) {
         ProbeScene scene(kTwoRooms, "");
         auto start = std::chrono::steady_clock::now();
         cookLevel(scene, options("plain", flavour), nullptr);
         const double plainSeconds = secondsSince(start);
 
         start = std::chrono::steady_clock::now();
-        const ShardList list = writeShardList(scene, options("sharded", flavour), nullptr);
+        const ShardList list =
+            writeShardList(scene, options("sharded", flavour), nullptr, shardRows);
         const double listSeconds = secondsSince(start);
-        ASSERT_EQ(list.shards.size(), 2u);
-        EXPECT_NE(list.shards[0].hash, list.shards[1].hash);
+        ASSERT_EQ(list.shards.size(), expectedShards);
+        std::set<std::string> hashes;
+        for (const Shard& s : list.shards)
+            hashes.insert(s.hash);
+        EXPECT_EQ(hashes.size(), list.shards.size()) << "two shards share a hash";
         const std::string dir = (root_ / "sharded").string();
+        std::vector<int> leaves, probes;
+        for (int i = 0; i < int(list.shards.size()); ++i)
+            (shardDependencies(list, i).empty() ? leaves : probes).push_back(i);
+        std::reverse(leaves.begin(), leaves.end());
+        if (order == Order::Shuffled) std::shuffle(leaves.begin(), leaves.end(), std::mt19937(11));
+        if (probeShards) leaves.insert(leaves.end(), probes.begin(), probes.end());
         double shardSeconds = 0, shardWall = 0;
-        for (int i = int(list.shards.size()) - 1; i >= 0; --i) {
+        for (const int i : leaves) {
             start = std::chrono::steady_clock::now();
             const ShardOutcome r = bakeShard(dir, i, nullptr);
             shardWall += secondsSince(start);
@@ -99,11 +119,78 @@ protected:
 };
 
 TEST_F(ShardBake, DistanceShardsInReverseOrderMergeToThePlainBakeByteForByte) {
-    expectShardedEqualsPlain(distance(), "distance, 16^2 faces");
+    expectShardedEqualsPlain(distance(), "distance, 16^2 faces", 2);
 }
 
 TEST_F(ShardBake, LightFieldShardsInReverseOrderMergeToThePlainBakeByteForByte) {
-    expectShardedEqualsPlain(lightField(), "light field, 2^2 cameras x 8^2 px");
+    // One part a slab (6) and the probe's shard, for each of the two probes; the probe
+    // shards baked by bake-shard after their parts.
+    expectShardedEqualsPlain(lightField(), "light field, 2^2 cameras x 8^2 px", 2 * (6 + 1), 0,
+                             Order::Reverse, true);
+}
+
+TEST_F(ShardBake, LightFieldPartsOfOneRowInReverseMergeToThePlainBakeByteForByte) {
+    expectShardedEqualsPlain(lightField(3), "light field, 3^2 cameras, 1 row a part",
+                             2 * (6 * 3 + 1), 1, Order::Reverse);
+}
+
+TEST_F(ShardBake, LightFieldPartsOfTwoRowsShuffledMergeToThePlainBakeByteForByte) {
+    // 3 rows in blocks of 2: rows 0 .. 1 and 2 .. 2 of each slab.
+    expectShardedEqualsPlain(lightField(3), "light field, 3^2 cameras, 2 rows a part",
+                             2 * (6 * 2 + 1), 2, Order::Shuffled);
+}
+
+TEST_F(ShardBake, APartMissingIsNamedByMergeAndByItsProbeShardAndNothingIsWritten) {
+    ProbeScene scene(kTwoRooms, "");
+    const ShardList list = writeShardList(scene, options("level", lightField()), nullptr);
+    const std::string dir = (root_ / "level").string();
+    for (int i = 0; i < int(list.shards.size()); ++i)
+        if (i != 3 && shardDependencies(list, i).empty()) bakeShard(dir, i, nullptr);
+    try {
+        mergeShards(dir, nullptr);
+        FAIL() << "merged with a part missing";
+    } catch (const Error& e) {
+        EXPECT_NE(
+            std::string(e.what()).find(
+                "1 of 14 shards not baked: 3 (probe room_a_probe, part 3: slab 3 rows 0 .. 1"),
+            std::string::npos)
+            << e.what();
+    }
+    try {
+        bakeShard(dir, 6, nullptr);
+        FAIL() << "assembled a probe with a part missing";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("6 part shards; 1 not baked: 3 (probe room_a_probe"),
+                  std::string::npos)
+            << e.what();
+    }
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename(), ".shards") << e.path() << " written by a failed merge";
+}
+
+TEST_F(ShardBake, ATruncatedOrMislabelledPartIsRefusedNamingItsFileAndNothingIsMerged) {
+    ProbeScene scene(kTwoRooms, "");
+    const ShardList list = writeShardList(scene, options("level", lightField()), nullptr, 1);
+    const std::string dir = (root_ / "level").string();
+    for (int i = 0; i < int(list.shards.size()); ++i)
+        if (shardDependencies(list, i).empty()) bakeShard(dir, i, nullptr);
+    const std::string part = shardOutputPath(dir, list.shards[5]);
+    std::ifstream in(part, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    in.close();
+    std::string wrongHeader = bytes;
+    wrongHeader.replace(0, 8, "NOTROWS!");
+    for (const std::string& broken : {bytes.substr(0, bytes.size() / 2), wrongHeader}) {
+        std::ofstream(part, std::ios::binary | std::ios::trunc) << broken;
+        try {
+            mergeShards(dir, nullptr);
+            FAIL() << "merged a broken part";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.file(), part) << e.what();
+        }
+        for (const auto& e : fs::directory_iterator(dir))
+            EXPECT_EQ(e.path().filename(), ".shards") << e.path() << " written by a failed merge";
+    }
 }
 
 TEST_F(ShardBake, ABakedShardIsSkippedTheSecondTime) {
@@ -166,6 +253,48 @@ TEST_F(ShardBake, AnIndexOutOfRangeOrAMissingListIsAnErrorNamingIt) {
               1);
     EXPECT_NE(err2.str().find("index 2 is out of range: the list has 2 shards"), std::string::npos)
         << err2.str();
+}
+
+TEST_F(ShardBake, ShardRowsOutOfRangeAreRefusedAndTheCountIsSixBlocksASlabPlusTheProbe) {
+    const std::string dir = (root_ / "level").string();
+    auto shards = [&](std::vector<std::string> extra, std::string& text) {
+        std::vector<std::string> args = {"shards",      kTwoRooms,    "--out",     dir,
+                                         "--flavour",   "lightfield", "--cameras", "3",
+                                         "--image-res", "8"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        std::ostringstream out, err;
+        const int rc = cook::runCli(args, out, err);
+        text = out.str() + err.str();
+        return rc;
+    };
+    std::string text;
+    for (const char* bad : {"0", "4"}) {
+        EXPECT_EQ(shards({"--shard-rows", bad}, text), 2) << text;
+        EXPECT_NE(
+            text.find("--shard-rows: expected 1 .. NUM = --cameras 3, got " + std::string(bad)),
+            std::string::npos)
+            << text;
+    }
+    EXPECT_FALSE(fs::exists(shardListPath(dir)));
+    // Two probes, each 6 x ceil(3 / rows) parts and its own shard.
+    for (const auto& [rows, count] : std::vector<std::pair<std::string, int>>{
+             {"1", 2 * (6 * 3 + 1)}, {"2", 2 * (6 * 2 + 1)}, {"3", 2 * (6 + 1)}}) {
+        ASSERT_EQ(shards({"--shard-rows", rows}, text), 0) << text;
+        EXPECT_NE(text.find(std::to_string(count) + " shards ("), std::string::npos) << text;
+        EXPECT_EQ(readShardList(dir).shards.size(), std::size_t(count));
+    }
+    ASSERT_EQ(shards({}, text), 0) << text;
+    EXPECT_NE(text.find("14 shards (12 light-field part shards of 3 camera rows + 2 probe"),
+              std::string::npos)
+        << text;
+    // A distance level has no part shards.
+    std::ostringstream out, err;
+    EXPECT_EQ(cook::runCli(
+                  std::vector<std::string>{"shards", kTwoRooms, "--out", dir, "--shard-rows", "1"},
+                  out, err),
+              2);
+    EXPECT_NE(err.str().find("--shard-rows: applies to --flavour lightfield"), std::string::npos)
+        << err.str();
 }
 
 } // namespace

@@ -2,7 +2,9 @@
 // sbatch, squeue and scancel, "runs" a task by putting a manifest in the store, and fails the
 // shards it is told to. Checked: only the shards the store lacks are submitted; a failed shard
 // is resubmitted up to --retries times, alone; one that fails every time is reported by index,
-// probe, state and log, and the merge job is cancelled each time, never left to run.
+// probe, state and log, and the merge job is cancelled each time, never left to run. A
+// light-field level: only its part shards (the leaves) go in the array, the probe shards are
+// the merge's; a failing part is reported by index, probe and part.
 #include "assetcooker/lib/shard_bake.h"
 #include "assetcooker/lib/slurm_bake.h"
 #include "support/scratch_dir_test.h"
@@ -73,8 +75,12 @@ private:
                 << "loading\nerror: the disk is full\n";
             return "FAILED";
         }
-        const fs::path folder =
-            fs::path(shardStore(dir_)) / readShardList(dir_).shards[std::size_t(shard)].hash;
+        const Shard s = readShardList(dir_).shards[std::size_t(shard)];
+        if (s.kind == kLightFieldRowsShard) {
+            std::ofstream(shardOutputPath(dir_, s)) << "rows";
+            return "COMPLETED";
+        }
+        const fs::path folder = shardOutputPath(dir_, s);
         fs::create_directories(folder);
         std::ofstream(folder / "manifest.json") << "{}";
         return "COMPLETED";
@@ -91,15 +97,18 @@ protected:
     void SetUp() override {
         ScratchDirTest::SetUp();
         dir_ = (root_ / "level").string();
+        DistanceCookSettings d;
+        d.faceRes = 16;
+        writeList(d, 0);
+    }
+    void writeList(const CookFlavour& flavour, int shardRows) {
         LevelCookOptions o;
         o.cook.scene = test::kTwoRooms;
         o.cook.out = dir_;
-        DistanceCookSettings d;
-        d.faceRes = 16;
-        o.cook.flavour = d;
+        o.cook.flavour = flavour;
         o.cook.progress = false;
         ProbeScene scene(test::kTwoRooms, "");
-        writeShardList(scene, o, nullptr);
+        writeShardList(scene, o, nullptr, shardRows);
     }
     SlurmOptions options(int retries) const {
         SlurmOptions o;
@@ -170,6 +179,36 @@ TEST_F(SlurmFake, AResumeSubmitsOnlyTheShardsTheStoreLacks) {
     EXPECT_TRUE(done.merged);
     EXPECT_TRUE(done.arrays.empty());
     EXPECT_EQ(done.jobs.size(), 1u);
+}
+
+TEST_F(SlurmFake, ALightFieldLevelSubmitsItsPartsAndReportsAFailingPart) {
+    LightFieldCookSettings l;
+    l.cameras = 4;
+    l.imageRes = 8;
+    writeList(l, 2); // a probe: 6 slabs x 2 blocks of rows, then its own shard
+    const ShardList list = readShardList(dir_);
+    ASSERT_EQ(list.shards.size(), 26u);
+    std::vector<int> parts;
+    for (int i = 0; i < 26; ++i)
+        if (i != 12 && i != 25) parts.push_back(i);
+    FakeSlurm slurm(dir_);
+    slurm.failuresLeft[15] = 100; // room_b_probe's part 2: slab 1 rows 0 .. 1
+    const SlurmBakeResult r = bakeOnSlurm(dir_, options(1), slurm, nullptr);
+    EXPECT_FALSE(r.merged);
+    EXPECT_EQ(r.arrays, (std::vector<std::vector<int>>{parts, {15}}));
+    ASSERT_EQ(r.failures.size(), 1u);
+    EXPECT_EQ(r.failures[0].index, 15);
+    EXPECT_EQ(r.failures[0].probe, "room_b_probe");
+    EXPECT_EQ(r.failures[0].part, 2);
+    const std::string report = slurmFailureReport(r);
+    EXPECT_NE(report.find("shard 15 (probe room_b_probe, part 2: slab 1 rows 0 .. 1): FAILED"),
+              std::string::npos)
+        << report;
+    // The resume submits the one part left; the merge job assembles the probes.
+    FakeSlurm again(dir_);
+    const SlurmBakeResult resumed = bakeOnSlurm(dir_, options(0), again, nullptr);
+    EXPECT_TRUE(resumed.merged);
+    EXPECT_EQ(resumed.arrays, (std::vector<std::vector<int>>{{15}}));
 }
 
 } // namespace
