@@ -167,11 +167,15 @@ inline constexpr DistanceMethod kAllMethods[] = {DistanceMethod::Envmap,    Dist
                                                  DistanceMethod::AvgDist,   DistanceMethod::Layered,
                                                  DistanceMethod::March};
 
-// Most distance fetches one layer's search may spend: N for bisection and secant, the march
-// steps and refinements for the march.
+// Most distance fetches one layer's search may spend: the march steps and refinements for
+// the march; for bisection and secant the first-crossing march (kBracketSteps) plus N, since
+// on the composite they march to the first crossing before searching (issue 15; before it,
+// N alone); the march's points are never spent on object layers, where N stays the bound.
 inline int searchFetchCap(DistanceMethod m, const DistanceLookupConfig& c) {
-    return m == DistanceMethod::March ? glsl::kMarchSteps + glsl::kMarchRefineSteps
-                                      : c.params.maxSteps;
+    if (m == DistanceMethod::March) return glsl::kMarchSteps + glsl::kMarchRefineSteps;
+    if (m == DistanceMethod::Bisection || m == DistanceMethod::Secant)
+        return glsl::kBracketSteps + c.params.maxSteps;
+    return c.params.maxSteps;
 }
 
 inline DistanceLookupConfig configFor(const DistanceProbeAsset& a, DistanceMethod m,

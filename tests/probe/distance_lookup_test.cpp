@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 using namespace specula;
@@ -97,10 +99,54 @@ TEST_F(DistanceLookup, FetchCountIsNWhenConditionOneNeverFires) {
         const DistanceLookupConfig cfg = makeLookupConfig(probe, *asset_);
         const int n = int(std::ceil(std::log2(2.0 * asset_->range / de)));
         EXPECT_EQ(cfg.params.maxSteps, n);
-        // Tolerance 0: condition 1 cannot fire, so every ray spends exactly N distance
-        // fetches plus one radiance fetch (every ray hits the closed box).
-        const Errors e = measure(*asset_, DistanceMethod::Bisection, de, 2000, 0.f);
-        EXPECT_DOUBLE_EQ(e.meanFetches, double(n + 1)) << "d_e = " << de;
+        // Tolerance 0: condition 1 cannot fire. Before issue 15 every ray spent exactly N
+        // distance fetches plus the radiance; bisection on the composite now first marches
+        // glsl::kBracketSteps projection-uniform points to the first crossing, then bisects
+        // only that stretch down to d_e. In the closed box every ray has one crossing (the
+        // wall), so a ray spends k march fetches (k: the first point beyond the wall), the
+        // steps that bring the stretch between points k - 1 and k down to the tolerance
+        // (capped at N, which tolerance 0 always reaches), and the radiance; at most
+        // kBracketSteps + N + 1. The march points and the wall are
+        // computed here from the closed form; the nearest texel's stored distance can put a
+        // point next to the wall on the other side, so 98 % of the rays must agree exactly.
+        DistanceLookupConfig c0 = cfg;
+        c0.params.tolerance = 0.f;
+        CpuDistanceProbe twin(*asset_, c0);
+        AnalyticBox box;
+        std::mt19937 rng(1234);
+        std::uniform_real_distribution<float> u(-1.f, 1.f);
+        const int rays = 2000;
+        const int k = glsl::kBracketSteps;
+        int exact = 0;
+        for (int i = 0; i < rays; ++i) {
+            const glm::vec3 x(0.7f * u(rng), 0.7f * u(rng), 0.7f * u(rng));
+            glm::vec3 d;
+            do
+                d = glm::vec3(u(rng), u(rng), u(rng));
+            while (glm::dot(d, d) > 1.f || glm::dot(d, d) < 1e-4f);
+            d = glm::normalize(d);
+            int f = 0;
+            twin.radiance(x, d, f);
+            ASSERT_LE(f, k + n + 1) << "d_e = " << de;
+            ASSERT_GE(f, 2) << "d_e = " << de;
+            const float width = 2.f * asset_->range;
+            const float s = std::max(glm::length(x), 0.25f * width);
+            const float aMax = width / (width + s);
+            auto tAt = [&](int j) {
+                const float a = aMax * float(j) / float(k);
+                return s * a / (1.f - a);
+            };
+            const float wall = box.exit(x, d);
+            int j = 1;
+            while (j < k && tAt(j) <= wall)
+                ++j;
+            const int want = j + n + 1;
+            if (f == want) ++exact;
+        }
+        std::printf("d_e = %.3f: %d of %d rays spend exactly the march to the wall plus N "
+                    "bisection steps\n",
+                    de, exact, rays);
+        EXPECT_GE(exact, rays * 98 / 100) << "d_e = " << de;
     }
 }
 
@@ -157,9 +203,12 @@ TEST_F(DistanceLookup, MissesFallToTheSky) {
         const glm::vec3 c =
             twin.radiance(glm::vec3(0.1f, 0.2f, 0.f), glm::vec3(0.f, 0.f, 1.f), fetches);
         EXPECT_NEAR(c.r, 0.25f, 1e-6f) << toString(m);
-        // Every distance fetch sees d_inf, so no method can stop early: N distance fetches
-        // (one for the average distance) and one sky fetch.
+        // Every distance fetch sees d_inf, so no method can stop early: one fetch for the
+        // average distance; for bisection and secant the first-crossing march sees no
+        // crossing (kBracketSteps fetches, issue 15) and the search over the whole span
+        // follows (N; before issue 15 N alone); then one sky fetch.
         const int n = makeLookupConfig(probe, a).params.maxSteps;
-        EXPECT_EQ(fetches, m == DistanceMethod::AvgDist ? 2 : n + 1) << toString(m);
+        EXPECT_EQ(fetches, m == DistanceMethod::AvgDist ? 2 : glsl::kBracketSteps + n + 1)
+            << toString(m);
     }
 }

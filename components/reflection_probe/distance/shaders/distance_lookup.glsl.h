@@ -75,6 +75,100 @@ RaySpan makeSpan(float t0, float t1, int steps) {
     return s;
 }
 
+// Steps that bring a span of the given width down to d_e: the counterpart of N for a
+// narrower span. In logarithms, and clamped as a float, so d_e -> 0 (FLT_MIN) cannot
+// overflow the int.
+int spanSteps(float width, DistanceParams p) {
+    float n = ceil(log2(max(width, 1e-6f)) - log2(p.tolerance));
+    return int(clamp(n, 1.0f, float(p.maxSteps)));
+}
+
+// March points uniform in the ray's projection onto the cube map (see lookupMarch): point k
+// of `count` lies at t0 + s a / (1 - a) with a = aMax k / count, the last one at t1.
+struct MarchFrame {
+    float s;
+    float aMax;
+};
+
+MarchFrame marchFrame(vec3 x, vec3 lhat, RaySpan span) {
+    float width = max(span.t1 - span.t0, 0.0f);
+    MarchFrame m;
+    m.s = max(max(length(x + span.t0 * lhat), 0.25f * width), 1e-6f);
+    m.aMax = width / (width + m.s); // < 1: the last point lands on t1
+    return m;
+}
+
+float marchT(RaySpan span, MarchFrame m, int k, int count) {
+    float a = m.aMax * float(k) / float(count);
+    return span.t0 + m.s * a / (1.0f - a);
+}
+
+// What a march to the first crossing found: the last point before the surface (ta, with
+// f = fa > 0; haveA when its stored distance is finite, so fa is a usable secant end) and
+// the first beyond it (tb, fb < 0; crossed), or a point within d_e of its stored distance
+// (converged), or neither (the whole span stayed in front of the stored surface). l and d:
+// the last point fetched and its stored distance.
+struct Bracket {
+    float ta;
+    float fa;
+    bool haveA;
+    float tb;
+    float fb;
+    bool crossed;
+    bool converged;
+    vec3 l;
+    float d;
+    int fetches;
+};
+
+// The span itself as a bracket nothing has been fetched for.
+Bracket openBracket(vec3 x, vec3 lhat, RaySpan span, DistanceParams p) {
+    Bracket b;
+    b.ta = span.t0;
+    b.fa = 0.0f;
+    b.haveA = false;
+    b.tb = span.t1;
+    b.fb = 0.0f;
+    b.crossed = false;
+    b.converged = false;
+    b.l = x + span.t0 * lhat;
+    b.d = p.dInf;
+    b.fetches = 0;
+    return b;
+}
+
+// Marches `count` projection-uniform points along the span until f = stored distance - |l|
+// turns from > 0 to < 0: the first crossing, the surface the ray meets first. Where the ray
+// passes behind a nearer object as seen from the centre, f turns negative, positive again
+// and negative once more at the farther surface; a search that starts mid-span can settle
+// on that later crossing.
+Bracket bracketFirstCrossing(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span,
+                             int count) {
+    MarchFrame m = marchFrame(x, lhat, span);
+    Bracket b = openBracket(x, lhat, span, p);
+    for (int k = 1; k <= count; ++k) {
+        float t = marchT(span, m, k, count);
+        b.l = x + t * lhat;
+        b.d = fetchDistance(layer, b.l);
+        b.fetches += 1;
+        float f = b.d - length(b.l);
+        if (abs(f) < p.tolerance) {
+            b.converged = true;
+            break;
+        }
+        if (f < 0.0f) {
+            b.tb = t;
+            b.fb = f;
+            b.crossed = true;
+            break;
+        }
+        b.ta = t;
+        b.fa = f;
+        b.haveA = !isInfiniteDistance(b.d, p.dInf);
+    }
+    return b;
+}
+
 #if HAS_BISECTION || HAS_AVGDIST
 // Bisection: start mid-span (t = D for the whole range) and move by half the remaining
 // width towards the surface until the stored distance agrees with |l| within d_e
@@ -103,18 +197,19 @@ LayerHit lookupBisection(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan
 // bracketed by a point before it (f > 0) and one beyond it (f < 0) the next t comes from
 // the secant through both, with the Illinois weighting so one end cannot stall. A secant
 // step that leaves the bracket, or an end that saw only d_inf, falls back to the midpoint.
-LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
-    float ta = span.t0;
-    float fa = 0.0f;
-    bool haveA = false; // ta: last t before the surface with a finite stored distance
-    float tb = span.t1;
-    float fb = 0.0f;
-    bool haveB = false; // tb: last t beyond the surface
+// Starts from bracket b (its ends and fetches so far) and spends at most `steps` more.
+LayerHit secantIn(int layer, vec3 x, vec3 lhat, DistanceParams p, Bracket b, int steps) {
+    float ta = b.ta;
+    float fa = b.fa;
+    bool haveA = b.haveA; // ta: last t before the surface with a finite stored distance
+    float tb = b.tb;
+    float fb = b.fb;
+    bool haveB = b.crossed; // tb: last t beyond the surface
     int lastSide = 0;
     vec3 l = x + 0.5f * (ta + tb) * lhat;
     float d = p.dInf;
-    int fetches = 0;
-    for (int n = 1; n <= span.steps; ++n) {
+    int fetches = b.fetches;
+    for (int n = 1; n <= steps; ++n) {
         float t = 0.5f * (ta + tb);
         if (haveA && haveB) {
             float candidate = ta + fa * (tb - ta) / (fa - fb);
@@ -141,6 +236,10 @@ LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan sp
     }
     return finishRectified(layer, x, lhat, l, d, fetches, p.dInf);
 }
+
+LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
+    return secantIn(layer, x, lhat, p, openBracket(x, lhat, span, p), span.steps);
+}
 #endif
 
 #if HAS_MARCH
@@ -164,37 +263,16 @@ LayerHit lookupSecant(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan sp
 // span (0, 2D) that is s = max(|x|, D/2), the first step at about D/60 and the last one
 // about 0.29 D long (uniform steps would be 2D/30 = 0.067 D).
 LayerHit lookupMarch(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
-    float width = max(span.t1 - span.t0, 0.0f);
-    float s = max(max(length(x + span.t0 * lhat), 0.25f * width), 1e-6f);
-    float aMax = width / (width + s); // < 1: the last step lands on t1
-    float ta = span.t0;
-    float fa = 0.0f;
-    bool haveA = false; // ta: last march point before the surface with a finite distance
-    float tb = span.t1;
-    float fb = 0.0f;
-    bool crossed = false;
-    vec3 l = x + span.t0 * lhat;
-    float d = p.dInf;
-    int fetches = 0;
-    for (int k = 1; k <= kMarchSteps; ++k) {
-        float a = aMax * float(k) / float(kMarchSteps);
-        float t = span.t0 + s * a / (1.0f - a);
-        l = x + t * lhat;
-        d = fetchDistance(layer, l);
-        fetches += 1;
-        float f = d - length(l);
-        if (abs(f) < p.tolerance) return finishRectified(layer, x, lhat, l, d, fetches, p.dInf);
-        if (f < 0.0f) {
-            tb = t;
-            fb = f;
-            crossed = true;
-            break;
-        }
-        ta = t;
-        fa = f;
-        haveA = !isInfiniteDistance(d, p.dInf);
-    }
-    if (!crossed) return finishRectified(layer, x, lhat, l, d, fetches, p.dInf);
+    Bracket b = bracketFirstCrossing(layer, x, lhat, p, span, kMarchSteps);
+    if (!b.crossed) return finishRectified(layer, x, lhat, b.l, b.d, b.fetches, p.dInf);
+    float ta = b.ta;
+    float fa = b.fa;
+    bool haveA = b.haveA; // ta: last point before the surface with a finite distance
+    float tb = b.tb;
+    float fb = b.fb;
+    vec3 l = b.l;
+    float d = b.d;
+    int fetches = b.fetches;
     for (int n = 1; n <= kMarchRefineSteps; ++n) {
         // The secant through both ends; the midpoint where the near end saw only d_inf (or
         // is the span start, never fetched) or rounding puts the secant outside the bracket.
@@ -239,16 +317,45 @@ vec2 layerSpan(int layer, vec3 x, vec3 lhat) {
     float leave = min(min(tFar.x, tFar.y), tFar.z);
     return vec2(enter, leave);
 }
+#endif
 
-// Steps that bring a span of the given width down to d_e: the layered counterpart of N.
-// In logarithms, and clamped as a float, so d_e -> 0 (FLT_MIN) cannot overflow the int.
-int spanSteps(float width, DistanceParams p) {
-    float n = ceil(log2(max(width, 1e-6f)) - log2(p.tolerance));
-    return int(clamp(n, 1.0f, float(p.maxSteps)));
+#if HAS_BISECTION || HAS_SECANT
+// Bisection or secant on the composite: march kBracketSteps points to the first crossing
+// (bracketFirstCrossing), then search only between the last point before it and the first
+// beyond it, in as many steps as that stretch needs to come down to d_e. A march that ends
+// within d_e of the stored surface answers there; one that sees no crossing (the ray leaves
+// for the sky, or passes a crossing between two of its points) falls back to the search
+// over the whole span. At most kBracketSteps + N distance fetches.
+LayerHit lookupFirstCrossing(int method, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
+    Bracket b = bracketFirstCrossing(0, x, lhat, p, span, kBracketSteps);
+    if (b.converged) return finishRectified(0, x, lhat, b.l, b.d, b.fetches, p.dInf);
+    int steps = b.crossed ? spanSteps(b.tb - b.ta, p) : span.steps;
+#if HAS_SECANT
+    if (method == kMethodSecant) {
+        if (b.crossed) return secantIn(0, x, lhat, p, b, steps);
+        LayerHit h = lookupSecant(0, x, lhat, p, span);
+        h.fetches += b.fetches;
+        return h;
+    }
+#endif
+#if HAS_BISECTION
+    RaySpan inner = b.crossed ? makeSpan(b.ta, b.tb, steps) : span;
+    LayerHit h = lookupBisection(0, x, lhat, p, inner);
+    h.fetches += b.fetches;
+    return h;
+#else
+    return makeHit(vec3(0.0f), false, b.fetches, p.dInf);
+#endif
 }
 #endif
 
 LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
+#if HAS_BISECTION || HAS_SECANT
+    // The composite holds every object, so its f may cross zero more than once along a ray;
+    // an object layer holds one, searched only within its box (layered mode).
+    if (layer == 0 && (method == kMethodBisection || method == kMethodSecant))
+        return lookupFirstCrossing(method, x, lhat, p, span);
+#endif
 #if HAS_BISECTION || HAS_AVGDIST
     if (method == kMethodBisection || method == kMethodAvgDist) {
         // Average distance: one fetch at x + d-bar l, exact when the object lies at the

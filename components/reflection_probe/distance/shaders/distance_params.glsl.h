@@ -20,6 +20,13 @@ SHARED_CONST int kDistanceParamsBinding = 0;
 // implementation of the method uses. Its fetches are at most their sum plus the radiance.
 SHARED_CONST int kMarchSteps = 30;
 SHARED_CONST int kMarchRefineSteps = 6;
+// Bisection and secant on the composite (layer 0) first march this many points of the same
+// projection-uniform parameterisation to the first place where the stored distance turns
+// shorter than |l| (bracketFirstCrossing in distance_lookup.glsl.h), then search inside that
+// stretch only: the composite holds every object, so along a ray that passes behind a nearer
+// one f changes sign more than once, and a search over the whole span may settle on a later
+// crossing. Their fetches per layer are at most this plus N.
+SHARED_CONST int kBracketSteps = 8;
 
 // What the lookup of every layer reads.
 struct DistanceParams {
