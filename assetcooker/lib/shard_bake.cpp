@@ -109,12 +109,28 @@ int listCameras(const ShardList& list) {
     return list.settings.value("cameras", 0);
 }
 
-// DIR/<folder> replaced atomically by a copy of the store's shard folder.
+// `to` holds the same files as `from`: hard links where the file system allows (a light field
+// at the paper's size is ~300 MB a probe, which merge would otherwise copy), copies where it
+// does not (another file system). Safe because nothing writes a cooked file in place: every
+// writer writes beside and renames, which unlinks the level's name and leaves the store's.
+void linkOrCopyTree(const fs::path& from, const fs::path& to) {
+    if (fs::is_directory(from)) {
+        fs::create_directory(to);
+        for (const fs::directory_entry& f : fs::directory_iterator(from))
+            linkOrCopyTree(f.path(), to / f.path().filename());
+        return;
+    }
+    std::error_code ec;
+    fs::create_hard_link(from, to, ec);
+    if (ec) fs::copy_file(from, to);
+}
+
+// DIR/<folder> replaced atomically by the store's shard folder (linked or copied).
 void installShard(const fs::path& from, const fs::path& to, const std::string& scene) {
     writeProbeFolder(to.string(), scene, [&](const fs::path& tmp) {
         for (const fs::directory_entry& f : fs::directory_iterator(from))
             if (f.path().filename() != "manifest.json")
-                fs::copy(f.path(), tmp / f.path().filename(), fs::copy_options::recursive);
+                linkOrCopyTree(f.path(), tmp / f.path().filename());
         const std::string manifest = (from / "manifest.json").string();
         return parseManifestJson(readManifestText(manifest), manifest);
     });
