@@ -7,11 +7,24 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 using namespace specula;
 using specula::test::AnalyticBox;
 
 namespace {
+
+// A random reflector point within 0.7 m of the centre (each axis) and a random unit
+// direction (uniform on the sphere, by rejection).
+std::pair<glm::vec3, glm::vec3> randomRay(std::mt19937& rng) {
+    std::uniform_real_distribution<float> u(-1.f, 1.f);
+    const glm::vec3 x(0.7f * u(rng), 0.7f * u(rng), 0.7f * u(rng));
+    glm::vec3 d;
+    do
+        d = glm::vec3(u(rng), u(rng), u(rng));
+    while (glm::dot(d, d) > 1.f || glm::dot(d, d) < 1e-4f);
+    return {x, glm::normalize(d)};
+}
 
 struct Errors {
     double rmse = 0;
@@ -30,16 +43,10 @@ Errors measure(const DistanceProbeAsset& a, DistanceMethod method, float de, int
     CpuDistanceProbe twin(a, cfg);
     AnalyticBox box;
     std::mt19937 rng(1234);
-    std::uniform_real_distribution<float> u(-1.f, 1.f);
     double se = 0;
     long fetches = 0;
     for (int i = 0; i < rays; ++i) {
-        const glm::vec3 x(0.7f * u(rng), 0.7f * u(rng), 0.7f * u(rng));
-        glm::vec3 d;
-        do
-            d = glm::vec3(u(rng), u(rng), u(rng));
-        while (glm::dot(d, d) > 1.f || glm::dot(d, d) < 1e-4f);
-        d = glm::normalize(d);
+        const auto [x, d] = randomRay(rng);
         int f = 0;
         const glm::vec3 got = twin.radiance(x, d, f);
         fetches += f;
@@ -114,17 +121,11 @@ TEST_F(DistanceLookup, FetchCountIsNWhenConditionOneNeverFires) {
         CpuDistanceProbe twin(*asset_, c0);
         AnalyticBox box;
         std::mt19937 rng(1234);
-        std::uniform_real_distribution<float> u(-1.f, 1.f);
         const int rays = 2000;
         const int k = glsl::kBracketSteps;
         int exact = 0;
         for (int i = 0; i < rays; ++i) {
-            const glm::vec3 x(0.7f * u(rng), 0.7f * u(rng), 0.7f * u(rng));
-            glm::vec3 d;
-            do
-                d = glm::vec3(u(rng), u(rng), u(rng));
-            while (glm::dot(d, d) > 1.f || glm::dot(d, d) < 1e-4f);
-            d = glm::normalize(d);
+            const auto [x, d] = randomRay(rng);
             int f = 0;
             twin.radiance(x, d, f);
             ASSERT_LE(f, k + n + 1) << "d_e = " << de;
