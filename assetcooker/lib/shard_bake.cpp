@@ -22,37 +22,6 @@ namespace {
 
 constexpr int kShardListVersion = 2; // 2: light-field part shards, shard_rows
 
-json settingsJson(const DistanceCookSettings& s) {
-    const GgxPrefilterOptions& p = s.prefilter;
-    return {{"flavour", "distance"},
-            {"face_res", s.faceRes},
-            {"planned", s.planned},
-            {"record_plan", s.recordPlan},
-            {"glossy", toString(s.glossy)},
-            {"prefilter",
-             {{"levels", p.levels},
-              {"samples", p.samples},
-              {"max_samples", p.maxSamples},
-              {"lod_bias", p.lodBias},
-              {"d_inf", std::isfinite(p.dInf) ? json(p.dInf) : json(nullptr)}}}};
-}
-
-json settingsJson(const LightFieldCookSettings& s) {
-    json j = {{"flavour", "lightfield"},
-              {"cameras", s.cameras},
-              {"image_res", s.imageRes},
-              {"compression", s.compression == LightFieldCompression::BC1 ? "bc1" : "none"},
-              {"cell_centre", nullptr},
-              {"cell_size", nullptr}};
-    if (s.cellCentre) j["cell_centre"] = {s.cellCentre->x, s.cellCentre->y, s.cellCentre->z};
-    if (s.cellSize) j["cell_size"] = *s.cellSize;
-    return j;
-}
-
-json settingsJson(const PemCookSettings&) {
-    return {{"flavour", "pem"}};
-}
-
 // The shard's hash: what its bytes depend on (see shard_bake.h), hexadecimal.
 std::string shardHash(const Shard& s, const LevelProbeEntry& e, const json& settings,
                       const ProbeScene& scene, int shardRows) {
@@ -67,17 +36,6 @@ std::string shardHash(const Shard& s, const LevelProbeEntry& e, const json& sett
     std::string hash = bytesChecksum(text.data(), text.size());
     if (const auto colon = hash.find(':'); colon != std::string::npos) hash.erase(0, colon + 1);
     return hash;
-}
-
-template <class T>
-T member(const json& j, const char* name, const std::string& file, const std::string& field) {
-    if (!j.is_object() || !j.contains(name))
-        throw Error(file, field + name, "missing from the shard list");
-    try {
-        return j.at(name).get<T>();
-    } catch (const json::exception&) {
-        throw Error(file, field + name, "has the wrong type");
-    }
 }
 
 // {"format": "specula-shard-time", "version": 1, "what": ..., "seconds": ..., "by": ...},
@@ -137,47 +95,6 @@ void installShard(const fs::path& from, const fs::path& to, const std::string& s
 }
 
 } // namespace
-
-json cookSettingsToJson(const CookFlavour& flavour) {
-    return std::visit([](const auto& s) { return settingsJson(s); }, flavour);
-}
-
-CookFlavour cookSettingsFromJson(const json& j, const std::string& file) {
-    const std::string flavour = member<std::string>(j, "flavour", file, "settings.");
-    if (flavour == "distance") {
-        DistanceCookSettings s;
-        s.faceRes = member<int>(j, "face_res", file, "settings.");
-        s.planned = member<bool>(j, "planned", file, "settings.");
-        s.recordPlan = member<bool>(j, "record_plan", file, "settings.");
-        const std::string glossy = member<std::string>(j, "glossy", file, "settings.");
-        s.glossy = glossy == "on"    ? GlossyBake::On
-                   : glossy == "off" ? GlossyBake::Off
-                                     : GlossyBake::Auto;
-        const json& p = j.at("prefilter");
-        s.prefilter.levels = member<int>(p, "levels", file, "settings.prefilter.");
-        s.prefilter.samples = member<int>(p, "samples", file, "settings.prefilter.");
-        s.prefilter.maxSamples = member<int>(p, "max_samples", file, "settings.prefilter.");
-        s.prefilter.lodBias = member<float>(p, "lod_bias", file, "settings.prefilter.");
-        if (p.contains("d_inf") && !p["d_inf"].is_null())
-            s.prefilter.dInf = member<float>(p, "d_inf", file, "settings.prefilter.");
-        return s;
-    }
-    if (flavour == "lightfield") {
-        LightFieldCookSettings s;
-        s.cameras = member<int>(j, "cameras", file, "settings.");
-        s.imageRes = member<int>(j, "image_res", file, "settings.");
-        s.compression = member<std::string>(j, "compression", file, "settings.") == "bc1"
-                            ? LightFieldCompression::BC1
-                            : LightFieldCompression::None;
-        if (j.contains("cell_centre") && !j["cell_centre"].is_null())
-            s.cellCentre = probeVec3(j["cell_centre"], file, "settings.cell_centre");
-        if (j.contains("cell_size") && !j["cell_size"].is_null())
-            s.cellSize = member<float>(j, "cell_size", file, "settings.");
-        return s;
-    }
-    throw Error(file, "settings.flavour",
-                "expected distance or lightfield (a level's flavours), got '" + flavour + "'");
-}
 
 std::string shardStore(const std::string& dir) {
     return (fs::path(dir) / ".shards").string();
@@ -257,11 +174,11 @@ ShardList readShardList(const std::string& dir) {
                     "expected a specula-shards list of version " +
                         std::to_string(kShardListVersion));
     ShardList list;
-    list.scene = member<std::string>(doc, "scene", file, "");
-    list.sky = member<std::string>(doc, "sky", file, "");
+    list.scene = jsonMember<std::string>(doc, "scene", file, "");
+    list.sky = jsonMember<std::string>(doc, "sky", file, "");
     list.settings = doc.at("settings");
     const CookFlavour flavour = cookSettingsFromJson(list.settings, file); // validated here
-    list.shardRows = member<int>(doc, "shard_rows", file, "");
+    list.shardRows = jsonMember<int>(doc, "shard_rows", file, "");
     const int cameras = listCameras(list);
     const bool lightField = std::holds_alternative<LightFieldCookSettings>(flavour);
     if (lightField ? list.shardRows < 1 || list.shardRows > cameras : list.shardRows != 0)
@@ -273,10 +190,10 @@ ShardList readShardList(const std::string& dir) {
     for (std::size_t i = 0; i < shards.size(); ++i) {
         const std::string field = "shards[" + std::to_string(i) + "].";
         Shard s;
-        s.kind = member<std::string>(shards[i], "kind", file, field);
-        s.probe = member<int>(shards[i], "probe", file, field);
-        s.part = member<int>(shards[i], "part", file, field);
-        s.hash = member<std::string>(shards[i], "hash", file, field);
+        s.kind = jsonMember<std::string>(shards[i], "kind", file, field);
+        s.probe = jsonMember<int>(shards[i], "probe", file, field);
+        s.part = jsonMember<int>(shards[i], "part", file, field);
+        s.hash = jsonMember<std::string>(shards[i], "hash", file, field);
         if (s.probe < 0 || std::size_t(s.probe) >= list.level.probes.size())
             throw Error(file, field + "probe", "expected an index of the level's probes");
         if (s.kind == kLightFieldRowsShard && lightField) {

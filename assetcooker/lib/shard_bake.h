@@ -32,6 +32,7 @@
 // the shard count, the rows a part and the order. slurm_bake.h runs the leaves as a Slurm job
 // array and the merge as a job after it.
 #include "assetcooker/lib/level_bake.h"
+#include "assetcooker/lib/shard_settings.h"
 
 #include <nlohmann/json.hpp>
 
@@ -62,10 +63,6 @@ struct ShardList {
     LevelIndex level; // the planned index (no manifest checksums yet)
     std::vector<Shard> shards;
 };
-
-// The flavour's settings as JSON and back (for the shard list and the shard hash).
-nlohmann::json cookSettingsToJson(const CookFlavour& flavour);
-CookFlavour cookSettingsFromJson(const nlohmann::json& j, const std::string& file);
 
 // DIR/.shards: the store; DIR/.shards/shards.json: the list.
 std::string shardStore(const std::string& dir);

@@ -80,33 +80,33 @@ public:
     SlurmBakeResult run() {
         const auto start = Clock::now();
         // The leaves only: a light-field probe shard is assembled by the merge job.
-        std::vector<int> todo = leafShardsToBake(dir_.string(), list_);
-        leaves_ = todo;
+        std::vector<int> pending = leafShardsToBake(dir_.string(), list_);
+        leaves_ = pending;
         std::size_t leafCount = 0;
         for (std::size_t i = 0; i < list_.shards.size(); ++i)
             leafCount += shardDependencies(list_, int(i)).empty() ? 1 : 0;
-        if (log_ && todo.size() < leafCount)
-            *log_ << leafCount - todo.size() << " of " << leafCount
+        if (log_ && pending.size() < leafCount)
+            *log_ << leafCount - pending.size() << " of " << leafCount
                   << " leaf shards already in the store (or not needed): not resubmitted\n";
         std::unique_ptr<ProgressBar> bar;
         if (o_.progress) bar = std::make_unique<ProgressBar>("shards on slurm");
         for (int attempt = 0;; ++attempt) {
             std::string array;
-            if (!todo.empty()) array = submitArray(todo);
+            if (!pending.empty()) array = submitArray(pending);
             const std::string merge = submitMerge(array);
-            if (!todo.empty()) {
-                const std::map<int, std::string> states = follow(array, todo, bar.get());
+            if (!pending.empty()) {
+                const std::map<int, std::string> states = follow(array, pending, bar.get());
                 result_.shardWallSeconds = since(start);
-                todo = failedOf(array, states, attempt);
+                pending = failedOf(array, states, attempt);
             }
-            if (todo.empty()) {
+            if (pending.empty()) {
                 finishMerge(merge);
                 break;
             }
             cancel(merge);
             if (attempt >= o_.retries) break;
             if (log_)
-                *log_ << "resubmitting shards " << joinIndices(todo) << " (retry " << attempt + 1
+                *log_ << "resubmitting shards " << joinIndices(pending) << " (retry " << attempt + 1
                       << " of " << o_.retries << ")\n";
         }
         bar.reset();

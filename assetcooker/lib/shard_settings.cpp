@@ -1,0 +1,87 @@
+#include "shard_settings.h"
+
+#include "components/reflection_probe/probe_volume.h"
+
+#include <cmath>
+
+namespace specula {
+
+using nlohmann::json;
+
+namespace {
+
+json settingsJson(const DistanceCookSettings& s) {
+    const GgxPrefilterOptions& p = s.prefilter;
+    return {{"flavour", "distance"},
+            {"face_res", s.faceRes},
+            {"planned", s.planned},
+            {"record_plan", s.recordPlan},
+            {"glossy", toString(s.glossy)},
+            {"prefilter",
+             {{"levels", p.levels},
+              {"samples", p.samples},
+              {"max_samples", p.maxSamples},
+              {"lod_bias", p.lodBias},
+              {"d_inf", std::isfinite(p.dInf) ? json(p.dInf) : json(nullptr)}}}};
+}
+
+json settingsJson(const LightFieldCookSettings& s) {
+    json j = {{"flavour", "lightfield"},
+              {"cameras", s.cameras},
+              {"image_res", s.imageRes},
+              {"compression", s.compression == LightFieldCompression::BC1 ? "bc1" : "none"},
+              {"cell_centre", nullptr},
+              {"cell_size", nullptr}};
+    if (s.cellCentre) j["cell_centre"] = {s.cellCentre->x, s.cellCentre->y, s.cellCentre->z};
+    if (s.cellSize) j["cell_size"] = *s.cellSize;
+    return j;
+}
+
+json settingsJson(const PemCookSettings&) {
+    return {{"flavour", "pem"}};
+}
+
+} // namespace
+
+json cookSettingsToJson(const CookFlavour& flavour) {
+    return std::visit([](const auto& s) { return settingsJson(s); }, flavour);
+}
+
+CookFlavour cookSettingsFromJson(const json& j, const std::string& file) {
+    const std::string flavour = jsonMember<std::string>(j, "flavour", file, "settings.");
+    if (flavour == "distance") {
+        DistanceCookSettings s;
+        s.faceRes = jsonMember<int>(j, "face_res", file, "settings.");
+        s.planned = jsonMember<bool>(j, "planned", file, "settings.");
+        s.recordPlan = jsonMember<bool>(j, "record_plan", file, "settings.");
+        const std::string glossy = jsonMember<std::string>(j, "glossy", file, "settings.");
+        s.glossy = glossy == "on"    ? GlossyBake::On
+                   : glossy == "off" ? GlossyBake::Off
+                                     : GlossyBake::Auto;
+        const json& p = j.at("prefilter");
+        s.prefilter.levels = jsonMember<int>(p, "levels", file, "settings.prefilter.");
+        s.prefilter.samples = jsonMember<int>(p, "samples", file, "settings.prefilter.");
+        s.prefilter.maxSamples = jsonMember<int>(p, "max_samples", file, "settings.prefilter.");
+        s.prefilter.lodBias = jsonMember<float>(p, "lod_bias", file, "settings.prefilter.");
+        if (p.contains("d_inf") && !p["d_inf"].is_null())
+            s.prefilter.dInf = jsonMember<float>(p, "d_inf", file, "settings.prefilter.");
+        return s;
+    }
+    if (flavour == "lightfield") {
+        LightFieldCookSettings s;
+        s.cameras = jsonMember<int>(j, "cameras", file, "settings.");
+        s.imageRes = jsonMember<int>(j, "image_res", file, "settings.");
+        s.compression = jsonMember<std::string>(j, "compression", file, "settings.") == "bc1"
+                            ? LightFieldCompression::BC1
+                            : LightFieldCompression::None;
+        if (j.contains("cell_centre") && !j["cell_centre"].is_null())
+            s.cellCentre = probeVec3(j["cell_centre"], file, "settings.cell_centre");
+        if (j.contains("cell_size") && !j["cell_size"].is_null())
+            s.cellSize = jsonMember<float>(j, "cell_size", file, "settings.");
+        return s;
+    }
+    throw Error(file, "settings.flavour",
+                "expected distance or lightfield (a level's flavours), got '" + flavour + "'");
+}
+
+} // namespace specula
