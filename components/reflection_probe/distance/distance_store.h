@@ -3,6 +3,7 @@
 // lookup parameters as one uniform block, one shader variant per feature set.
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "components/reflection_probe/distance/distance_probe.h"
+#include "components/reflection_probe/distance/distance_textures.h"
 #include "components/reflection_probe/flavour_store_base.h"
 #include "components/reflection_probe/shader_variants.h"
 #include "engine/gpu/gl_objects.h"
@@ -18,8 +19,13 @@ struct DistanceProbeGpu {
     std::shared_ptr<const DistanceProbeAsset> asset;
     DistanceLookupConfig config;
     gpu::UniformBuffer<glsl::DistanceParamsBlock> params; // config's block, as the shader reads it
-    gpu::Texture layers;
-    int layersUploaded = 0; // cube layers in `layers`: the composite, or every layer
+    gpu::Texture layers;                                  // the composite's cube (layer 0)
+    int layersUploaded = 0; // layers on the GPU: the composite, or every layer
+    // The object layers (1..) as tiles (distance_layer_tiles.h), once layered lookups need
+    // them: tile size, tiles per face side, slot columns and rows per atlas page.
+    LayerTileTextures tiles;
+    glm::ivec4 tileGrid{0};
+    std::size_t tileBytes = 0;
     gpu::Texture sky;
     // The composite's GGX prefiltered chain (glossyChainOf) and its levels 1.. on the GPU
     // (uploadChainArray): made by the first sync that finds a rough reflector of this probe,

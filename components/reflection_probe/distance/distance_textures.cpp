@@ -3,8 +3,11 @@
 #include "engine/core/error.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <vector>
+
+#include <glm/gtc/packing.hpp>
 
 namespace specula {
 
@@ -29,6 +32,43 @@ void uploadCube(const gpu::Texture& array, int cube, const DistanceProbeLayer& l
 
 std::size_t cubeArrayBytes(int faceRes, int cubes) {
     return std::size_t(faceRes) * std::size_t(faceRes) * 6 * std::size_t(cubes) * 16;
+}
+
+LayerTileTextures uploadLayerTiles(const LayerTiles& t) {
+    LayerTileTextures g;
+    if (t.layers == 0) return g;
+    g.atlas = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    const GLuint a = g.atlas.id();
+    glTextureStorage3D(a, 1, t.half ? GL_RGBA16F : GL_RGBA32F, t.width(), t.height(), t.pages);
+    if (t.half) {
+        // Converted here, not by the driver: the atlas then holds exactly the values the
+        // tiles (and the CPU twin, roundObjectLayersToHalf) hold, whatever the driver rounds.
+        std::vector<std::uint16_t> bits(t.atlas.size());
+        for (std::size_t i = 0; i < bits.size(); ++i)
+            bits[i] = glm::packHalf1x16(t.atlas[i]);
+        glTextureSubImage3D(a, 0, 0, 0, 0, t.width(), t.height(), t.pages, GL_RGBA, GL_HALF_FLOAT,
+                            bits.data());
+    } else {
+        glTextureSubImage3D(a, 0, 0, 0, 0, t.width(), t.height(), t.pages, GL_RGBA, GL_FLOAT,
+                            t.atlas.data());
+    }
+    glTextureParameteri(a, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(a, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(a, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(a, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+
+    g.table = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    const GLuint tb = g.table.id();
+    glTextureStorage3D(tb, 1, GL_R32I, t.tilesPerFace, t.tilesPerFace, 6 * t.layers);
+    glTextureSubImage3D(tb, 0, 0, 0, 0, t.tilesPerFace, t.tilesPerFace, 6 * t.layers,
+                        GL_RED_INTEGER, GL_INT, t.table.data());
+    glTextureParameteri(tb, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(tb, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return g;
+}
+
+std::size_t layerTileBytes(const LayerTiles& t) {
+    return t.layers == 0 ? 0 : t.atlasBytes() + t.tableBytes();
 }
 
 namespace {

@@ -1,7 +1,9 @@
 #pragma once
 // Distance probes' textures, written once for the single-probe store and the level store:
-// cube layers as an RGBA32F texture array (six faces per cube, A = distance) and the sky
-// panorama. Need a current GL 4.5 context.
+// cube layers as an RGBA32F texture array (six faces per cube, A = distance), the object
+// layers as tiles (distance_layer_tiles.h) and the sky panorama. Need a current GL 4.5
+// context.
+#include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/image/ggx_prefilter.h"
@@ -15,6 +17,17 @@ gpu::Texture createCubeArray(int faceRes, int cubes);
 // Writes `layer`'s six faces into array layers 6 cube .. 6 cube + 5.
 void uploadCube(const gpu::Texture& array, int cube, const DistanceProbeLayer& layer);
 std::size_t cubeArrayBytes(int faceRes, int cubes);
+
+// The object layers' tiles on the GPU (shaders/distance_probe_gpu.glsl, LAYER_TILES): the
+// atlas as an RGBA32F or RGBA16F 2D array of `pages` layers, bilinear and clamped, and the
+// table as an R32I 2D array (tilesPerFace^2, six layers per object layer) read by texelFetch.
+// Both null when there are no object layers.
+struct LayerTileTextures {
+    gpu::Texture atlas, table;
+};
+LayerTileTextures uploadLayerTiles(const LayerTiles& tiles);
+// What uploadLayerTiles allocates.
+std::size_t layerTileBytes(const LayerTiles& tiles);
 
 // The levels 1.. of a cube chain (engine/image/ggx_prefilter.h; level 0, the composite, is
 // already in the cube array) as a mipmapped RGBA32F 2D array read by texelFetch

@@ -1,0 +1,78 @@
+#pragma once
+// The object layers (1..) of a distance probe as tiles: each face cut in tileSize^2 tiles, a
+// tile stored in an atlas only when its texels or its one-texel ring hold content, and a table
+// from every tile to its atlas slot. The ring (the gutter) holds the face's neighbouring texels,
+// clamped at the face edge, so a bilinear fetch or gather anywhere inside a tile reads the very
+// texels the full face would. Slot 0 is the empty tile: every texel the sentinel an object
+// layer holds where it sees nothing (black, distance d_inf), so an empty tile reads what the
+// full layer read there. The composite (layer 0) is not tiled: every direction sees something
+// or the sky, and the glossy chain reads it whole. Plain CPU data; distance_textures.h uploads
+// it and shaders/distance_probe_gpu.glsl (LAYER_TILES) reads it.
+#include "components/reflection_probe/distance/distance_probe_asset.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+namespace specula {
+
+// Texels per tile side. Measured on the room's 13 object layers (half-float atlas + table):
+// 128^2 faces 8: 1.24, 16: 1.06, 32: 1.38 MiB; 256^2 faces 8: 4.65, 16: 3.84, 32: 3.72,
+// 64: 5.19 MiB. Smaller tiles follow the objects' outlines closer but pay more gutter; 16 is
+// best or within 3% of it at both sizes.
+inline constexpr int kLayerTileSize = 16;
+
+struct LayerTiles {
+    int faceRes = 0;
+    int tileSize = 0;
+    int tilesPerFace = 0;              // tiles along a face side: ceil(faceRes / tileSize)
+    int layers = 0;                    // object layers tiled (the asset's layers 1..)
+    int cols = 0, rows = 0, pages = 0; // atlas slots per page row, slot rows per page, pages
+    int slots = 0;                     // slots in use, the empty one (0) included
+    bool half = false;                 // atlas texels are half floats (RGBA16F)
+    // Slot of tile (tx, ty) of face f of object layer L (1..): table[tableIndex(L, f, tx, ty)].
+    std::vector<std::int32_t> table;
+    // RGBA texels, pages of width() x height(), row-major, page after page.
+    std::vector<float> atlas;
+
+    int slotSize() const { return tileSize + 2; }
+    int width() const { return cols * slotSize(); }
+    int height() const { return rows * slotSize(); }
+    std::size_t tableIndex(int layer, int face, int tx, int ty) const {
+        return ((std::size_t(layer - 1) * 6 + std::size_t(face)) * std::size_t(tilesPerFace) +
+                std::size_t(ty)) *
+                   std::size_t(tilesPerFace) +
+               std::size_t(tx);
+    }
+    // Texel (x, y) (the face's, 0..faceRes-1) of face f of object layer L, read through the
+    // table and the atlas as the shader reads it.
+    glm::vec4 texel(int layer, int face, int x, int y) const;
+    // Tiles stored per object layer (index L - 1) out of 6 tilesPerFace^2.
+    std::vector<int> storedPerLayer() const;
+
+    std::size_t atlasBytes() const {
+        return std::size_t(width()) * std::size_t(height()) * std::size_t(pages) * (half ? 8 : 16);
+    }
+    std::size_t tableBytes() const { return table.size() * sizeof(std::int32_t); }
+};
+
+// What an object layer holds where it sees nothing.
+glm::vec4 emptyLayerTexel(float dInf);
+
+// Tiles the asset's object layers (none: layers = 0, no slots). `half`: the atlas will be
+// stored as half floats; its values must then already be half-representable
+// (roundObjectLayersToHalf), so the atlas holds exactly the asset's values.
+LayerTiles tileObjectLayers(const DistanceProbeAsset& asset, int tileSize = kLayerTileSize,
+                            bool half = false);
+
+// Whether the object layers can be stored as half floats: every value (radiance <=
+// kMaxRadiance, distances <= d_inf) within half's range.
+bool objectLayersFitHalf(const DistanceProbeAsset& asset);
+// Rounds every texel of the object layers to the nearest half float, so the CPU twin reads
+// what an RGBA16F atlas holds. The composite and the sky stay as they are.
+void roundObjectLayersToHalf(DistanceProbeAsset& asset);
+float roundToHalf(float v);
+
+} // namespace specula
