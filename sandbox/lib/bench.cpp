@@ -106,12 +106,17 @@ std::string num(double v, const char* f = "%.6g") {
     return b;
 }
 
-void writeCsv(const BenchReport& r, const std::string& path) {
+void writeCsv(const BenchReport& r, const std::vector<MethodErrorBudget>& budgets,
+              const std::string& path) {
     std::ostringstream s;
     s << "scene,method,params,ms_median,ratio_to_envmap,frame_ms_median,frame_ratio_to_envmap,"
          "psnr,rmse,psnr_full,rmse_full,"
-         "fetches_per_pixel,gpu_bytes,bake_s,frames,width,height,timer\n";
-    for (const BenchRow& b : r.rows)
+         "fetches_per_pixel,gpu_bytes,bake_s,frames,width,height,timer"
+      << errorBudgetCsvHeader() << "\n";
+    for (const BenchRow& b : r.rows) {
+        const MethodErrorBudget* budget = nullptr;
+        for (const MethodErrorBudget& e : budgets)
+            if (e.scene == b.scene && e.method == b.method && e.params == b.params) budget = &e;
         s << b.scene << ',' << b.method << ',' << b.params << ',' << num(b.msMedian) << ','
           << num(b.ratioToEnvmap) << ',' << num(b.frameMsMedian) << ',' << num(b.frameRatioToEnvmap)
           << ',' << formatPsnr(b.psnr, 4) << ',' << num(b.rmse) << ',' << formatPsnr(b.psnrFull, 4)
@@ -120,12 +125,13 @@ void writeCsv(const BenchReport& r, const std::string& path) {
           << (b.method == "groundtruth"     ? "cpu-wall"
               : r.timer == "GL timer query" ? "gl"
                                             : "wall")
-          << '\n';
+          << errorBudgetCsvValues(budget) << '\n';
+    }
     writeFileAtomically(path, s.str());
 }
 
 void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePaths,
-                   const std::string& path) {
+                   const std::vector<MethodErrorBudget>& budgets, const std::string& path) {
     std::ostringstream s;
     s << "# Specula bench\n\n"
       << "- machine: " << r.machine << "\n"
@@ -150,7 +156,15 @@ void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePa
          "perfect score.\n"
       << "- fetches/px: texture fetches per reflector pixel counted by the CPU twin "
          "(CpuDistanceProbe) on the shader's own inputs; the light field's is its fixed 4 "
-         "bilinear fetches per ray.\n\n";
+         "bilinear fetches per ray.\n"
+      << "- error budget (distance methods at d_e 0.01): the CPU twin over the truth's "
+         "reflector rays, baseline against four experiments that each remove one source of "
+         "error: (a) exact search along the stored distances, (b) faces 2x per side, (c) no "
+         "radiance filtering across silhouettes, (d) the rays whose truth hit the probe centre "
+         "cannot see take the truth. A term is the baseline MSE less the experiment's; "
+         "residual: all four at once; interaction: baseline - residual - the terms (0 when "
+         "additive); oracle: the lookup handed the truth's hit (the floor of any search). "
+         "bench.csv: the budget_* columns; error_budget.png.\n\n";
     for (const std::string& scene : scenePaths) {
         const std::string name = fs::path(scene).stem().string();
         s << "## " << name << " (`" << fs::path(scene).filename().string() << "`)\n\n"
@@ -168,9 +182,11 @@ void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePa
               << num(double(b.gpuBytes) / (1024.0 * 1024.0), "%.1f") << " | "
               << num(b.bakeSeconds, "%.2f") << " | " << b.frames << " |\n";
         }
-        s << "\n![strip](strip_" << name << ".png)\n\n";
+        s << "\n" << errorBudgetMarkdown(budgets, name);
+        s << "![strip](strip_" << name << ".png)\n\n";
     }
     s << "![accuracy against time](accuracy_vs_time.png)\n";
+    if (!budgets.empty()) s << "\n![error budget](error_budget.png)\n";
     writeFileAtomically(path, s.str());
 }
 
@@ -219,6 +235,8 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
     report.renderer = context->renderer();
     report.glVersion = context->version();
     std::vector<PlotPanel> panels;
+    std::vector<MethodErrorBudget> budgets;
+    std::vector<std::string> sceneNames;
 
     for (const std::string& scenePath : scenes) {
         const std::string name = fs::path(scenePath).stem().string();
@@ -331,6 +349,9 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
         const PemBenchSweep pemSweep{sampleSweep ? std::vector<int>{4, 8, 16, 32}
                                                  : std::vector<int>{8},
                                      std::min(report.faceRes, 256), report.width, report.height};
+        appendErrorBudgets(scene, cam, truth, name, probeDir, report.faceRes, opt.progress,
+                           variants, report.rows, budgets, log);
+        sceneNames.push_back(name);
         appendPemRows(scene, fr, name, opt.outDir, pemSweep, budget, envmapMs, report, panel, log);
         panels.push_back(panel);
 
@@ -373,8 +394,11 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
         for (const BenchRow& e : report.rows)
             if (e.scene == row.scene && e.method == "envmap" && e.frameMsMedian > 0)
                 row.frameRatioToEnvmap = row.frameMsMedian / e.frameMsMedian;
-    writeCsv(report, (fs::path(opt.outDir) / "bench.csv").string());
-    writeMarkdown(report, scenes, (fs::path(opt.outDir) / "bench.md").string());
+    writeCsv(report, budgets, (fs::path(opt.outDir) / "bench.csv").string());
+    writeMarkdown(report, scenes, budgets, (fs::path(opt.outDir) / "bench.md").string());
+    if (!budgets.empty())
+        writeImage((fs::path(opt.outDir) / "error_budget.png").string(),
+                   errorBudgetPlot(budgets, sceneNames));
     writeImage((fs::path(opt.outDir) / "accuracy_vs_time.png").string(), accuracyPlot(panels));
     return report;
 }

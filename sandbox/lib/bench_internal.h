@@ -3,6 +3,8 @@
 // the ground truth of its camera, and the row's progress line.
 #include "sandbox/lib/accuracy_plot.h"
 #include "sandbox/lib/bench.h"
+#include "sandbox/lib/bench_methods.h"
+#include "sandbox/lib/error_budget.h"
 #include "sandbox/lib/frame_renderer.h"
 #include "sandbox/lib/reflection_scene.h"
 
@@ -50,5 +52,21 @@ struct PemBenchSweep {
 void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string& sceneName,
                    const std::string& outDir, const PemBenchSweep& sweep, BenchFrameBudget budget,
                    double envmapMs, BenchReport& report, PlotPanel& panel, std::ostream& log);
+
+// The budget bakes faces twice the bench's per side only up to this size: the bake grows
+// with the texels (4x), and 512^2 is the largest the full bench's 256^2 doubles to.
+constexpr int kBudgetMaxFaceRes = 512;
+
+// The error budget (error_budget.h) of one scene, appended to `budgets`: per distance method
+// at d_e = 0.01 (or its only row), over the reflector rays of `truth` from `cam`, on the
+// probe baked in probeDir at faceRes; the faces 2x per side are baked into probeDir_2x when
+// within kBudgetMaxFaceRes (else the reason is logged and kept in the budget). Each budget
+// takes its GPU row's MSE from `rows`. Methods the asset cannot serve are logged and left
+// out, like their rows.
+void appendErrorBudgets(ReflectionScene& scene, const CameraView& cam, const BenchTruth& truth,
+                        const std::string& sceneName, const std::string& probeDir, int faceRes,
+                        bool progress, const std::vector<MethodVariant>& variants,
+                        const std::vector<BenchRow>& rows, std::vector<MethodErrorBudget>& budgets,
+                        std::ostream& log);
 
 } // namespace specula

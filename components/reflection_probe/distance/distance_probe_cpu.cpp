@@ -44,8 +44,37 @@ struct TwinFetches {
     vec3 fetchRadiance(int layer, vec3 dir) const {
         vec2 uv;
         const Image& img = face(layer, dir, uv);
+        if (sameSurface) return sameSurfaceBilinear(img, uv);
         return vec3(sampleBilinear(img, uv, Wrap::Clamp));
     }
+    // Experiment::sameSurfaceRadiance: the bilinear weights of the texels whose distance
+    // agrees with the nearest texel's (the one fetchDistance reads), renormalised.
+    bool sameSurface = false;
+    vec3 sameSurfaceBilinear(const Image& img, vec2 uv) const {
+        const float d0 = sampleNearest(img, uv, Wrap::Clamp).a;
+        const float dInf = config->params.dInf;
+        const float slack = CpuDistanceProbe::sameSurfaceSlack(img.width);
+        const float fx = uv.x * float(img.width) - 0.5f, fy = uv.y * float(img.height) - 0.5f;
+        const float x0f = std::floor(fx), y0f = std::floor(fy);
+        const float ax = fx - x0f, ay = fy - y0f;
+        vec3 sum(0.f);
+        float weight = 0.f;
+        for (int j = 0; j < 4; ++j) {
+            const int tx = wrapIndex(int(x0f) + (j & 1), img.width, Wrap::Clamp);
+            const int ty = wrapIndex(int(y0f) + (j >> 1), img.height, Wrap::Clamp);
+            const glm::vec4 t = img.rgba(tx, ty);
+            const bool same =
+                seesNothing(d0, dInf) ? seesNothing(t.a, dInf) : std::abs(t.a - d0) <= slack * d0;
+            if (!same) continue;
+            const float w = ((j & 1) ? ax : 1.f - ax) * ((j >> 1) ? ay : 1.f - ay);
+            sum += w * vec3(t);
+            weight += w;
+        }
+        // The nearest texel is one of the four, so some weight is left unless it sits exactly
+        // on a zero weight; then the nearest texel alone answers.
+        return weight > 0.f ? sum / weight : vec3(sampleNearest(img, uv, Wrap::Clamp));
+    }
+    static bool seesNothing(float d, float dInf) { return d >= 0.5f * dInf; }
     mutable bool skyFetched = false;
     vec3 fetchSky(vec3 dir) const {
         skyFetched = true;
@@ -104,6 +133,69 @@ struct TwinLayered : TwinFetches {
 
 } // namespace glsl
 
+namespace {
+
+// Experiment::exactSearch on one layer: the first crossing of f(t) = stored distance - |l|
+// from > 0 to <= 0 over [t0, t1], found by a projection-uniform march dense enough to put
+// about four points in every texel the ray's projection crosses (the projection of 2D spans
+// at most half the sphere, two faces' edges), then bisected to float precision. No crossing:
+// the span's end answers through the d_inf rule, as the shader's searches do.
+glsl::LayerHit exactLayerHit(glsl::TwinLayered& tw, int layer, glm::vec3 x, glm::vec3 lhat,
+                             float t0, float t1, const glsl::DistanceParams& p) {
+    const glsl::TwinLayered::RaySpan span = tw.makeSpan(t0, t1, 1);
+    const glsl::TwinLayered::MarchFrame m = tw.marchFrame(x, lhat, span);
+    const int points = std::max(64, 8 * p.faceRes);
+    int fetches = 0;
+    auto f = [&](float t) {
+        const glm::vec3 l = x + t * lhat;
+        ++fetches;
+        return tw.fetchDistance(layer, l) - glm::length(l);
+    };
+    float ta = t0, tb = t1;
+    bool crossed = false;
+    for (int k = 1; k <= points && !crossed; ++k) {
+        const float t = tw.marchT(span, m, k, points);
+        if (f(t) <= 0.f) {
+            tb = t;
+            crossed = true;
+        } else {
+            ta = t;
+        }
+    }
+    if (crossed)
+        for (int n = 0; n < 48 && tb - ta > 1e-7f * std::max(1.f, tb); ++n) {
+            const float mid = 0.5f * (ta + tb);
+            (f(mid) > 0.f ? ta : tb) = mid;
+        }
+    const glm::vec3 l = x + tb * lhat;
+    const float d = tw.fetchDistance(layer, l);
+    return tw.finishRectified(layer, x, lhat, l, d, fetches + 1, p.dInf);
+}
+
+// The exact search over what the configured lookup searches: the composite over (0, 2D), or
+// every object layer over its box, the nearest hit along the ray winning (probeHit's rule).
+glsl::LayerHit exactHit(glsl::TwinLayered& tw, const DistanceLookupConfig& c, glm::vec3 x,
+                        glm::vec3 lhat) {
+    const glsl::DistanceParams& p = c.params;
+    if (!(c.features & kFeatureLayers)) return exactLayerHit(tw, 0, x, lhat, 0.f, 2.f * p.range, p);
+    glsl::LayerHit best = tw.makeHit(glm::vec3(0.f), false, 0, p.dInf);
+    for (int i = 1; i <= p.layerCount; ++i) {
+        const glm::vec2 span = tw.layerSpan(i, x, lhat);
+        const float t1 = std::min(span.y, 2.f * p.range);
+        if (span.x > t1 || span.x >= best.t) continue;
+        const glsl::LayerHit h = exactLayerHit(tw, i, x, lhat, span.x, t1, p);
+        best.fetches += h.fetches;
+        if (h.hit && h.t < best.t) {
+            best.t = h.t;
+            best.radiance = h.radiance;
+            best.hit = true;
+        }
+    }
+    return best;
+}
+
+} // namespace
+
 struct CpuDistanceProbe::Twin {
     glsl::TwinSingle single;
     glsl::TwinLayered layered;
@@ -121,6 +213,12 @@ CpuDistanceProbe::~CpuDistanceProbe() = default;
 
 glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches,
                                      bool* sawSky) const {
+    if (experiment_.exactSearch) {
+        const glsl::LayerHit h = exactHit(twin_->layered, config_, x, lhat);
+        fetches += h.fetches + (h.hit ? 0 : 1);
+        if (sawSky) *sawSky = !h.hit;
+        return h.hit ? h.radiance : twin_->layered.fetchSky(lhat);
+    }
     glsl::TwinFetches& f = (config_.features & kFeatureLayers)
                                ? static_cast<glsl::TwinFetches&>(twin_->layered)
                                : static_cast<glsl::TwinFetches&>(twin_->single);
@@ -130,6 +228,47 @@ glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches,
                             : twin_->single.probeRadiance(x, lhat, config_.params, fetches);
     if (sawSky) *sawSky = f.skyFetched;
     return c;
+}
+
+void CpuDistanceProbe::setExperiment(const Experiment& e) {
+    experiment_ = e;
+    twin_->single.sameSurface = twin_->layered.sameSurface = e.sameSurfaceRadiance;
+}
+
+CpuDistanceProbe::CentreView CpuDistanceProbe::centreView(glm::vec3 h) const {
+    glsl::TwinLayered& tw = twin_->layered;
+    const glsl::DistanceParams& p = config_.params;
+    const bool layered = (config_.features & kFeatureLayers) != 0;
+    const int first = layered ? 1 : 0, last = layered ? p.layerCount : 0;
+    const float r = glm::length(h);
+    const float slack = r * (kSeenSlack + 4.f / float(std::max(p.faceRes, 1)));
+    CentreView v;
+    float bestAgreement = slack, nearest = p.dInf;
+    int nearestLayer = -1;
+    for (int i = first; i <= last; ++i) {
+        const glm::vec4 d = tw.fetchDistanceGather(i, h);
+        for (int j = 0; j < 4; ++j) {
+            if (tw.isInfiniteDistance(d[j], p.dInf)) continue;
+            if (std::abs(d[j] - r) <= bestAgreement) {
+                bestAgreement = std::abs(d[j] - r);
+                v.seen = true;
+                v.layer = i;
+            }
+        }
+        const float dn = tw.fetchDistance(i, h);
+        if (!tw.isInfiniteDistance(dn, p.dInf) && dn < nearest) nearest = dn, nearestLayer = i;
+    }
+    if (!v.seen) {
+        // What the centre sees in front instead (the composite shows the sky where nothing
+        // is; the object layers leave it to the sky).
+        if (nearestLayer < 0 && layered) {
+            v.radiance = tw.fetchSky(glm::normalize(h));
+            return v;
+        }
+        v.layer = nearestLayer < 0 ? 0 : nearestLayer;
+    }
+    v.radiance = tw.fetchRadiance(v.layer, h);
+    return v;
 }
 
 glm::vec3 CpuDistanceProbe::sky(glm::vec3 dir) const {

@@ -6,6 +6,7 @@
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "engine/image/ggx_prefilter.h"
 
+#include <algorithm>
 #include <memory>
 
 namespace specula {
@@ -68,6 +69,44 @@ public:
     // The asset's sky along dir, as the shader's fetchSky reads it (black without one).
     glm::vec3 sky(glm::vec3 dir) const;
 
+    // Controlled experiments of the bench's error budget (sandbox/lib/error_budget.h): each
+    // removes one source of error from radiance(). All off by default, where the twin reads
+    // exactly what the shader reads. Set before looking up, never while another thread does.
+    struct Experiment {
+        // The method's own way to the hit (a search to d_e with its step budget, one step at
+        // d-bar, the box wall, or none at all for envmap) replaced by the exact first
+        // crossing along the stored distances (a dense projection-uniform march, then
+        // bisection to float precision), on the composite or, layered, on every object
+        // layer: what the method's approximation of the hit costs.
+        bool exactSearch = false;
+        // Radiance filtered only over the texels whose stored distance agrees with the
+        // nearest texel's (sameSurfaceSlack): never a blend across a depth discontinuity (a
+        // silhouette), elsewhere the GPU's bilinear fetch.
+        bool sameSurfaceRadiance = false;
+    };
+    // Texels of one surface differ in distance by at most this share of it: 5%, or what a
+    // surface inclined 80 degrees to the centre's view changes from one texel to the next
+    // (a texel subtends about 2 / faceRes radians, tan 80 degrees is 5.7), whichever is larger.
+    static float sameSurfaceSlack(int faceRes) {
+        return faceRes > 0 ? std::max(0.05f, 12.f / float(faceRes)) : 0.05f;
+    }
+    void setExperiment(const Experiment& e);
+    const Experiment& experiment() const { return experiment_; }
+
+    // What the probe centre sees in the direction of probe-local point h (a ground truth's
+    // hit): `seen` when a layer holds a surface at |h| there (one of the 2 x 2 texels around
+    // the direction within kSeenSlack |h| + two texels' span of |h|, which a surface inclined
+    // to the centre's view spans), its radiance read from that layer; otherwise the centre
+    // sees something else in front (a disocclusion) and `radiance` is what it sees there.
+    // Layered: the object layers; otherwise the composite.
+    struct CentreView {
+        glm::vec3 radiance{0.f};
+        bool seen = false;
+        int layer = 0;
+    };
+    static constexpr float kSeenSlack = 0.03f;
+    CentreView centreView(glm::vec3 h) const;
+
     const DistanceLookupConfig& config() const { return config_; }
 
 private:
@@ -75,6 +114,7 @@ private:
     std::unique_ptr<Twin> twin_;
     DistanceLookupConfig config_;
     std::shared_ptr<const CubeChain> glossy_;
+    Experiment experiment_;
 };
 
 } // namespace specula
