@@ -2,6 +2,7 @@
 
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/effect_plan.h"
+#include "assetcooker/lib/plan_measure.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
 #include "engine/core/progress.h"
@@ -70,10 +71,35 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
     b.reflectorReach = markupReflectorReach(scene.registry, scene.markup, b.centre,
                                             o.cellSize.value_or(markupCellSize(scene.markup)));
     b.proxy = o.proxy;
-    std::string planJson;
+    std::string planJson, planLine; // the line goes to the log once the probe is written
     if (s.planned || s.recordPlan) {
-        const EffectPlan plan = planEffects(scene.registry, scene.markup, b.centre,
-                                            b.reflectorReach, {}, o.markupProbe);
+        EffectPlan plan = planEffects(scene.registry, scene.markup, b.centre, b.reflectorReach, {},
+                                      o.markupProbe);
+        if (s.planned && s.measuredPlan) {
+            MeasuredPlanOptions m;
+            m.faceRes = s.faceRes;
+            m.seed = s.planSeed;
+            m.budget = s.maxError ? *s.maxError : markupErrorBudget(scene.markup, o.markupProbe);
+            m.sky = b.sky;
+            m.cellSize = o.cellSize.value_or(markupCellSize(scene.markup));
+            m.proxy = o.proxy;
+            m.eyes = sceneEyes(scene);
+            m.viewShare = kDefaultViewShare;
+            // The second sample only measures the noise (`specula-cook plan` reports it): the
+            // cook keeps its time for the choice.
+            m.measureNoise = false;
+            const MeasuredPlan measured =
+                measurePlan(scene.registry, scene.markup, plan, b.centre, b.reflectorReach, m);
+            if (!measured.warning.empty()) result.warnings.push_back(measured.warning);
+            if (measured.chosen()) {
+                std::ostringstream line;
+                line << "measured plan: " << measured.chosen()->label() << " of "
+                     << measured.candidates.size() << " candidates on " << measured.rays
+                     << " rays in " << measured.seconds << " s (" << measured.reason << ")\n";
+                planLine = line.str();
+            }
+            plan = applyMeasurement(plan, measured);
+        }
         if (s.planned) applyPlan(plan, b);
         if (s.recordPlan) planJson = plan.toJson().dump();
     }
@@ -95,6 +121,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
     }
     asset.effectPlan = planJson;
     writeDistanceProbe(asset, o.out, scene.path);
+    if (log) *log << planLine;
     result.asset = std::move(asset);
 }
 

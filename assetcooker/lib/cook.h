@@ -6,6 +6,7 @@
 // Cancelled naming it.
 #include "assetcooker/lib/lightfield_bake.h"
 #include "assetcooker/lib/pem_samples.h"
+#include "assetcooker/lib/plan_budget.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/probe_setup.h"
@@ -32,6 +33,12 @@ struct DistanceCookSettings {
     // is recorded in the manifest either way when `recordPlan`.
     bool planned = true;
     bool recordPlan = true;
+    // Planned: measured (the candidate configurations scored against Embree, the cheapest
+    // meeting the budget; plan_measure.h) or analytic (effect_plan.h's thresholds alone).
+    bool measuredPlan = true;
+    // The measured plan's error budget (--max-error); unset: the probe node's max_error.
+    std::optional<ErrorBudget> maxError;
+    std::uint32_t planSeed = 1;
     GlossyBake glossy = GlossyBake::Auto;
     // The chain when glossy (its levels, level 0 included: the default 6 writes 5 glossy
     // levels, the chain a glossy lookup builds itself when an asset has none).

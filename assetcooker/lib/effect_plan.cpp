@@ -285,17 +285,22 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     plan.backgroundReason =
         forcedBackground ? "the user said so (specula_probe.background)" : "not asked for";
 
-    // The shader variant this plan compiles, named by the distance flavour's method table.
+    plan.features = planFeatures(plan);
+    return plan;
+}
+
+std::string planFeatures(const EffectPlan& plan) {
+    // Named by the distance flavour's method table.
     std::uint32_t bits = plan.mode == "layered" ? kFeatureLayers : 0;
     if (plan.mode == "envmap") bits |= info(DistanceMethod::Envmap).feature;
     for (const PlannedLayer& l : plan.layers)
         if (const DistanceMethodInfo* row = findDistanceMethod(l.method)) bits |= row->feature;
     if (plan.fresnel) bits |= kFeatureFresnel;
-    plan.features = distanceFeatureName(bits);
-    return plan;
+    return distanceFeatureName(bits);
 }
 
 void applyPlan(const EffectPlan& plan, DistanceBakeOptions& bake) {
+    if (plan.faceRes > 0) bake.faceRes = plan.faceRes;
     bake.layers.clear();
     if (plan.mode == "layered") {
         for (const PlannedLayer& l : plan.layers)
@@ -333,6 +338,10 @@ nlohmann::json EffectPlan::toJson() const {
     j["lobe"] = {{"half_width_deg", lobeDeg}, {"reason", lobeReason}};
     j["user_needs"] = userNeeds;
     j["features"] = features;
+    if (!lookupMethod.empty())
+        j["lookup"] = {
+            {"method", lookupMethod}, {"tolerance", lookupTolerance}, {"face_res", faceRes}};
+    if (!measurement.is_null()) j["measured"] = measurement;
     return j;
 }
 
@@ -362,6 +371,11 @@ std::string EffectPlan::toText() const {
     s << "objects:\n";
     for (const PlannedObject& o : objects)
         s << "  " << o.name << ": " << o.decision << " - " << o.reason << "\n";
+    if (!lookupMethod.empty())
+        s << "lookup   " << lookupMethod << ", d_e "
+          << (lookupTolerance > 0.f ? fmt(lookupTolerance, 3) : "-") << ", faces " << faceRes
+          << "^2\n";
+    s << measurementText;
     return s.str();
 }
 

@@ -64,6 +64,14 @@ struct EffectPlan {
     std::string lobeReason;
     std::vector<std::string> userNeeds; // what the markup asked for, as read
     std::string features;               // shader features the plan compiles in
+    // Set by a measured plan (plan_measure.h): the face resolution to bake (0: the cook's),
+    // the lookup chosen and its d_e (written as "lookup" and read at run time by the Planned
+    // method; 0: the user's d_e), and the measurement itself (its candidates and the choice).
+    int faceRes = 0;
+    std::string lookupMethod;
+    float lookupTolerance = 0.f;
+    nlohmann::json measurement;
+    std::string measurementText;
 
     nlohmann::json toJson() const;
     std::string toText() const;
@@ -71,8 +79,12 @@ struct EffectPlan {
 
 struct DistanceBakeOptions;
 // Makes `bake` follow the plan: the plan's layers and methods when layered, else the
-// composite alone with the plan's single method (nothing else is baked or uploaded).
+// composite alone with the plan's single method (nothing else is baked or uploaded); the
+// plan's face resolution when it states one.
 void applyPlan(const EffectPlan& plan, DistanceBakeOptions& bake);
+
+// The shader variant a plan compiles (its mode, its layers' methods, Fresnel), by name.
+std::string planFeatures(const EffectPlan& plan);
 
 // Analyses the environment from `centre` (a low-resolution visibility bake) with reflector
 // points anywhere within `reach` of it. Markup needs override `thresholds`. Cost: one BVH of

@@ -2,6 +2,8 @@
 
 #include "engine/core/error.h"
 
+#include <nlohmann/json.hpp>
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -117,6 +119,23 @@ DistanceLookupConfig makeLookupConfig(const DistanceProbe& probe, const Distance
     }
 
     if (probe.method == DistanceMethod::Planned) {
+        // A measured plan chose d_e with its lookup ("effect_plan": {"lookup": {"tolerance"}});
+        // a manifest without one keeps the user's.
+        if (!a.effectPlan.empty()) {
+            const nlohmann::json plan = nlohmann::json::parse(a.effectPlan, nullptr, false);
+            if (plan.is_discarded() || !plan.is_object())
+                throw Error(manifest, "effect_plan", "expected a JSON object");
+            if (plan.contains("lookup") && plan["lookup"].contains("tolerance")) {
+                const nlohmann::json& t = plan["lookup"]["tolerance"];
+                if (!t.is_number() || !std::isfinite(t.get<double>()) || t.get<double>() < 0.0)
+                    throw Error(manifest, "effect_plan.lookup.tolerance",
+                                "expected a finite number >= 0 (metres; 0: the user's d_e)");
+                if (t.get<float>() > 0.f) {
+                    p.tolerance = t.get<float>();
+                    p.maxSteps = bisectionSteps(p.range, p.tolerance);
+                }
+            }
+        }
         // The cooked plan: the composite alone when it baked no object layers, else every
         // baked layer with the method the plan gave it.
         auto planned = [&](std::size_t i) {
