@@ -35,11 +35,20 @@ CookOptions cookOptions(const BakeArgs& a) {
         s.geometry = a.geometry;
         s.priorWeight = a.prior;
         s.regularisation = a.smoothness;
+        s.localLayer = a.localLayer;
         o.flavour = s;
     } else {
         DistanceCookSettings s;
         s.faceRes = a.faceRes.value_or(s.faceRes);
         s.planned = a.layers == "plan";
+        s.measuredPlan = a.plan == "measured";
+        if (a.maxError) {
+            try {
+                s.maxError = parseErrorBudget(*a.maxError, "", "--max-error");
+            } catch (const Error& e) {
+                throw UsageError("--max-error", e.message());
+            }
+        }
         s.glossy = a.glossy == "on"    ? GlossyBake::On
                    : a.glossy == "off" ? GlossyBake::Off
                                        : GlossyBake::Auto; // validated by the option
@@ -121,7 +130,8 @@ std::string optionsText(const BakeArgs& a) {
     std::ostringstream t;
     t << a.flavour << " face_res " << (a.faceRes ? *a.faceRes : 0) << " layers " << a.layers
       << " cell_size " << (a.cellSize ? *a.cellSize : 0.f) << " cameras " << a.cameras
-      << " image_res " << a.imageRes << " compress " << a.compress << " glossy " << a.glossy;
+      << " image_res " << a.imageRes << " compress " << a.compress << " glossy " << a.glossy
+      << " plan " << a.plan << " max_error " << a.maxError.value_or("-");
     return t.str();
 }
 
@@ -182,6 +192,16 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
                          "objects: one layer per object"),
          "distance")
         ->check(CLI::IsMember({"plan", "objects"}));
+    only(sub->add_option("--plan", a.plan,
+                         "with --layers plan: measured (default: candidates scored against "
+                         "Embree, the cheapest meeting --max-error; it may bake at half "
+                         "--face-res) or analytic (thresholds)"),
+         "distance")
+        ->check(CLI::IsMember({"measured", "analytic"}));
+    only(sub->add_option("--max-error", a.maxError,
+                         "measured plan's budget over reflector rays: a PSNR (\"32dB\") or an "
+                         "RMSE (\"rmse:0.03\"); default: the probe node's max_error"),
+         "distance");
     only(sub->add_option("--glossy", a.glossy,
                          "the composite's GGX prefiltered chain for glossy reflectors (5 levels, "
                          "roughness 0.2 .. 1, layer_00_ggx_<i>.exr): auto (default) when a "
@@ -235,6 +255,12 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
                          "weight of the rows tying every texel to its neighbours (default 0.02)"),
          "pem")
         ->check(cli::finiteRange(0.0, 100.0));
+    only(sub->add_option("--local-layer", a.localLayer,
+                         "the local layer (what a concave reflector shows of itself, over the "
+                         "distant map off the reflector's hull): auto (where reflector rays meet "
+                         "their own reflector again, measured; default), on or off"),
+         "pem")
+        ->check(CLI::IsMember({"auto", "on", "off"}));
     only(sub->add_option("--parameter", a.parameter,
                          "what the maps vary with: viewpoint (the camera moves, default) or "
                          "reflector (the reflectors move before the scene camera)"),
@@ -258,6 +284,7 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
     tool.mapField("image_size", "--image-size");
     tool.mapField("parameter", "--parameter");
     tool.mapField("path", "--path");
+    tool.mapField("local_layer", "--local-layer");
     tool.mapField("geometry", "--geometry");
     tool.mapField("prior_weight", "--prior");
     tool.mapField("regularisation", "--smoothness");

@@ -21,6 +21,8 @@ struct BakeArgs {
     std::optional<int> faceRes; // distance: 256, pem: 128
     // distance
     std::string layers = "plan", glossy = "auto";
+    std::string plan = "measured";       // --plan measured|analytic
+    std::optional<std::string> maxError; // --max-error "32dB" | "rmse:0.03"
     // lightfield
     std::optional<float> cellSize;
     std::optional<std::string> cellCentre;
@@ -33,6 +35,7 @@ struct BakeArgs {
     std::string imageSize = "640x480", geometry = "distance";
     float prior = 0.05f, smoothness = 0.02f;
     std::string parameter = "viewpoint", path = "orbit";
+    std::string localLayer = "auto";
     // The options that belong to some flavours only, with their names ("distance|pem").
     std::vector<std::pair<const CLI::Option*, std::string>> flavourOnly;
 };

@@ -58,6 +58,17 @@ void validate(const PemSamples& samples, const PemInferOptions& o) {
     if (!(o.priorWeight >= 0.f) || !std::isfinite(o.priorWeight))
         throw Error("", "prior_weight", "expected a finite weight >= 0");
     if (o.distance) checkPemDistanceGeometry(*o.distance, "", "");
+    if (o.local &&
+        (!(o.local->radius > 0.f) || !std::isfinite(o.local->radius) || !finite(o.local->centre)))
+        throw Error("", "local", "expected a finite sphere of radius > 0");
+    if (o.alphaTargets) {
+        bool ok = o.local && o.alphaTargets->size() == samples.size();
+        for (std::size_t s = 0; ok && s < samples.size(); ++s)
+            ok = (*o.alphaTargets)[s] >= 0.f && (*o.alphaTargets)[s] <= 1.f;
+        if (!ok)
+            throw Error("", "local",
+                        "expected one coverage in [0, 1] per sample, with a local sphere");
+    }
 }
 
 // Clamp to what a cooked probe may hold; NaN (never expected from finite input) reads 0.
@@ -109,7 +120,8 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     map.faceRes = o.faceRes;
     map.boxMin = o.boxMin;
     map.boxMax = o.boxMax;
-    map.distance = o.distance;
+    map.distance = o.local ? nullptr : o.distance;
+    map.local = o.local;
     const int texels = PemMap::texelCount(o.faceRes);
     const PemLookupCpu lookup(map); // weights need the geometry only
 
@@ -153,20 +165,29 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     solver.compute(A);
     Eigen::VectorXd b = Eigen::VectorXd::Zero(rows), guess = Eigen::VectorXd::Zero(texels);
     map.texels.assign(std::size_t(texels), glm::vec3(0.f));
-    for (int c = 0; c < 3; ++c) {
+    // Channel 3 is the local layer's coverage: the same rows, its prior 0.
+    const int channels = o.alphaTargets ? 4 : 3;
+    if (o.alphaTargets) map.alpha.assign(std::size_t(texels), 0.f);
+    for (int c = 0; c < channels; ++c) {
         for (int s = 0; s < sampleRows; ++s)
-            b[s] = samples[std::size_t(s)].target[c];
+            b[s] = c < 3 ? samples[std::size_t(s)].target[c] : (*o.alphaTargets)[std::size_t(s)];
         if (usePrior)
             for (int t = 0; t < texels; ++t)
-                b[priorRow + t] = double(o.priorWeight) * (*o.prior)[std::size_t(t)][c];
-        if (o.warmStart)
+                b[priorRow + t] =
+                    c < 3 ? double(o.priorWeight) * (*o.prior)[std::size_t(t)][c] : 0.0;
+        guess.setZero();
+        if (o.warmStart && c < 3)
             for (int t = 0; t < texels; ++t)
                 guess[t] = (*o.warmStart)[std::size_t(t)][c];
         const Eigen::VectorXd x = solver.solveWithGuess(b, guess);
-        r.iterations[std::size_t(c)] = int(solver.iterations());
+        if (c < 3) r.iterations[std::size_t(c)] = int(solver.iterations());
         r.solverError = std::max(r.solverError, double(solver.error()));
-        for (int t = 0; t < texels; ++t)
-            map.texels[std::size_t(t)][c] = toRange(x[t]);
+        for (int t = 0; t < texels; ++t) {
+            if (c < 3)
+                map.texels[std::size_t(t)][c] = toRange(x[t]);
+            else
+                map.alpha[std::size_t(t)] = x[t] > 0.0 ? float(std::min(x[t], 1.0)) : 0.f;
+        }
     }
 
     // The residual of what will be displayed: the clamped map through the lookup itself.

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -23,6 +24,13 @@ struct PemSample {
     glm::vec3 x{0.f};
     glm::vec3 l{0.f, 0.f, 1.f};
     glm::vec3 target{0.f};
+    // Layered bakes (pem_layers.h) only: the radiance along the ray continued through the
+    // reflector it leaves (the distant layer's target; other reflectors still reflect),
+    // whether the ray meets that reflector again first, and whether it leaves from a triangle
+    // on the reflector's hull (pem_hull.h), which never reads the local layer.
+    glm::vec3 distant{0.f};
+    bool selfHit = false;
+    bool onHull = true;
 };
 using PemSamples = std::vector<PemSample>;
 
@@ -47,6 +55,12 @@ struct PemInferOptions {
     // or priorWeight 0: no prior rows. Like lambda, weighed against sample rows summing to 1.
     const std::vector<glm::vec3>* prior = nullptr;
     float priorWeight = 0.f;
+    // A local layer (pem_local_lookup.glsl.h): the rows come from the sphere lookup (box and
+    // distance unused), and `alphaTargets` (one per sample, the ray's coverage) is solved
+    // with the same matrix into map.alpha, clamped to [0, 1]. Its prior, when the RGB has one,
+    // is 0: coverage nobody saw reads as the distant layer.
+    std::optional<PemLocalSphere> local;
+    const std::vector<float>* alphaTargets = nullptr;
 };
 
 struct PemInference {
@@ -60,7 +74,8 @@ struct PemInference {
 
 // Throws Error naming the field: "samples" (none; a non-finite x, l or target; l not unit),
 // "face_res", "box", "regularisation", "tolerance", "max_iterations", "warm_start", "prior",
-// "prior_weight", "distance.*" (checkPemDistanceGeometry).
+// "prior_weight", "distance.*" (checkPemDistanceGeometry), "local" (a radius not > 0, or
+// alpha targets without a sphere or not one per finite sample in [0, 1]).
 PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o);
 
 // Every unordered pair of texels that share a texel edge, within a face or across a cube

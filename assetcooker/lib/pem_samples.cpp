@@ -1,13 +1,11 @@
 #include "pem_samples.h"
 
-#include "assetcooker/lib/pem_geometry.h"
-#include "components/reflection_probe/pem/pem_blend.h"
 #include "components/reflection_probe/walk_path.h"
 #include "engine/core/error.h"
-#include "engine/scene/mesh_bounds.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include <tbb/blocked_range.h>
@@ -31,75 +29,36 @@ void requireRange(const std::string& file, const char* field, int v, int lo, int
                         std::to_string(v));
 }
 
-// The scene at parameter t: parameter "viewpoint" moves the camera along the walk's orbit
-// (walkOrbitCameraView) past reflectors that stay put, so one tracer serves every t;
-// parameter "reflector" moves the reflectors along the walk path (walkOffset) before a fixed
-// camera (the orbit's t = 0, the scene camera), so each t gets a tracer of the moved scene.
-// The reflectors are back where the scene authors them when the state goes.
-class PemParameterState {
-public:
-    struct At {
-        const GroundTruthTracer* tracer;
-        CameraView camera;
-    };
+} // namespace
 
-    PemParameterState(ProbeScene& scene, const PemCookSettings& s)
-        : scene_(scene), s_(s), byReflector_(s.parameter == "reflector"), roots_(scene) {
-        if (!byReflector_) {
-            tracer_.emplace(scene.registry, groundTruthOptions(scene, false));
-            return;
+namespace {
+
+// The layered fields of one reflector ray leaving `hit` from `origin` (PemSampleOptions::layers).
+void traceLayers(const GroundTruthTracer& tracer, const Hit& hit, glm::vec3 origin,
+                 const PemSampleOptions& o, PemSample& s) {
+    const ecs::Entity self = hit.entity;
+    const auto again = tracer.fullScene().intersect(origin, s.l);
+    s.selfHit = again && again->entity == self;
+    s.distant = s.target;
+    if (s.selfHit) {
+        // Through the reflector: the first thing past it, traced from just before that point
+        // (the tracer then resolves it, reflecting on any other mirror as the full truth does).
+        const EmbreeScene::Filter notSelf = [self](ecs::Entity e) { return e != self; };
+        const auto beyond = tracer.fullScene().intersect(
+            origin, s.l, 1e-4f, std::numeric_limits<float>::infinity(), &notSelf);
+        if (!beyond) {
+            s.distant = tracer.sky(s.l);
+        } else {
+            const float m = std::max({std::fabs(beyond->position.x), std::fabs(beyond->position.y),
+                                      std::fabs(beyond->position.z), 1.f});
+            s.distant = tracer.radiance(beyond->position - 1e-3f * m * s.l, s.l, 1);
         }
-        parseWalkPath(s.path, path_); // validated
-        amplitude_ = walkAmplitude(scene, glm::vec3(0.f));
-        if (!(amplitude_ > 0.f))
-            throw Error(scene.path, "parameter",
-                        "the reflectors have no room to move inside the probe's cell (cell_size)");
     }
-    ~PemParameterState() {
-        if (byReflector_) roots_.setOffset(scene_.registry, glm::vec3(0.f));
-    }
-    PemParameterState(const PemParameterState&) = delete;
-    PemParameterState& operator=(const PemParameterState&) = delete;
-
-    At at(float t) {
-        if (!byReflector_)
-            return {&*tracer_, walkOrbitCameraView(scene_, s_.imageWidth, s_.imageHeight, t)};
-        roots_.setOffset(scene_.registry, walkOffset(path_, t, amplitude_));
-        tracer_.reset(); // one Embree scene at a time
-        tracer_.emplace(scene_.registry, groundTruthOptions(scene_, false));
-        return {&*tracer_, walkOrbitCameraView(scene_, s_.imageWidth, s_.imageHeight, 0.f)};
-    }
-
-private:
-    ProbeScene& scene_;
-    const PemCookSettings& s_;
-    bool byReflector_;
-    ReflectorRoots roots_;
-    WalkPath path_ = WalkPath::Orbit;
-    float amplitude_ = 0.f;
-    std::optional<GroundTruthTracer> tracer_;
-};
-
-// Each sample's fit half-way to the next one: the two maps blended as the runtime blends them
-// (pemBlend; the paths are closed loops, so the last sample blends with the first) against
-// the tracer at that viewpoint.
-void measureOffManifold(const PemAsset& asset, const PemCookSettings& s, const PemCookHooks& hooks,
-                        const std::string& file, const std::function<PemSamples(float)>& trace) {
-    std::vector<float> params;
-    for (const PemSampleMap& m : asset.samples)
-        params.push_back(m.parameter);
-    const bool periodic = true; // every walk path is a closed loop (walk_path.h)
-    for (int k = 0; k < s.samples; ++k) {
-        if (hooks.cancelled && hooks.cancelled())
-            throw Error(file, "cancelled", "the bake was cancelled");
-        const float t = (float(k) + 0.5f) / float(s.samples);
-        const PemBlendWeights w = pemBlend(params, t, false, periodic);
-        const PemLookupCpu a(asset.samples[std::size_t(w.a)].map);
-        const PemLookupCpu b(asset.samples[std::size_t(w.b)].map);
-        (*hooks.fits)[std::size_t(k)].psnrOff = pemSamplesPsnr(trace(t), [&](const PemSample& p) {
-            return glm::mix(a.radiance(p.x, p.l), b.radiance(p.x, p.l), w.wb);
-        });
-        if (hooks.progress) hooks.progress(0.5 + 0.5 * double(k + 1) / double(s.samples));
+    s.onHull = true;
+    if (o.hull) {
+        const auto it = o.hull->find(self);
+        if (it != o.hull->end() && hit.primitiveIndex < it->second.firstTriangle.size())
+            s.onHull = it->second.flag(hit.primitiveIndex, hit.triangle);
     }
 }
 
@@ -137,7 +96,9 @@ PemSamples tracePemSamples(const GroundTruthTracer& tracer, const CameraView& ca
                     PemSample s;
                     s.x = hit->position - probeCentre;
                     s.l = glm::normalize(glm::reflect(dir, n));
-                    s.target = tracer.radiance(offsetAlong(hit->position, ng), s.l, 1);
+                    const glm::vec3 origin2 = offsetAlong(hit->position, ng);
+                    s.target = tracer.radiance(origin2, s.l, 1);
+                    if (o.layers) traceLayers(tracer, *hit, origin2, o, s);
                     rows[std::size_t(y)].push_back(s);
                 }
         });
@@ -176,6 +137,11 @@ void validatePemCookSettings(const PemCookSettings& s, const std::string& file) 
         throw Error(file, "prior_weight",
                     "the prior is the radiance the distance geometry captures: needs geometry "
                     "distance");
+    if (s.localLayer != "auto" && s.localLayer != "on" && s.localLayer != "off")
+        throw Error(file, "local_layer", "expected auto, on or off, got '" + s.localLayer + "'");
+    if (s.localFaceRes != 0) requireRange(file, "local_face_res", s.localFaceRes, 1, 1024);
+    if (s.localSphere != "bound" && s.localSphere != "fit")
+        throw Error(file, "local_sphere", "expected bound or fit, got '" + s.localSphere + "'");
     if (s.parameter != "viewpoint" && s.parameter != "reflector")
         throw Error(file, "parameter",
                     "expected viewpoint or reflector, got '" + s.parameter + "'");
@@ -201,97 +167,6 @@ double pemSamplesPsnr(const PemSamples& samples,
     }
     const double mse = samples.empty() ? 0.0 : sum / (3.0 * double(samples.size()));
     return 10.0 * std::log10(1.0 / std::max(mse, 1e-12));
-}
-
-Aabb pemMapBox(const ProbeScene& scene, glm::vec3 centre) {
-    Aabb box = Aabb::cube(centre, 0.5f * markupCellSize(scene.markup));
-    for (ecs::Entity e : scene.loaded.entities)
-        if (!scene.markup.mirrorEntities.contains(e))
-            box.extend(meshWorldBounds(scene.registry, e));
-    return box.translated(-centre);
-}
-
-PemAsset cookPemAsset(ProbeScene& scene, const PemCookSettings& s, const PemCookHooks& hooks) {
-    validatePemCookSettings(s, scene.path);
-    if (scene.markup.mirrorEntities.empty())
-        throw Error(scene.path, "specula_reflector", "expected at least one reflector, found none");
-    PemAsset asset;
-    asset.centre = hooks.centre ? *hooks.centre
-                                : markupProbeCentre(scene.registry, scene.markup, scene.loaded);
-    asset.parameterKind = s.parameter;
-    asset.path = s.path;
-    asset.faceRes = s.faceRes;
-    asset.skySource = scene.skyPath;
-    asset.imageWidth = s.imageWidth;
-    asset.imageHeight = s.imageHeight;
-    const Aabb box = pemMapBox(scene, asset.centre);
-    asset.boxMin = box.min;
-    asset.boxMax = box.max;
-
-    PemInferOptions infer;
-    infer.faceRes = s.faceRes;
-    infer.boxMin = box.min;
-    infer.boxMax = box.max;
-    infer.regularisation = s.regularisation;
-    std::vector<glm::vec3> captured;
-    if (s.geometry == "distance") {
-        // The environment does not move with either parameter: one distance cube serves every
-        // sample. d_inf past any real distance: every environment point lies in the box.
-        const GroundTruthTracer environment(scene.registry, groundTruthOptions(scene, true));
-        const float dInf = 2.5f * glm::length(box.max - box.min) + 1.f;
-        asset.distance = std::make_shared<const PemDistanceGeometry>(bakePemDistanceGeometry(
-            environment, asset.centre, s.faceRes, dInf, s.priorWeight > 0.f ? &captured : nullptr));
-        asset.geometry = "distance";
-        infer.distance = asset.distance;
-        if (s.priorWeight > 0.f) {
-            infer.prior = &captured;
-            infer.priorWeight = s.priorWeight;
-        }
-    }
-    PemSampleOptions so;
-    so.supersample = s.supersample;
-    PemParameterState state(scene, s);
-    auto traceAt = [&](float t) {
-        const PemParameterState::At at = state.at(t);
-        return tracePemSamples(*at.tracer, at.camera, asset.centre, so, scene.path);
-    };
-    if (hooks.fits) hooks.fits->clear();
-    for (int k = 0; k < s.samples; ++k) {
-        if (hooks.cancelled && hooks.cancelled())
-            throw Error(scene.path, "cancelled", "the bake was cancelled");
-        const float t = float(k) / float(s.samples);
-        PemSamples samples;
-        try {
-            samples = traceAt(t);
-        } catch (const Error& e) {
-            // Say which sample: a reflector walking out of the frame sees no pixel at one t.
-            if (e.field() != "camera") throw;
-            throw Error(e.file(), "camera",
-                        "parameter sample " + std::to_string(k) + " (t = " + std::to_string(t) +
-                            "): no reflector pixel to infer its map from (" + e.message() + ")");
-        }
-        PemInference inferred = inferPemMap(samples, infer);
-        if (hooks.fits) {
-            PemSampleFit fit;
-            fit.parameter = t;
-            fit.rays = int(samples.size());
-            fit.unseenTexels = inferred.unseenTexels;
-            fit.inferSeconds = inferred.seconds;
-            const PemLookupCpu lookup(inferred.map);
-            fit.psnrOn = pemSamplesPsnr(
-                samples, [&](const PemSample& p) { return lookup.radiance(p.x, p.l); });
-            hooks.fits->push_back(fit);
-        }
-        PemSampleMap m;
-        m.parameter = t;
-        m.map = std::move(inferred.map);
-        asset.samples.push_back(std::move(m));
-        // The off-manifold measurement traces once more per sample: its share of the bar.
-        const double share = hooks.fits ? 0.5 : 1.0;
-        if (hooks.progress) hooks.progress(share * double(k + 1) / double(s.samples));
-    }
-    if (hooks.fits) measureOffManifold(asset, s, hooks, scene.path, traceAt);
-    return asset;
 }
 
 } // namespace specula

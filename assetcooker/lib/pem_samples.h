@@ -7,11 +7,13 @@
 // with. The maps of all samples make one PemAsset.
 #include "assetcooker/lib/pem_infer.h"
 #include "components/reflection_probe/pem/pem_asset.h"
+#include "components/reflection_probe/pem/pem_hull.h"
 #include "components/reflection_probe/probe_setup.h"
 
 #include <functional>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace specula {
@@ -24,6 +26,11 @@ struct PemSampleOptions {
     // true: reflected rays see the environment only (TraceOptions::environmentOnly), what a
     // cube map captured at the probe centre can represent.
     bool environmentOnly = false;
+    // Also trace what the two-layer maps need (pem_layers.h): PemSample::distant, selfHit,
+    // and onHull from `hull` (the flags of each reflector entity, pemHullFlags; a reflector
+    // it lacks counts as all hull). false: those fields keep their defaults.
+    bool layers = false;
+    const std::unordered_map<ecs::Entity, PemHullFlags>* hull = nullptr;
 };
 
 // One PemSample per (sub-pixel) primary ray that hits a reflector of the markup: x = hit -
@@ -66,6 +73,18 @@ struct PemCookSettings {
     // renderer draws, so bake at the frame size it will be drawn at (the walk's default
     // 640 x 480). With supersample 1 the rows are exactly the rasteriser's pixel centres.
     int imageWidth = 640, imageHeight = 480;
+    // The local layer (pem_layers.h): "auto" adds it when some reflector ray off the hull
+    // meets its own reflector again at any sample (measured), "on" always, "off" never.
+    std::string localLayer = "auto";
+    int localFaceRes = 0; // its cube's face resolution; 0: faceRes
+    // The local sphere: "bound" (the off-hull reflector points' bounding sphere) or "fit" (the
+    // least-squares sphere through them: a bowl's own sphere; fitPemLocalSphere). Measured on
+    // the bowl room (N=8, on / half-way dB against the full truth, cooker's fit): 160x120 with
+    // 64^2 faces bound 29.3 / 13.1, fit 28.9 / 13.3 (one map 28.2 / 13.1); 120x90 with 24^2
+    // faces bound 28.0 / 13.8, fit 24.4 / 13.3 (one map 21.0 / 12.9). Rays from different
+    // points that meet the bowl at one point see different things there; the exact sphere
+    // sends them all to one texel, a sphere off the bowl's centre spreads them.
+    std::string localSphere = "bound";
 };
 
 // How well one sample's map fits, measured by the cooker against the ray tracer on the
@@ -79,10 +98,15 @@ struct PemSampleFit {
     // Half-way to the next sample (across the wrap on the orbit): the blend of the two maps,
     // as the runtime draws it, against the tracer at that viewpoint (off the manifold).
     double psnrOff = 0;
+    // Layered bakes: the share of this sample's rays that meet their own reflector again
+    // (off the hull), and whether the asset got a local layer. Single-map bakes: 0, false.
+    double selfHitFraction = 0;
+    bool localLayer = false;
 };
 
 // Throws Error naming the field ("samples", "face_res", "supersample", "regularisation",
-// "image_size", "geometry", "prior_weight" (needs the distance geometry), "parameter", "path").
+// "image_size", "geometry", "prior_weight" (needs the distance geometry), "parameter", "path",
+// "local_layer", "local_face_res", "local_sphere").
 void validatePemCookSettings(const PemCookSettings& s, const std::string& file);
 
 // What the cooking API gives every baker: the probe centre, a progress callback (fraction of
@@ -103,7 +127,10 @@ Aabb pemMapBox(const ProbeScene& scene, glm::vec3 centre);
 // Every parameter sample is independent: its scene state at t = k / samples (the viewpoint
 // walkOrbitCameraView(t), or the reflectors at walkOffset(path, t) with the registry's
 // transforms restored afterwards), its samples (tracePemSamples, full ground truth), its
-// map (inferPemMap). Validates first.
+// map (inferPemMap). Validates first. Every sample is traced before any is inferred: the
+// local layer (localLayer "auto": some off-hull ray of some sample meets its own reflector
+// again) and its sphere are the asset's, and then each sample's maps are the two layers
+// (inferPemLayers, the rays' layer fields traced with every reflector's pemHullFlags).
 // With hooks.fits, each sample's fit is measured on and off the manifold (one more trace per
 // sample, half-way to the next). A cancel polled between samples throws Error naming the
 // scene and "cancelled".

@@ -154,9 +154,11 @@ void SceneRenderer::sync(ecs::Registry& registry) {
 
     registry.view<Mesh, Transform>().each([&](ecs::Entity e, Mesh& mesh, Transform&) {
         std::vector<DrawItem> items;
-        for (const Primitive& p : mesh.primitives) {
+        for (std::size_t k = 0; k < mesh.primitives.size(); ++k) {
+            const Primitive& p = mesh.primitives[k];
             if (!p.mesh || p.mesh->positions.empty()) continue;
             DrawItem item;
+            item.primitive = k;
             item.mesh = &meshFor(p.mesh, mesh.name);
             item.material = p.material;
             item.texture = p.material ? textureFor(p.material->baseColorTexture, p.material->name)
@@ -209,7 +211,8 @@ void SceneRenderer::drawSky(const CameraView& camera) {
     glDepthMask(GL_TRUE);
 }
 
-void SceneRenderer::drawEntity(ecs::Entity entity, gpu::Program& program) {
+void SceneRenderer::drawEntity(ecs::Entity entity, gpu::Program& program,
+                               const std::function<void(std::size_t)>& beforeDraw) {
     if (!registry_ || !registry_->valid(entity)) return;
     const auto it = draws_.find(entity);
     const Transform* transform = registry_->find<Transform>(entity);
@@ -224,6 +227,7 @@ void SceneRenderer::drawEntity(ecs::Entity entity, gpu::Program& program) {
                            item.material ? item.material->baseColorFactor : glm::vec4(1.f));
         glBindTextureUnit(kBaseColorUnit, item.texture);
         glBindVertexArray(item.mesh->vao.id());
+        if (beforeDraw) beforeDraw(item.primitive);
         if (item.mesh->indexed)
             glDrawElements(GL_TRIANGLES, item.mesh->count, GL_UNSIGNED_INT, nullptr);
         else

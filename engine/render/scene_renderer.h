@@ -72,7 +72,11 @@ public:
     // Draws the entity's primitives with `program` (see the contract above) into the bound
     // framebuffer with the current GL state. Does nothing for an entity not synced or no
     // longer alive. The caller sets the camera uniforms.
-    void drawEntity(ecs::Entity entity, gpu::Program& program);
+    // beforeDraw (when given) runs before each primitive's draw call with the primitive's index
+    // in Mesh::primitives: per-draw state such as a per-primitive uniform (gl_PrimitiveID
+    // restarts at every draw).
+    void drawEntity(ecs::Entity entity, gpu::Program& program,
+                    const std::function<void(std::size_t)>& beforeDraw = {});
     void drawEntities(gpu::Program& program, const std::function<bool(ecs::Entity)>& skip = {});
 
     static void setCameraUniforms(gpu::Program& program, const CameraView& camera);
@@ -100,6 +104,7 @@ private:
         const GpuMesh* mesh = nullptr;
         std::shared_ptr<const MaterialData> material;
         GLuint texture = 0;
+        std::size_t primitive = 0; // index in Mesh::primitives
     };
 
     GpuMesh& meshFor(const std::shared_ptr<const MeshData>& data, const std::string& meshName);

@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <unordered_map>
 
 namespace fs = std::filesystem;
 
@@ -19,15 +20,22 @@ namespace {
 // Mean over the samples of what the cooker measured: on the viewpoints and half-way between.
 void logCookerFit(std::ostream& log, const std::string& sceneName, int samples,
                   const CookResult& cooked) {
-    double on = 0, off = 0, infer = 0;
+    double on = 0, off = 0, infer = 0, self = 0;
     for (const PemSampleFit& f : cooked.pemFits)
-        on += f.psnrOn, off += f.psnrOff, infer += f.inferSeconds;
+        on += f.psnrOn, off += f.psnrOff, infer += f.inferSeconds, self += f.selfHitFraction;
     const double n = double(std::max<std::size_t>(cooked.pemFits.size(), 1));
-    char line[256];
+    const PemAsset& asset = std::get<PemAsset>(cooked.asset);
+    // Bytes per sample: the distant map, and the local layer's RGBA when there is one.
+    const double kib =
+        double(PemMap::texelCount(asset.faceRes)) * 12.0 / 1024.0 +
+        (asset.localLayer ? double(PemMap::texelCount(asset.localFaceRes)) * 16.0 / 1024.0 : 0.0);
+    char line[320];
     std::snprintf(line, sizeof line,
-                  "%s: PEM N=%d baked in %.1f s; the cooker's fit on the reflector rays: %.1f dB "
-                  "on, %.1f dB half-way; inference %.2f s per sample\n",
-                  sceneName.c_str(), samples, cooked.bakeSeconds, on / n, off / n, infer / n);
+                  "%s: PEM N=%d (%s) baked in %.1f s; the cooker's fit on the reflector rays: "
+                  "%.1f dB on, %.1f dB half-way; inference %.2f s per sample; %.0f KiB per "
+                  "sample (float texels); %.1f%% of rays meet their reflector again\n",
+                  sceneName.c_str(), samples, asset.localLayer ? "two layers" : "single map",
+                  cooked.bakeSeconds, on / n, off / n, infer / n, kib, 100.0 * self / n);
     log << line << std::flush;
 }
 
@@ -36,14 +44,27 @@ void logCookerFit(std::ostream& log, const std::string& sceneName, int samples,
 // interpolation): a distance-geometry lookup reads the distance cube while it searches.
 double pemFetchesPerPixel(ProbeScene& scene, const CameraView& cam, const PemAsset& asset,
                           const PemProbe& probe) {
-    const PemSamples rays = tracePemSamples(scene, cam, asset.centre, {});
+    // With a local layer the hull flags tell which pixels read it (PemSample::onHull).
+    std::unordered_map<ecs::Entity, PemHullFlags> hull;
+    PemSampleOptions o;
+    if (asset.localLayer) {
+        for (ecs::Entity e : scene.markup.mirrorEntities)
+            if (const Mesh* m = scene.registry.find<Mesh>(e)) hull.emplace(e, pemHullFlags(*m));
+        o.layers = true;
+        o.hull = &hull;
+    }
+    const GroundTruthTracer tracer(scene.registry, groundTruthOptions(scene, false));
+    const PemSamples rays = tracePemSamples(tracer, cam, asset.centre, o, scene.path);
     const glsl::PemParams p = pemParams(asset, probe);
     const PemLookupCpu a(asset.samples[std::size_t(p.layerA / 6)].map);
     // The shader blends the two samples' texels as it fetches them (one search, both maps
     // read at the texel it finds): one more filtered read when the second sample counts.
+    // The local layer: one filtered read per sample off the hull.
+    const int perLayer = p.wb > 0.f ? 2 : 1;
     double sum = 0;
     for (const PemSample& r : rays)
-        sum += a.textureFetches(r.x, r.l) + (p.wb > 0.f ? 1 : 0);
+        sum += a.textureFetches(r.x, r.l) + (perLayer - 1) +
+               (asset.localLayer && !r.onHull ? perLayer : 0);
     return sum / double(rays.size());
 }
 
@@ -66,24 +87,38 @@ void writePemPicture(const std::string& outDir, const std::string& sceneName,
 void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string& sceneName,
                    const std::string& outDir, const PemBenchSweep& sweep, BenchFrameBudget budget,
                    double envmapMs, BenchReport& report, PlotPanel& panel, std::ostream& log) {
-    for (const int samples : sweep.samples) {
-        const PemCookSettings settings =
+    // Each N baked as the cooker chooses (local layer "auto"); where that gave a local layer,
+    // once more without it, rows "... single" beside the layered ones.
+    struct Bake {
+        int samples;
+        bool single;
+    };
+    std::vector<Bake> bakes;
+    for (const int samples : sweep.samples)
+        bakes.push_back({samples, false});
+    for (std::size_t b = 0; b < bakes.size(); ++b) {
+        const int samples = bakes[b].samples;
+        PemCookSettings settings =
             sandboxPemSettings({sweep.faceRes, sweep.width, sweep.height}, samples);
+        if (bakes[b].single) settings.localLayer = "off";
         log << sceneName << ": baking the PEM (" << samples << " viewpoints, " << settings.faceRes
             << "^2 faces, inferred for " << sweep.width << "x" << sweep.height << ")\n"
             << std::flush;
         CookResult cooked;
         try {
-            cooked = cookSceneInto(
-                scene,
-                (fs::path(outDir) / "probes" / (sceneName + "_pem" + std::to_string(samples)))
-                    .string(),
-                settings, false, &log);
+            cooked = cookSceneInto(scene,
+                                   (fs::path(outDir) / "probes" /
+                                    (sceneName + "_pem" + std::to_string(samples) +
+                                     (bakes[b].single ? "_single" : "")))
+                                       .string(),
+                                   settings, false, &log);
         } catch (const Error& e) {
             log << sceneName << ": no PEM rows (" << e.what() << ")\n";
             return;
         }
         logCookerFit(log, sceneName, samples, cooked);
+        if (!bakes[b].single && std::get<PemAsset>(cooked.asset).localLayer)
+            bakes.push_back({samples, true});
         struct Viewpoint {
             const char* where;
             float t;
@@ -94,7 +129,7 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
         // The picture of the first PEM of the sweep: full truth and PEM, on and off.
         std::vector<Image> tiles, heat;
         std::vector<std::string> labels;
-        const bool picture = samples == sweep.samples.front();
+        const bool picture = samples == sweep.samples.front() && !bakes[b].single;
         for (const Viewpoint& v : {Viewpoint{"on", 0.f}, Viewpoint{"off", half}}) {
             const CameraView cam =
                 walkOrbitCameraView(scene.probeScene(), sweep.width, sweep.height, v.t);
@@ -107,7 +142,8 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
             BenchRow row;
             row.scene = sceneName;
             row.method = kPemMethods[0].label.name;
-            row.params = "N=" + std::to_string(samples) + " t=" + v.where;
+            row.params = "N=" + std::to_string(samples) + " t=" + v.where +
+                         (bakes[b].single ? " single" : "");
             Image shot = measureProbeRow(fr, cam, truth, budget, row);
             if (picture) {
                 labels.push_back(std::string("full truth t=") + v.where);

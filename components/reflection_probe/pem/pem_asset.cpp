@@ -32,6 +32,12 @@ std::string sampleFileName(std::size_t k) {
     return name;
 }
 
+std::string localFileName(std::size_t k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "local_%02zu.exr", k);
+    return name;
+}
+
 std::string samplePath(std::size_t k) {
     return "samples[" + std::to_string(k) + "].";
 }
@@ -59,6 +65,33 @@ PemMap unstackMap(const Image& img, const PemAsset& a) {
         for (int x = 0; x < img.width; ++x)
             m.texels[std::size_t(y) * std::size_t(img.width) + std::size_t(x)] =
                 glm::vec3(img.rgba(x, y));
+    return m;
+}
+
+// A local map stacked as the distant ones, RGBA: premultiplied RGB and coverage.
+Image stackLocal(const PemMap& m) {
+    const int n = m.faceRes;
+    Image out(n, 6 * n, 4);
+    for (int t = 0; t < PemMap::texelCount(n); ++t) {
+        for (int c = 0; c < 3; ++c)
+            out.pixels[std::size_t(t) * 4 + std::size_t(c)] = m.texels[std::size_t(t)][c];
+        out.pixels[std::size_t(t) * 4 + 3] = m.alpha[std::size_t(t)];
+    }
+    return out;
+}
+
+PemMap unstackLocal(const Image& img, const PemAsset& a) {
+    PemMap m;
+    m.faceRes = a.localFaceRes;
+    m.local = a.localSphere;
+    const std::size_t count = std::size_t(PemMap::texelCount(a.localFaceRes));
+    m.texels.resize(count);
+    m.alpha.resize(count);
+    for (std::size_t t = 0; t < count; ++t) {
+        const std::size_t p = t * std::size_t(img.channels);
+        m.texels[t] = glm::vec3(img.pixels[p], img.pixels[p + 1], img.pixels[p + 2]);
+        m.alpha[t] = img.pixels[p + 3];
+    }
     return m;
 }
 
@@ -91,12 +124,52 @@ void checkRadiance(const PemMap& m, const std::string& file, std::size_t k) {
                             ") channel " + "RGB"[c] + " holds " + number(v) +
                             "; expected a finite radiance in [0, " + number(kMaxRadiance) + "]");
         }
+    for (std::size_t t = 0; t < m.alpha.size(); ++t) {
+        const float v = m.alpha[t];
+        if (v >= 0.f && v <= 1.f) continue; // false for NaN too
+        throw Error(file, "alpha",
+                    "sample " + std::to_string(k) + " texel " + std::to_string(t) + " holds " +
+                        number(v) + "; expected a coverage in [0, 1]");
+    }
+}
+
+// The local layer's settings, and every sample's local map against them.
+void checkLocal(const PemAsset& a, const std::string& manifest,
+                const std::vector<std::string>& localFiles) {
+    if (!a.localLayer) {
+        for (std::size_t k = 0; k < a.samples.size(); ++k)
+            if (a.samples[k].local.faceRes != 0)
+                throw Error(manifest, samplePath(k) + "local",
+                            "a local map in an asset without a local layer");
+        return;
+    }
+    if (a.localFaceRes < 1 || a.localFaceRes > kMaxPemFaceRes)
+        throw Error(manifest, "local_layer.face_res",
+                    "expected an integer in [1, " + std::to_string(kMaxPemFaceRes) + "], got " +
+                        std::to_string(a.localFaceRes));
+    for (int i = 0; i < 3; ++i)
+        if (!(std::fabs(a.localSphere.centre[i]) <= kMaxCoordinate))
+            throw Error(manifest, "local_layer.centre", "expected a finite probe-local point");
+    if (!(a.localSphere.radius > 0.f) || !std::isfinite(a.localSphere.radius))
+        throw Error(manifest, "local_layer.radius",
+                    "expected a finite radius > 0, got " + number(a.localSphere.radius));
+    const std::size_t count = std::size_t(PemMap::texelCount(a.localFaceRes));
+    for (std::size_t k = 0; k < a.samples.size(); ++k) {
+        const PemMap& m = a.samples[k].local;
+        if (m.faceRes != a.localFaceRes || m.local != a.localSphere || m.distance ||
+            m.texels.size() != count || m.alpha.size() != count)
+            throw Error(manifest, samplePath(k) + "local",
+                        "expected " + std::to_string(count) + " RGBA texels of face resolution " +
+                            std::to_string(a.localFaceRes) + " on the asset's local sphere");
+        checkRadiance(m, localFiles[k], k);
+    }
 }
 
 // What the reader checks of the whole asset; the writer runs it first too. `files[k]` names
 // sample k's image, `distanceFile` the distance cube's.
 void checkAsset(const PemAsset& a, const std::string& manifest,
-                const std::vector<std::string>& files, const std::string& distanceFile) {
+                const std::vector<std::string>& files, const std::string& distanceFile,
+                const std::vector<std::string>& localFiles) {
     for (int i = 0; i < 3; ++i)
         if (!(std::fabs(a.centre[i]) <= kMaxCoordinate))
             throw Error(manifest, "centre",
@@ -148,16 +221,19 @@ void checkAsset(const PemAsset& a, const std::string& manifest,
                             " over the asset's box and geometry");
         checkRadiance(s.map, files[k], k);
     }
+    checkLocal(a, manifest, localFiles);
 }
 
 } // namespace
 
 void writePemProbe(const PemAsset& asset, const std::string& dir, const std::string& sourceScene) {
-    std::vector<std::string> files;
-    for (std::size_t k = 0; k < asset.samples.size(); ++k)
+    std::vector<std::string> files, localFiles;
+    for (std::size_t k = 0; k < asset.samples.size(); ++k) {
         files.push_back((fs::path(dir) / sampleFileName(k)).string());
+        localFiles.push_back((fs::path(dir) / localFileName(k)).string());
+    }
     checkAsset(asset, (fs::path(dir) / "manifest.json").string(), files,
-               (fs::path(dir) / kDistanceFile).string());
+               (fs::path(dir) / kDistanceFile).string(), localFiles);
 
     writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
         json samples = json::array();
@@ -166,12 +242,24 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
             const std::string name = sampleFileName(k);
             const std::string path = (tmp / name).string();
             writeImage(path, stackMap(asset.samples[k].map));
-            samples.push_back({{"parameter", asset.samples[k].parameter},
-                               {"file", name},
-                               {"checksum", fileChecksum(path)}});
+            json sample = {{"parameter", asset.samples[k].parameter},
+                           {"file", name},
+                           {"checksum", fileChecksum(path)}};
+            if (asset.localLayer) {
+                const std::string local = localFileName(k);
+                const std::string localPath = (tmp / local).string();
+                writeImage(localPath, stackLocal(asset.samples[k].local));
+                sample["local"] = {{"file", local}, {"checksum", fileChecksum(localPath)}};
+            }
+            samples.push_back(std::move(sample));
         }
+
         json manifest = probeManifestHeader("pem", sourceScene);
         manifest["geometry"] = asset.geometry;
+        if (asset.localLayer)
+            manifest["local_layer"] = {{"face_res", asset.localFaceRes},
+                                       {"centre", vec3Json(asset.localSphere.centre)},
+                                       {"radius", asset.localSphere.radius}};
         if (asset.imageWidth > 0) manifest["image_size"] = {asset.imageWidth, asset.imageHeight};
         if (!asset.skySource.empty()) manifest["sky_source"] = asset.skySource;
         if (const PemDistanceGeometry* g = asset.distance.get()) {
@@ -251,11 +339,19 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
             g->distances[t] = img.pixels[t * std::size_t(img.channels)];
         a.distance = std::move(g);
     }
+    // Absent in manifests written before local layers, and in assets without one.
+    if (m.contains("local_layer")) {
+        const json& l = r.member(m, "local_layer", "");
+        a.localLayer = true;
+        a.localFaceRes = r.integer(l, "face_res", "local_layer.", 1, kMaxPemFaceRes);
+        a.localSphere.centre = r.vec3(l, "centre", "local_layer.", kMaxCoordinate);
+        a.localSphere.radius = float(r.number(l, "radius", "local_layer.", 0.0, FLT_MAX));
+    }
     const json& samples = r.member(m, "samples", "");
     if (!samples.is_array() || samples.empty() || samples.size() > std::size_t(kMaxPemSamples))
         throw Error(manifest.path, "samples",
                     "expected an array of 1 to " + std::to_string(kMaxPemSamples) + " sample maps");
-    std::vector<std::string> files;
+    std::vector<std::string> files, localFiles;
     for (std::size_t k = 0; k < samples.size(); ++k) {
         const std::string path = samplePath(k);
         const json& j = samples[k];
@@ -273,10 +369,29 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
             throw Error(file.path, "channels",
                         "expected RGB, got " + std::to_string(img.channels) + " channel(s)");
         s.map = unstackMap(img, a);
+        if (a.localLayer) {
+            const std::string localPath = path + "local.";
+            const ManifestFields::CheckedFile local = r.checkedFile(
+                r.member(j, "local", path), localPath, dir, maxSampleFileBytes(a.localFaceRes));
+            s.localFile = local.name;
+            s.localChecksum = local.checksum;
+            const Image limg = r.namedFile(localPath, [&] {
+                return readFloatExr(local.path,
+                                    {.width = a.localFaceRes, .height = 6 * a.localFaceRes});
+            });
+            if (limg.channels < 4)
+                throw Error(local.path, "channels",
+                            "expected RGBA (premultiplied radiance, coverage), got " +
+                                std::to_string(limg.channels) + " channel(s)");
+            s.local = unstackLocal(limg, a);
+            localFiles.push_back(local.path);
+        } else {
+            localFiles.push_back(file.path);
+        }
         a.samples.push_back(std::move(s));
         files.push_back(file.path);
     }
-    checkAsset(a, manifest.path, files, distanceFile);
+    checkAsset(a, manifest.path, files, distanceFile, localFiles);
     return a;
 }
 

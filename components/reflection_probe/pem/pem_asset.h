@@ -9,7 +9,9 @@
 // +X -X +Y -Y +Z -Z top to bottom (OpenGL face orientation, each face's row 0 first), RGB
 // linear radiance: texel (face, i, j) of the PemMap is pixel (i, face * N + j). A map of
 // distance geometry ("geometry": "distance") adds distance.exr, M x 6M in the same layout,
-// one channel: the environment's distance from the centre per texel of its own cube.
+// one channel: the environment's distance from the centre per texel of its own cube. An asset
+// with a local layer ("local_layer": face resolution, sphere) adds local_NN.exr per sample,
+// L x 6L in the same layout, RGBA: premultiplied local radiance and coverage alpha.
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/pem/pem_lookup_cpu.h"
 
@@ -23,8 +25,12 @@ namespace specula {
 
 struct PemSampleMap {
     float parameter = 0.f;      // where on the parameter axis this map was inferred, in [0, 1]
-    PemMap map;                 // faceRes and box equal to the asset's
+    PemMap map;                 // faceRes and box equal to the asset's: the distant layer
     std::string file, checksum; // set by the reader/writer
+    // The local layer when the asset has one (faceRes localFaceRes, local = the asset's
+    // sphere, alpha in [0, 1]); faceRes 0 otherwise.
+    PemMap local;
+    std::string localFile, localChecksum; // set by the reader/writer
 };
 
 struct PemAsset {
@@ -45,6 +51,12 @@ struct PemAsset {
     std::shared_ptr<const PemDistanceGeometry> distance; // set iff geometry == "distance"
     std::string distanceFile, distanceChecksum;          // set by the reader
     std::vector<PemSampleMap> samples;                   // parameter strictly increasing
+    // The local layer (Hakura §5): what the reflector shows of itself, drawn over the distant
+    // layer off the reflector's hull (pem_hull.h). The cooker adds it where reflector rays see
+    // their own reflector again. Manifests without "local_layer" have none.
+    bool localLayer = false;
+    int localFaceRes = 0; // 1 .. 4096 with a local layer
+    PemLocalSphere localSphere;
 };
 
 // Most samples a manifest may list (each is a full cube map).
@@ -56,15 +68,18 @@ inline constexpr int kMaxPemSamples = 1024;
 // and the field: "centre", "parameter_kind", "path", "face_res", "box", "geometry", "distance.*"
 // (checkPemDistanceGeometry; distance.exr for the distances), "samples",
 // "samples[k].parameter", "samples[k].map" (size, box or geometry unlike the asset's),
-// "radiance".
+// "radiance", "local_layer.*" (face_res, centre, radius), "samples[k].local" (the local map
+// unlike the asset's layer), "alpha" (a local map's coverage outside [0, 1]).
 void writePemProbe(const PemAsset& asset, const std::string& dir, const std::string& sourceScene);
 
 // Reads and validates a manifest and its images: format, version and flavour, every field's
 // type and range, parameters in [0, 1] strictly increasing, each file a plain name inside the
 // folder with a matching checksum, each image a float EXR of exactly N x 6N whose RGB is
 // finite in [0, kMaxRadiance]; distance geometry: its parameters, distance.exr a float EXR of
-// exactly M x 6M with a matching checksum whose first channel lies in (0, d_inf]. Errors
-// name the file and the field.
+// exactly M x 6M with a matching checksum whose first channel lies in (0, d_inf]; a local
+// layer: every sample's "local" file an RGBA float EXR of exactly L x 6L with a matching
+// checksum (a missing or wrong-sized one names the manifest and "samples[k].local.file"),
+// RGB as the maps', alpha in [0, 1]. Errors name the file and the field.
 PemAsset readPemProbe(const ProbeManifest& manifest);
 PemAsset readPemProbe(const std::string& manifestPath);
 

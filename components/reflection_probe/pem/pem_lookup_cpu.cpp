@@ -76,6 +76,22 @@ struct PemProbeTwin : PemTexelProbe {
 };
 #undef SPECULA_PEM_LOOKUP_GLSL_H
 
+// The local layer: RGBA texels, premultiplied RGB and alpha.
+struct PemLocalReadTwin : PemTexelRead {
+    vec4 fetchLocalTexel(int face, int i, int j) const {
+        const std::size_t t = std::size_t((face * map->faceRes + j) * map->faceRes + i);
+        return vec4(map->texels[t], map->alpha[t]);
+    }
+#include "components/reflection_probe/pem/shaders/pem_local_lookup.glsl.h"
+};
+#undef SPECULA_PEM_LOCAL_LOOKUP_GLSL_H
+
+// Alpha is filtered with the RGB weights, so measuring RGB's is enough.
+struct PemLocalProbeTwin : PemTexelProbe {
+    vec4 fetchLocalTexel(int face, int i, int j) { return vec4(fetchTexel(face, i, j), 0.0f); }
+#include "components/reflection_probe/pem/shaders/pem_local_lookup.glsl.h"
+};
+
 // The distance hooks take the distance lookup's `layer` argument, which a single-layer
 // lookup does not need: GLSL does not mind, C++ warns.
 #pragma GCC diagnostic push
@@ -105,7 +121,10 @@ std::string number(double v) {
 }
 
 template <typename Twin> glm::vec3 lookup(Twin& twin, const PemMap& m, glm::vec3 x, glm::vec3 l) {
-    if constexpr (std::is_base_of_v<glsl::PemDistanceRead, Twin>) {
+    if constexpr (std::is_same_v<Twin, glsl::PemLocalReadTwin> ||
+                  std::is_same_v<Twin, glsl::PemLocalProbeTwin>) {
+        return glm::vec3(twin.pemLocalRadiance(x, l, m.local->centre, m.local->radius, m.faceRes));
+    } else if constexpr (std::is_base_of_v<glsl::PemDistanceRead, Twin>) {
         const PemDistanceGeometry& g = *m.distance;
         twin.geometry = &g;
         twin.mapFaceRes = m.faceRes;
@@ -181,6 +200,7 @@ void checkPemDistanceGeometry(const PemDistanceGeometry& g, const std::string& f
 }
 
 glm::vec3 PemLookupCpu::radiance(glm::vec3 x, glm::vec3 l) const {
+    if (map_->local) return glm::vec3(localRadiance(x, l));
     if (map_->distance) {
         glsl::PemDistanceReadTwin twin;
         twin.map = map_;
@@ -191,8 +211,15 @@ glm::vec3 PemLookupCpu::radiance(glm::vec3 x, glm::vec3 l) const {
     return lookup(twin, *map_, x, l);
 }
 
+glm::vec4 PemLookupCpu::localRadiance(glm::vec3 x, glm::vec3 l) const {
+    assert(map_->local && map_->alpha.size() == map_->texels.size());
+    glsl::PemLocalReadTwin twin;
+    twin.map = map_;
+    return twin.pemLocalRadiance(x, l, map_->local->centre, map_->local->radius, map_->faceRes);
+}
+
 int PemLookupCpu::textureFetches(glm::vec3 x, glm::vec3 l) const {
-    if (!map_->distance) return 1;
+    if (map_->local || !map_->distance) return 1;
     glsl::PemDistanceReadTwin twin;
     twin.map = map_;
     lookup(twin, *map_, x, l);
@@ -200,7 +227,10 @@ int PemLookupCpu::textureFetches(glm::vec3 x, glm::vec3 l) const {
 }
 
 void PemLookupCpu::weights(glm::vec3 x, glm::vec3 l, PemWeights& out) const {
-    if (map_->distance) {
+    if (map_->local) {
+        glsl::PemLocalProbeTwin twin;
+        measureWeights(twin, *map_, x, l, out);
+    } else if (map_->distance) {
         glsl::PemDistanceProbeTwin twin;
         measureWeights(twin, *map_, x, l, out);
     } else {

@@ -6,7 +6,10 @@
 // `weights`, so the map it infers is the best match as this very lookup applies it.
 #include <glm/vec3.hpp>
 
+#include <glm/vec4.hpp>
+
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +31,15 @@ struct PemDistanceGeometry {
     bool operator==(const PemDistanceGeometry&) const = default;
 };
 
+// The local layer's geometry (shaders/pem_local_lookup.glsl.h): a sphere fitted to the
+// reflector, probe-local.
+struct PemLocalSphere {
+    glm::vec3 centre{0.f};
+    float radius = 1.f; // > 0
+
+    bool operator==(const PemLocalSphere&) const = default;
+};
+
 // One map: six N x N faces in OpenGL order (+X -X +Y -Y +Z -Z, OpenGL face orientation),
 // linear RGB, texel (face, column i, row j) at face*N*N + j*N + i. The box is probe-local and
 // holds the reflector; the map's centre is the probe origin. Geometry: the box when
@@ -37,6 +49,10 @@ struct PemMap {
     glm::vec3 boxMin{-1.f}, boxMax{1.f};
     std::vector<glm::vec3> texels; // 6 * faceRes * faceRes
     std::shared_ptr<const PemDistanceGeometry> distance;
+    // A local layer (set: the sphere lookup, box and distance unused): texels hold
+    // premultiplied RGB and `alpha` the coverage, one per texel. Unset: `alpha` is empty.
+    std::optional<PemLocalSphere> local{};
+    std::vector<float> alpha{};
 
     static int texelCount(int faceRes) { return 6 * faceRes * faceRes; }
 };
@@ -54,14 +70,18 @@ class PemLookupCpu {
 public:
     explicit PemLookupCpu(const PemMap& map) : map_(&map) {}
 
-    // x: probe-local reflector point (inside the box), l: unit reflected direction.
+    // x: probe-local reflector point (inside the box), l: unit reflected direction. A local
+    // map gives its premultiplied RGB.
     glm::vec3 radiance(glm::vec3 x, glm::vec3 l) const;
+    // A local map's premultiplied RGB and coverage alpha (the shader's pemLocalRadiance).
+    glm::vec4 localRadiance(glm::vec3 x, glm::vec3 l) const;
 
     // The texels radiance(x, l) reads and their weights, so that radiance(x, l) equals
     // sum(weight * texel) up to float rounding. Needs only the map's geometry (faceRes,
     // box, distance), not its texels. `out` is cleared first.
     void weights(glm::vec3 x, glm::vec3 l, PemWeights& out) const;
 
+    // The weights of a local map are those of its alpha too: one RGBA bilinear.
     // Texture fetches radiance(x, l) makes, as the bench counts them for every method: one per
     // bilinear read of the map (its four texelFetch calls are one filtered fetch elsewhere),
     // one per distance-cube read of the search.

@@ -34,17 +34,30 @@ glsl::PemParams pemParams(const PemAsset& asset, const PemProbe& settings) {
         p.tolerance = g->tolerance;
         p.maxSteps = g->maxSteps;
     }
+    if (asset.localLayer) {
+        p.localFaceRes = asset.localFaceRes;
+        p.localCentre = asset.localSphere.centre;
+        p.localRadius = asset.localSphere.radius;
+    }
     return p;
 }
 
-glm::vec3 PemProbeCpu::radiance(glm::vec3 x, glm::vec3 l) const {
+glm::vec3 PemProbeCpu::radiance(glm::vec3 x, glm::vec3 l, bool onHull) const {
     // As the shader: sample a's lookup, mixed with sample b's when b has any weight.
     auto sample = [&](int layer) {
         return PemLookupCpu(asset_->samples[std::size_t(layer / 6)].map).radiance(x, l);
     };
     glm::vec3 colour = sample(params_->layerA);
     if (params_->wb > 0.f) colour = glm::mix(colour, sample(params_->layerB), params_->wb);
-    return colour;
+    if (!asset_->localLayer || onHull) return colour;
+    // The shader blends the local texels as it fetches them: linear, so blending lookups is
+    // the same up to rounding.
+    auto local = [&](int layer) {
+        return PemLookupCpu(asset_->samples[std::size_t(layer / 6)].local).localRadiance(x, l);
+    };
+    glm::vec4 over = local(params_->layerA);
+    if (params_->wb > 0.f) over = glm::mix(over, local(params_->layerB), params_->wb);
+    return glm::vec3(over) + (1.f - over.a) * colour;
 }
 
 } // namespace specula

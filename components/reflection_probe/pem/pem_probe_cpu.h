@@ -19,8 +19,8 @@ namespace glsl {
 std::vector<float> pemSampleParameters(const PemAsset& asset);
 
 // The block the shader reads for `settings` on `asset`: box, face resolution, centre, the
-// two samples' first array layers and weight from pemBlend, and the distance geometry's
-// search parameters (zero for box maps).
+// two samples' first array layers and weight from pemBlend, the distance geometry's search
+// parameters (zero for box maps) and the local layer's sphere (zero without one).
 glsl::PemParams pemParams(const PemAsset& asset, const PemProbe& settings);
 
 class PemProbeCpu {
@@ -30,8 +30,10 @@ public:
         : asset_(&asset), params_(&params) {}
 
     // x: probe-local reflector point, l: unit reflected direction (the shader's OUTPUT 1/2).
-    // Fresnel is not applied (the shader applies it after the lookup).
-    glm::vec3 radiance(glm::vec3 x, glm::vec3 l) const;
+    // Fresnel is not applied (the shader applies it after the lookup). onHull: the pixel's
+    // triangle is on its reflector's hull (pem_hull.h; the shader's OUTPUT 3), so an asset's
+    // local layer is skipped there as the shader skips it; assets without one ignore it.
+    glm::vec3 radiance(glm::vec3 x, glm::vec3 l, bool onHull = true) const;
 
 private:
     const PemAsset* asset_;

@@ -12,17 +12,21 @@ namespace {
 std::size_t mapBytes(const PemAsset& a) {
     const std::size_t distance =
         a.distance ? std::size_t(PemMap::texelCount(a.distance->faceRes)) * sizeof(float) : 0;
+    const std::size_t local = a.localLayer ? std::size_t(PemMap::texelCount(a.localFaceRes)) *
+                                                 a.samples.size() * 4 * sizeof(float)
+                                           : 0;
     return std::size_t(PemMap::texelCount(a.faceRes)) * a.samples.size() * 4 * sizeof(float) +
-           distance;
+           distance + local;
 }
 
-// Every sample's six faces as array layers 6s .. 6s+5 of one RGBA32F array. Throws Error
-// naming the manifest when this GPU cannot hold that many layers.
-gpu::Texture uploadMaps(const PemAsset& a) {
+// Every sample's six faces as array layers 6s .. 6s+5 of one RGBA32F array, the distant maps
+// (alpha 1) or the local ones (premultiplied RGB, coverage). Throws Error naming the manifest
+// when this GPU cannot hold that many layers.
+gpu::Texture uploadMaps(const PemAsset& a, bool local) {
     GLint maxLayers = 0, maxSize = 0;
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-    const int n = a.faceRes, layers = 6 * int(a.samples.size());
+    const int n = local ? a.localFaceRes : a.faceRes, layers = 6 * int(a.samples.size());
     if (layers > maxLayers || n > maxSize)
         throw Error(a.manifestPath, "samples",
                     std::to_string(a.samples.size()) + " maps of " + std::to_string(n) +
@@ -33,10 +37,10 @@ gpu::Texture uploadMaps(const PemAsset& a) {
     glTextureStorage3D(tex, 1, GL_RGBA32F, n, n, layers);
     std::vector<float> rgba(std::size_t(PemMap::texelCount(n)) * 4);
     for (std::size_t s = 0; s < a.samples.size(); ++s) {
-        const std::vector<glm::vec3>& texels = a.samples[s].map.texels;
-        for (std::size_t t = 0; t < texels.size(); ++t)
+        const PemMap& m = local ? a.samples[s].local : a.samples[s].map;
+        for (std::size_t t = 0; t < m.texels.size(); ++t)
             for (int c = 0; c < 4; ++c)
-                rgba[t * 4 + std::size_t(c)] = c < 3 ? texels[t][c] : 1.f;
+                rgba[t * 4 + std::size_t(c)] = c < 3 ? m.texels[t][c] : (local ? m.alpha[t] : 1.f);
         // Faces are contiguous N x N blocks in cube order: one upload of six layers.
         glTextureSubImage3D(tex, 0, 0, 0, 6 * int(s), n, n, 6, GL_RGBA, GL_FLOAT, rgba.data());
     }
@@ -73,14 +77,19 @@ gpu::Program PemVariant::build() const {
         gpu::ShaderSource::file("components/reflection_probe/shaders/reflector.vert"),
         gpu::ShaderSource::file("components/reflection_probe/pem/shaders/pem_reflector.frag"),
         {std::string("HAS_FRESNEL=") + (fresnel ? "1" : "0"), "OUTPUT=" + std::to_string(output),
-         std::string("GEOMETRY_DISTANCE=") + (distance ? "1" : "0")});
+         std::string("GEOMETRY_DISTANCE=") + (distance ? "1" : "0"),
+         std::string("HAS_LOCAL_LAYER=") + (local ? "1" : "0")});
 }
 
 PemProbeGpu PemStore::loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) {
     PemProbeGpu g;
     g.asset = assets_.get(manifest.path, [&] { return readPemProbe(manifest); });
-    g.maps = uploadMaps(*g.asset);
+    g.maps = uploadMaps(*g.asset, false);
     ++stats.textureUploads;
+    if (g.asset->localLayer) {
+        g.local = uploadMaps(*g.asset, true);
+        ++stats.textureUploads;
+    }
     if (g.asset->distance) {
         g.distance = uploadDistance(*g.asset);
         ++stats.textureUploads;
@@ -98,9 +107,26 @@ std::size_t PemStore::gpuBytesOf(const PemProbeGpu& g) const {
     return mapBytes(*g.asset) + sizeof(glsl::PemParams);
 }
 
+const PemStore::HullBuffer& PemStore::hullBuffer(ecs::Entity reflector, const Mesh& mesh) {
+    std::vector<const MeshData*> meshes;
+    for (const Primitive& p : mesh.primitives)
+        meshes.push_back(p.mesh.get());
+    HullBuffer& h = hulls_[reflector];
+    if (h.buffer && h.meshes == meshes) return h;
+    h.meshes = std::move(meshes);
+    h.flags = pemHullFlags(mesh);
+    // A reflector without triangles still binds a (one-word) buffer.
+    std::vector<std::uint32_t> words = h.flags.bits;
+    if (words.empty()) words.push_back(0u);
+    h.buffer = gpu::Buffer::create(words.data(), GLsizeiptr(words.size() * sizeof(std::uint32_t)));
+    return h;
+}
+
 void PemStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector, const Reflector& r,
                              const PemProbeGpu& g, const PemProbe&) {
-    const PemVariant v{r.fresnelF0 >= 0.f, ctx.output, g.asset->distance != nullptr};
+    const Mesh* mesh = ctx.registry.find<Mesh>(reflector);
+    const PemVariant v{r.fresnelF0 >= 0.f, ctx.output, g.asset->distance != nullptr,
+                       g.asset->localLayer && mesh != nullptr};
     gpu::Program& prog = variants_.get(v);
     ctx.stats.drew(v.filter().name());
     prog.use();
@@ -113,7 +139,17 @@ void PemStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector,
     }
     g.block.bind(glsl::kPemParamsBinding);
     prog.setUniform("uF0", r.fresnelF0);
-    ctx.scene.drawEntity(reflector, prog);
+    if (!v.local) {
+        ctx.scene.drawEntity(reflector, prog);
+        return;
+    }
+    glBindTextureUnit(3, g.local.id());
+    prog.setUniform("uPemLocal", 3);
+    const HullBuffer& hull = hullBuffer(reflector, *mesh);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(glsl::kPemHullBinding), hull.buffer.id());
+    ctx.scene.drawEntity(reflector, prog, [&](std::size_t primitive) {
+        prog.setUniform("uPemHullBase", int(hull.flags.firstTriangle[primitive]));
+    });
 }
 
 } // namespace specula

@@ -5,6 +5,7 @@
 // samples nearest the parameter as one uniform block. A parameter edit rewrites the block
 // only; the textures are uploaded once per probe.
 #include "components/reflection_probe/flavour_store_base.h"
+#include "components/reflection_probe/pem/pem_hull.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/shader_variants.h"
 #include "engine/gpu/gl_objects.h"
@@ -23,18 +24,21 @@ struct PemProbeGpu {
     gpu::UniformBuffer<glsl::PemParams> block;
     gpu::Texture maps;
     gpu::Texture distance; // the distance cube of distance-geometry assets, else empty
+    gpu::Texture local;    // every sample's local layer (RGBA32F, layered as maps), or empty
 };
 
 struct PemVariant {
     bool fresnel = false;
     int output = 0;
     bool distance = false; // distance geometry (GEOMETRY_DISTANCE), else box
+    bool local = false;    // a local layer over the distant one (HAS_LOCAL_LAYER)
 
     auto operator<=>(const PemVariant&) const = default;
-    // The twin-input outputs (1, 2) write no colour, so Fresnel is irrelevant to them.
-    PemVariant filter() const { return {fresnel && output == 0, output, distance}; }
+    // The twin-input outputs (1, 2, 3) write no colour, so Fresnel is irrelevant to them.
+    PemVariant filter() const { return {fresnel && output == 0, output, distance, local}; }
     std::string name() const {
-        return std::string(distance ? "pem-distance" : "pem") + (fresnel ? "+fresnel" : "");
+        return std::string(distance ? "pem-distance" : "pem") + (local ? "+local" : "") +
+               (fresnel ? "+fresnel" : "");
     }
     gpu::Program build() const;
 };
@@ -52,9 +56,19 @@ private:
     void drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector, const Reflector& r,
                        const PemProbeGpu& probe, const PemProbe& settings) override;
 
+    // The reflector's hull flags as a storage buffer, made on its first layered draw and
+    // again when its mesh changes (`meshes` holds the primitives' data it was made from).
+    struct HullBuffer {
+        std::vector<const MeshData*> meshes;
+        PemHullFlags flags;
+        gpu::Buffer buffer;
+    };
+    const HullBuffer& hullBuffer(ecs::Entity reflector, const Mesh& mesh);
+
     // Probes that share an asset share its CPU copy; each holds its own texture.
     SharedAssets<PemAsset> assets_;
     ShaderVariants<PemVariant> variants_;
+    std::unordered_map<ecs::Entity, HullBuffer> hulls_;
 };
 
 } // namespace specula

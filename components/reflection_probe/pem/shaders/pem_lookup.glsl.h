@@ -27,8 +27,7 @@ float pemBoxExit(vec3 x, vec3 l, vec3 boxMin, vec3 boxMax) {
 // Bilinear within one face, clamped to the face edge: what a GL_LINEAR, CLAMP_TO_EDGE fetch
 // from one layer of a 2D array reads (texel centres at (i + 0.5) / N), written out as four
 // fetches so the weights are ours, not the filtering hardware's 8-bit fractions.
-// TODO(issue 12): MIP levels (all solved together, as the paper does) come with the runtime
-// store; this reads level 0 only.
+// Level 0 only: the paper's MIP levels (all inferred together) are not built yet (issue 12).
 vec3 pemFetchBilinear(vec3 faceUv, int faceRes) {
     int face = int(faceUv.z);
     vec2 f = vec2(faceUv.x, faceUv.y) * float(faceRes) - vec2(0.5f);

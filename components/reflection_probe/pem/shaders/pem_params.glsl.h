@@ -9,6 +9,8 @@
 
 // The uniform-buffer binding point, apart from the other flavours' (distance 0, test 3).
 SHARED_CONST int kPemParamsBinding = 4;
+// The storage-buffer binding of the drawn reflector's hull flags (pem_hull.h).
+SHARED_CONST int kPemHullBinding = 5;
 
 struct PemParams {
     vec3 boxMin; // probe-local map box (every sample's)
@@ -25,8 +27,12 @@ struct PemParams {
     float range;
     float tolerance;
     int maxSteps;
+    // The local layer (HAS_LOCAL_LAYER shaders; zero without one): its cube's face
+    // resolution and sphere (PemLocalSphere, probe-local).
+    int localFaceRes;
     int pad0;
-    int pad1;
+    vec3 localCentre;
+    float localRadius;
 };
 
 #ifdef __cplusplus
@@ -35,7 +41,9 @@ static_assert(offsetof(PemParams, wb) == 28 && offsetof(PemParams, centre) == 32
 static_assert(offsetof(PemParams, layerA) == 44 && offsetof(PemParams, layerB) == 48);
 static_assert(offsetof(PemParams, distanceFaceRes) == 52 && offsetof(PemParams, dInf) == 56);
 static_assert(offsetof(PemParams, range) == 60 && offsetof(PemParams, tolerance) == 64);
-static_assert(offsetof(PemParams, maxSteps) == 68 && sizeof(PemParams) == 80);
+static_assert(offsetof(PemParams, maxSteps) == 68 && offsetof(PemParams, localFaceRes) == 72);
+static_assert(offsetof(PemParams, localCentre) == 80 && offsetof(PemParams, localRadius) == 92);
+static_assert(sizeof(PemParams) == 96);
 #endif
 
 #endif

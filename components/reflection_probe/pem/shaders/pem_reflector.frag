@@ -1,8 +1,9 @@
 // Reflector pixels of a parameterized-environment-map probe: the lookup of the two samples
 // the parameter block names, mixed by its weight (texel by texel: one lookup). Defines: GEOMETRY_DISTANCE (0 the box
 // lookup, pem_lookup.glsl.h; 1 the distance-rectified one, pem_distance_lookup.glsl.h),
-// HAS_FRESNEL (0/1), OUTPUT (0 colour, 1 probe-local position, 2 reflected direction: inputs
-// for the CPU twin).
+// HAS_FRESNEL (0/1), HAS_LOCAL_LAYER (0/1: the local layer over the distant one, off the
+// reflector's hull; pem_local_lookup.glsl.h), OUTPUT (0 colour, 1 probe-local position, 2
+// reflected direction, 3 the hull flag in red: inputs for the CPU twin).
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
@@ -17,6 +18,16 @@ uniform sampler2DArray uPemMaps;
 #if GEOMETRY_DISTANCE
 // The distance cube: six R32F layers, read nearest with texelFetch as the twin reads it.
 uniform sampler2DArray uPemDistance;
+#endif
+#if HAS_LOCAL_LAYER
+// Premultiplied RGB and coverage per texel, layered as uPemMaps.
+uniform sampler2DArray uPemLocal;
+// One bit per triangle of the drawn reflector, all its primitives in order (pem_hull.h); this
+// draw's first triangle is bit uPemHullBase (gl_PrimitiveID restarts at each draw).
+layout(std430, binding = kPemHullBinding) readonly buffer PemHullFlags {
+    uint uPemHullBits[];
+};
+uniform int uPemHullBase;
 #endif
 uniform vec3 uEye;
 uniform float uF0;
@@ -61,6 +72,22 @@ vec3 blendedRadiance(vec3 x, vec3 l) {
 #endif
 }
 
+#if HAS_LOCAL_LAYER
+// The two samples blended texel by texel, as fetchTexel does the distant maps.
+vec4 fetchLocalTexel(int face, int i, int j) {
+    vec4 a = texelFetch(uPemLocal, ivec3(i, j, uPem.layerA + face), 0);
+    if (uPem.wb <= 0.0) return a;
+    return mix(a, texelFetch(uPemLocal, ivec3(i, j, uPem.layerB + face), 0), uPem.wb);
+}
+
+#include "components/reflection_probe/pem/shaders/pem_local_lookup.glsl.h"
+
+bool onHull() {
+    int k = uPemHullBase + gl_PrimitiveID;
+    return ((uPemHullBits[k >> 5] >> uint(k & 31)) & 1u) != 0u;
+}
+#endif
+
 void main() {
     // Probe-local space: the lookup never sees world coordinates.
     vec3 x = vWorldPos - uPem.centre;
@@ -70,6 +97,16 @@ void main() {
     vec3 lhat = normalize(mirrorDirection(v, n));
 
     vec3 colour = blendedRadiance(x, lhat);
+    float hull = 1.0;
+#if HAS_LOCAL_LAYER
+    // Hull triangles never see the reflector: the distant layer alone (alpha 0).
+    if (!onHull()) {
+        hull = 0.0;
+        colour = pemComposite(
+            pemLocalRadiance(x, lhat, uPem.localCentre, uPem.localRadius, uPem.localFaceRes),
+            colour);
+    }
+#endif
 #if HAS_FRESNEL
     colour *= schlickFresnel(uF0, abs(dot(n, v)));
 #endif
@@ -77,6 +114,8 @@ void main() {
     fragColor = vec4(x, 1.0);
 #elif OUTPUT == 2
     fragColor = vec4(lhat, 1.0);
+#elif OUTPUT == 3
+    fragColor = vec4(hull, 0.0, 0.0, 1.0);
 #else
     fragColor = vec4(colour, 1.0);
 #endif
