@@ -1,13 +1,13 @@
 #include "bake_command.h"
 
 #include "assetcooker/lib/bake_args.h"
+#include "assetcooker/lib/signal_guard.h"
 #include "assetcooker/lib/slurm_command.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
 
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -70,27 +70,6 @@ constexpr const char* kBakeFooter =
     "\n"
     "exit status: 0 ok, 1 the scene could not be baked, 2 bad command line, 130 cancelled\n"
     "by SIGINT/SIGTERM (DIR left as it was)\n";
-
-extern "C" void onSignal(int) {
-    requestCancel();
-}
-
-// SIGINT/SIGTERM anywhere in a bake (load, plan, trace, write) only request a cancel: the
-// bake stops at its next check and throws Cancelled, and DIR stays as it was unless the
-// final rename already happened.
-struct SignalGuard {
-    using Handler = void (*)(int);
-    Handler oldInt, oldTerm;
-    SignalGuard() {
-        clearCancelRequest();
-        oldInt = std::signal(SIGINT, onSignal);
-        oldTerm = std::signal(SIGTERM, onSignal);
-    }
-    ~SignalGuard() {
-        std::signal(SIGINT, oldInt);
-        std::signal(SIGTERM, oldTerm);
-    }
-};
 
 void printLightFieldSummary(const BakeArgs& a, const CookResult& r, double seconds,
                             std::ostream& out) {

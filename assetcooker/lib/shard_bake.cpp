@@ -1,5 +1,7 @@
 #include "shard_bake.h"
 
+#include "assetcooker/lib/shard_install.h"
+
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
@@ -65,33 +67,6 @@ void setPartRows(Shard& s, int cameras, int rows) {
 
 int listCameras(const ShardList& list) {
     return list.settings.value("cameras", 0);
-}
-
-// `to` holds the same files as `from`: hard links where the file system allows (a light field
-// at the paper's size is ~300 MB a probe, which merge would otherwise copy), copies where it
-// does not (another file system). Safe because nothing writes a cooked file in place: every
-// writer writes beside and renames, which unlinks the level's name and leaves the store's.
-void linkOrCopyTree(const fs::path& from, const fs::path& to) {
-    if (fs::is_directory(from)) {
-        fs::create_directory(to);
-        for (const fs::directory_entry& f : fs::directory_iterator(from))
-            linkOrCopyTree(f.path(), to / f.path().filename());
-        return;
-    }
-    std::error_code ec;
-    fs::create_hard_link(from, to, ec);
-    if (ec) fs::copy_file(from, to);
-}
-
-// DIR/<folder> replaced atomically by the store's shard folder (linked or copied).
-void installShard(const fs::path& from, const fs::path& to, const std::string& scene) {
-    writeProbeFolder(to.string(), scene, [&](const fs::path& tmp) {
-        for (const fs::directory_entry& f : fs::directory_iterator(from))
-            if (f.path().filename() != "manifest.json")
-                linkOrCopyTree(f.path(), tmp / f.path().filename());
-        const std::string manifest = (from / "manifest.json").string();
-        return parseManifestJson(readManifestText(manifest), manifest);
-    });
 }
 
 } // namespace
@@ -329,11 +304,19 @@ void computeShard(const std::string& dir, const ShardList& list, int index, Prob
     CookOptions o = levelProbeCookOptions(scene, level, list.level.probes[std::size_t(s.probe)],
                                           shardOutputPath(dir, s));
     if (s.kind == kLightFieldRowsShard) {
-        const LightFieldBakeOptions b =
+        LightFieldBakeOptions b =
             lightFieldBakeOptions(scene, o, std::get<LightFieldCookSettings>(o.flavour));
-        writeLightFieldRows(
-            traceLightFieldRows(scene.registry, scene.markup, b, s.slab, s.j0, s.j1),
-            shardOutputPath(dir, s));
+        // A signal (scancel) stops the trace between rows: nothing reaches the store.
+        b.cancelled = [] { return cancelRequested(); };
+        LightFieldRows rows;
+        try {
+            rows = traceLightFieldRows(scene.registry, scene.markup, b, s.slab, s.j0, s.j1);
+        } catch (const Error&) {
+            throwIfCancelled(o.out);
+            throw;
+        }
+        throwIfCancelled(o.out);
+        writeLightFieldRows(rows, o.out);
         return;
     }
     std::vector<LightFieldRows> blocks;
@@ -369,6 +352,7 @@ ShardOutcome bakeShard(const std::string& dir, int index, std::ostream* log) {
     if (s.kind == kProbeShard && !shardDependencies(list, index).empty())
         checkPartsPresent(dir, list, index);
     ProbeScene scene(list.scene, list.sky);
+    checkSceneUnchanged(dir, list, index, scene, environmentOf(scene));
     computeShard(dir, list, index, scene, log);
     outcome.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -398,6 +382,9 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
     if (!assemble.empty()) {
         if (log) *log << "assembling " << assemble.size() << " probe shards from their parts\n";
         ProbeScene scene(list.scene, list.sky);
+        const EmbreeScene environment = environmentOf(scene);
+        for (const int i : assemble)
+            checkSceneUnchanged(dir, list, i, scene, environment);
         std::vector<std::exception_ptr> errors(assemble.size());
         tbb::parallel_for(std::size_t(0), assemble.size(), [&](std::size_t k) {
             const auto probeStart = std::chrono::steady_clock::now();

@@ -3,6 +3,7 @@
 #include "assetcooker/lib/bake_args.h"
 #include "assetcooker/lib/farm_sim.h"
 #include "assetcooker/lib/shard_bake.h"
+#include "assetcooker/lib/signal_guard.h"
 #include "engine/core/error.h"
 #include "engine/image/image_io.h"
 
@@ -58,6 +59,10 @@ constexpr const char* kFarmDescription =
 
 constexpr const char* kFooter =
     "exit status: 0 ok, 1 the input could not be processed, 2 bad command line\n";
+// bake-shard and merge run under a SignalGuard: a signal (Ctrl-C, scancel) cancels.
+constexpr const char* kCancellableFooter =
+    "exit status: 0 ok, 1 the input could not be processed, 2 bad command line, 130\n"
+    "cancelled by SIGINT/SIGTERM (scancel): nothing half-written is left in the store or DIR\n";
 
 int runShards(const BakeArgs& a, std::ostream& out) {
     const CookOptions options = checkedCookOptions(a);
@@ -140,7 +145,8 @@ void addShardCommands(cli::ToolCli& tool) {
     auto s = std::make_shared<ShardArgs>();
     CLI::App* bake =
         tool.addSubcommand("bake-shard", "compute one shard of a level bake into its shard store",
-                           kBakeShardDescription, kFooter, [s](std::ostream& out) {
+                           kBakeShardDescription, kCancellableFooter, [s](std::ostream& out) {
+                               const SignalGuard guard; // scancel: no half-written shard
                                const ShardOutcome r = bakeShard(s->dir, s->shard, &out);
                                if (r.skipped)
                                    out << "shard " << s->shard
@@ -156,7 +162,8 @@ void addShardCommands(cli::ToolCli& tool) {
     auto dir = std::make_shared<std::string>();
     CLI::App* merge = tool.addSubcommand(
         "merge", "assemble a level's cooked probes and index from its shard store",
-        kMergeDescription, kFooter, [dir](std::ostream& out) {
+        kMergeDescription, kCancellableFooter, [dir](std::ostream& out) {
+            const SignalGuard guard;
             const LevelCookResult r = mergeShards(*dir, &out);
             out << "merged " << r.probes.size() << " probes in " << r.seconds << " s -> " << r.index
                 << "\n";

@@ -8,6 +8,7 @@
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/probe_setup.h"
 #include "components/reflection_probe/reflection_probe_system.h"
+#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/core/error.h"
 #include "engine/gpu/context.h"
 #include "engine/gpu/render_target.h"
@@ -18,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <memory>
 #include <set>
 
@@ -164,7 +166,8 @@ TEST_F(ConstantFlavour, AnUnregisteredFlavourIsRefusedNamingTheKnownOnes) {
     } catch (const Error& e) {
         EXPECT_EQ(e.file(), manifest_);
         EXPECT_EQ(e.field(), "flavour");
-        EXPECT_NE(std::string(e.what()).find("distance, distance-level, lightfield"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("distance, distance-level, lightfield"),
+                  std::string::npos)
             << e.what();
     }
 }
@@ -184,4 +187,75 @@ TEST_F(ConstantFlavour, AnotherFlavoursSettingsOnTheProbeAreRefused) {
     }
     EXPECT_THROW(system.addFlavour(std::make_unique<ConstantStore>()), Error)
         << "a flavour registers once";
+}
+
+TEST_F(ConstantFlavour, FineDerivativesOfTheReflectedDirectionMatchTheQuadTwin) {
+    // The shader's dFdxFine / dFdyFine of the reflected direction (OUTPUT 3 and 4) against
+    // ReflectorQuadPixel's, whose quad partners are shaded on the pixel's own triangle plane
+    // as the GPU's helper invocations are: what a twin of a MIP level or a footprint needs.
+    // The naive twin (the neighbouring pixel's own hit) is measured beside it: it differs
+    // wherever the partner lies on another triangle or off the reflector.
+    ReflectionProbeSystem system;
+    system.addFlavour(std::make_unique<ConstantStore>());
+    attach(ConstantProbe{});
+    Image derivative[2];
+    for (int k = 0; k < 2; ++k) {
+        renderer_->sync(scene_->registry);
+        system.sync(scene_->registry);
+        renderer_->render(camera_, *target_,
+                          [&](ecs::Entity e) { return scene_->registry.has<Reflector>(e); });
+        system.render(scene_->registry, camera_, *renderer_, *target_, 3 + k);
+        derivative[k] = target_->readback();
+    }
+    TraceOptions o;
+    o.mirrors = scene_->markup.mirrorEntities;
+    o.maxBounces = 1;
+    const GroundTruthTracer tracer(scene_->registry, std::move(o));
+    Image mask = tracer.render(camera_).mirrorMask;
+    const std::vector<ReflectorQuadPixel> quads =
+        reflectorQuadPixels(scene_->registry, tracer, camera_, mask);
+    const std::vector<ReflectorPixel> pixels = reflectorPixels(tracer, camera_, mask);
+    ASSERT_EQ(quads.size(), pixels.size());
+    std::map<std::pair<int, int>, glm::vec3> lhatAt;
+    for (const ReflectorPixel& p : pixels)
+        lhatAt[{p.x, p.y}] = p.lhat;
+    const auto lhat = [](const ReflectorPixel& p) { return p.lhat; };
+    // Counts over every reflector pixel of the tracer's mask [0] and over those away from
+    // its silhouette [1] (where raster and tracer coverage agree for certain).
+    long n[2] = {}, close[2] = {}, naiveClose = 0, naiveN = 0;
+    double worst[2] = {}, scale = 0;
+    for (const ReflectorQuadPixel& q : quads) {
+        const bool interior = interior_.at(q.pixel.x, q.pixel.y)[0] > 0.5f;
+        for (int k = 0; k < 2; ++k) {
+            const glm::vec3 gpu(derivative[k].rgba(q.pixel.x, q.pixel.y));
+            const glm::vec3 twin = k == 0 ? q.dFdxFine(lhat) : q.dFdyFine(lhat);
+            const double err = glm::length(gpu - twin);
+            const bool ok = err < 1e-3 + 1e-2 * glm::length(gpu);
+            for (int m = 0; m < (interior ? 2 : 1); ++m) {
+                ++n[m];
+                close[m] += ok;
+                worst[m] = std::max(worst[m], err);
+            }
+            scale += glm::length(twin);
+            // The naive twin: the partner pixel's own primary hit, where it has one.
+            const ReflectorPixel& partner = k == 0 ? q.acrossX : q.acrossY;
+            const auto it = lhatAt.find({partner.x, partner.y});
+            if (it == lhatAt.end()) continue;
+            const auto naiveLhat = [&](const ReflectorPixel& p) {
+                return p.x == q.pixel.x && p.y == q.pixel.y ? p.lhat : it->second;
+            };
+            const glm::vec3 naive = k == 0 ? q.dFdxFine(naiveLhat) : q.dFdyFine(naiveLhat);
+            ++naiveN;
+            naiveClose += glm::length(gpu - naive) < 1e-3 + 1e-2 * glm::length(gpu);
+        }
+    }
+    std::printf("fine derivatives of lhat within 1e-3 + 1%%: %ld of %ld mirror px (worst %.3g), "
+                "%ld of %ld away from the silhouette (worst %.3g); mean |d| %.3g; the naive "
+                "neighbour twin: %ld of %ld (%ld partners off the reflector)\n",
+                close[0], n[0], worst[0], close[1], n[1], worst[1],
+                n[0] ? scale / double(n[0]) : 0.0, naiveClose, naiveN, n[0] - naiveN);
+    ASSERT_GT(n[1], 400);
+    EXPECT_GT(scale / double(n[0]), 1e-3) << "the derivatives must not all vanish";
+    EXPECT_GE(double(close[1]), 0.995 * double(n[1]));
+    EXPECT_GE(double(close[0]), 0.98 * double(n[0]));
 }

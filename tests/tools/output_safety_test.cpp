@@ -3,7 +3,8 @@
 // and a folder holding the input scene are refused and left byte for byte; SIGINT/SIGTERM
 // before the final rename leave the previous probe, exit 130 and no temporary folder; what a
 // killed bake left beside DIR is cleaned by the next bake with a line; a write past a
-// file-size limit (a full disk) fails the bake and leaves DIR as it was.
+// file-size limit (a full disk) fails the bake and leaves DIR as it was; a signal to
+// bake-shard (scancel) leaves its shard store as it was.
 #include "tests/support/child_process.h"
 #include "tests/support/scratch_dir_test.h"
 
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -238,4 +240,47 @@ TEST_F(OutputSafety, HelpStatesTheCancelledExitStatus) {
     const ChildResult r = specula::test::runChild(kCook, {"bake", "--help"}, root_ / "scratch");
     EXPECT_EQ(r.status, 0);
     EXPECT_NE(r.out.find("130 cancelled"), std::string::npos) << r.out;
+}
+
+TEST_F(OutputSafety, SignalToABakeShardLeavesTheStoreAsItWas) {
+    // scancel sends SIGTERM to a Slurm task: the shard must not reach the store half-written,
+    // nor leave its temporary folder there, and a re-run bakes it.
+    const fs::path twoRooms =
+        fs::path(SPECULA_SOURCE_DIR) / "assets" / "two_rooms" / "two_rooms.gltf";
+    const fs::path level = root_ / "level", store = level / ".shards";
+    ChildResult r = specula::test::runChild(
+        kCook, {"shards", twoRooms.string(), "--out", level.string(), "--face-res", "16"},
+        root_ / "scratch");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto storeNames = [&] {
+        std::set<std::string> names;
+        for (const auto& e : fs::directory_iterator(store))
+            names.insert(e.path().filename().string());
+        return names;
+    };
+    const std::set<std::string> before = storeNames();
+    for (int sig : {SIGTERM, SIGINT}) {
+        Child c(kCook, {"bake-shard", level.string(), "--shard", "0"}, root_ / "scratch",
+                {{"SPECULA_TEST_PAUSE_BEFORE_COMMIT=60"}});
+        const std::string staged = ".tmp-" + std::to_string(c.pid());
+        ASSERT_TRUE(c.waitFor(
+            [&] {
+                for (const auto& e : fs::directory_iterator(store))
+                    if (e.path().filename().string().find(staged) != std::string::npos &&
+                        fs::exists(e.path() / "manifest.json"))
+                        return true;
+                return false;
+            },
+            120))
+            << "the shard never staged its manifest";
+        c.signal(sig);
+        r = c.wait();
+        EXPECT_EQ(r.status, 130) << r.err;
+        EXPECT_NE(r.err.find("cancelled"), std::string::npos) << r.err;
+        EXPECT_TRUE(storeNames() == before) << "a cancelled shard left something in the store";
+    }
+    r = specula::test::runChild(kCook, {"bake-shard", level.string(), "--shard", "0"},
+                                root_ / "scratch");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(storeNames().size(), before.size() + 2) << "the shard and its time";
 }

@@ -227,6 +227,42 @@ TEST_F(ShardBake, ABakedShardIsSkippedTheSecondTime) {
     EXPECT_TRUE(fs::is_regular_file(shardTimePath(dir, readShardList(dir).shards[1])));
 }
 
+TEST_F(ShardBake, AShardOfASceneEditedSinceTheListIsRefusedNamingTheProbeAndNothingIsBaked) {
+    // A copy of the scene, so it can be edited after the list is written.
+    const fs::path copy = root_ / "scene";
+    fs::create_directories(copy);
+    for (const auto& f : fs::directory_iterator(fs::path(kTwoRooms).parent_path()))
+        fs::copy_file(f.path(), copy / f.path().filename());
+    const std::string gltf = (copy / fs::path(kTwoRooms).filename()).string();
+    {
+        ProbeScene scene(gltf, "");
+        LevelCookOptions o = options("level", distance());
+        o.cook.scene = gltf;
+        writeShardList(scene, o, nullptr);
+    }
+    const std::string dir = (root_ / "level").string();
+    std::ifstream in(gltf);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    // room_b's east panel moves 10 cm: within reach of room_b's probe (shard 1).
+    const std::string from = " 5.93,", to = " 5.83,";
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << "room_b_panel's translation not found";
+    text.replace(at, from.size(), to);
+    std::ofstream(gltf) << text;
+    try {
+        bakeShard(dir, 1, nullptr);
+        FAIL() << "baked a shard of an edited scene";
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("changed since the shard list was written (the geometry within "
+                            "reach of probe room_b_probe, shard 1)"),
+                  std::string::npos)
+            << what;
+    }
+    EXPECT_FALSE(shardPresent(dir, readShardList(dir).shards[1]));
+}
+
 TEST_F(ShardBake, AMergeWithAShardMissingNamesItAndWritesNothing) {
     ProbeScene scene(kTwoRooms, "");
     writeShardList(scene, options("level", distance()), nullptr);

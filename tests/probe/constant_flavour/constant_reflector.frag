@@ -1,5 +1,6 @@
 // Reflector pixels of the constant-colour test flavour. Defines: HAS_FRESNEL (0/1), OUTPUT
-// (0 colour; 1 and 2 write the position / direction like every flavour's twin outputs).
+// (0 colour; 1 and 2 write the position / direction like every flavour's twin outputs; 3
+// and 4 the reflected direction's dFdxFine / dFdyFine).
 #include "engine/core/glsl_device.glsl"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
 #include "tests/probe/constant_flavour/constant_params.glsl.h"
@@ -24,6 +25,17 @@ void main() {
     fragColor = vec4(vWorldPos, 1.0);
 #elif OUTPUT == 2
     fragColor = vec4(normalize(vNormal), 1.0);
+#elif OUTPUT == 3 || OUTPUT == 4
+    // The fine screen derivatives of the reflected direction, computed as every flavour
+    // computes the direction: what ReflectorQuadPixel's twin must reproduce.
+    vec3 v = normalize(vWorldPos - uEye);
+    vec3 geometric = normalize(cross(dFdx(vWorldPos), dFdy(vWorldPos)));
+    vec3 lhat = normalize(mirrorDirection(v, safeNormal(vNormal, geometric)));
+#if OUTPUT == 3
+    fragColor = vec4(dFdxFine(lhat), 1.0);
+#else
+    fragColor = vec4(dFdyFine(lhat), 1.0);
+#endif
 #else
     fragColor = vec4(colour, 1.0);
 #endif
