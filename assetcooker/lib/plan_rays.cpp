@@ -1,5 +1,6 @@
 #include "plan_rays.h"
 
+#include "engine/math/orthonormal_frame.h"
 #include "engine/raytrace/ground_truth.h"
 #include "engine/scene/components.h"
 
@@ -76,15 +77,6 @@ std::vector<std::array<float, kDims>> latinHypercube(int n, std::uint32_t seed) 
     return u;
 }
 
-// An orthonormal basis about unit n (Duff et al. 2017).
-void basis(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
-    const float s = std::copysign(1.f, n.z);
-    const float a = -1.f / (s + n.z);
-    const float c = n.x * n.y * a;
-    t = glm::vec3(1.f + s * n.x * n.x * a, s * c, -s * n.x);
-    b = glm::vec3(c, s + n.y * n.y * a, -n.y);
-}
-
 } // namespace
 
 PlanRaySample samplePlanRays(ecs::Registry& registry, const SceneMarkup& markup,
@@ -144,8 +136,7 @@ PlanRaySample samplePlanRays(ecs::Registry& registry, const SceneMarkup& markup,
         } else {
             // Cosine-weighted about n (Malley: a uniform disc lifted to the hemisphere).
             const float r = std::sqrt(s[6]), phi = 2.f * kPi * s[7];
-            glm::vec3 t, b;
-            basis(n, t, b);
+            const auto [t, b] = orthonormalFrame(n);
             const float z = std::sqrt(std::max(0.f, 1.f - s[6]));
             dir = glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * b + z * n);
         }

@@ -3,6 +3,7 @@
 
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
+#include "engine/math/orthonormal_frame.h"
 
 #include <algorithm>
 #include <bit>
@@ -119,15 +120,6 @@ glm::vec3 sampleVisibleNormal(glm::vec3 v, float alpha, float u1, float u2) {
     return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, std::max(0.f, nh.z)));
 }
 
-// An orthonormal frame with `n` as its third axis (Duff et al. 2017: no singularity).
-void frameAround(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
-    const float sign = std::copysign(1.f, n.z);
-    const float a = -1.f / (sign + n.z);
-    const float c = n.x * n.y * a;
-    t = glm::vec3(1.f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-    b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
-}
-
 } // namespace
 
 struct GroundTruthTracer::PathState {
@@ -191,8 +183,7 @@ glm::vec3 GroundTruthTracer::glossy(const Hit& hit, glm::vec3 d, float roughness
     const glm::vec3 ng =
         glm::dot(hit.geometricNormal, d) > 0.f ? -hit.geometricNormal : hit.geometricNormal;
     const glm::vec3 next = hit.position + offsetEpsilon(hit.position) * ng;
-    glm::vec3 tx, ty;
-    frameAround(n, tx, ty);
+    const auto [tx, ty] = orthonormalFrame(n);
     glm::vec3 v(-glm::dot(d, tx), -glm::dot(d, ty), -glm::dot(d, n));
     if (v.z < 1e-4f) v = glm::normalize(glm::vec3(v.x, v.y, 1e-4f));
     const float alpha = std::max(roughness * roughness, 1e-6f); // roughness >= 1e-3

@@ -1,6 +1,7 @@
 // The error budget as `specula-sandbox bench` writes it: the budget_* columns of bench.csv
 // for every distance method at d_e 0.01, the twin's baseline against the GPU row it
 // decomposes, the table in bench.md and error_budget.png.
+#include "support/csv_table.h"
 #include "support/shell_tool.h"
 
 #include <gtest/gtest.h>
@@ -19,37 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using Row = std::map<std::string, std::string>;
-
-std::vector<Row> readCsv(const fs::path& file) {
-    std::ifstream in(file);
-    auto split = [](const std::string& s) {
-        std::vector<std::string> f;
-        std::stringstream ss(s);
-        std::string x;
-        while (std::getline(ss, x, ','))
-            f.push_back(x);
-        return f;
-    };
-    std::string line;
-    std::vector<Row> rows;
-    if (!std::getline(in, line)) return rows;
-    const std::vector<std::string> header = split(line);
-    while (std::getline(in, line)) {
-        const std::vector<std::string> f = split(line);
-        EXPECT_EQ(f.size(), header.size()) << line;
-        Row row;
-        for (std::size_t i = 0; i < header.size() && i < f.size(); ++i)
-            row[header[i]] = f[i];
-        rows.push_back(row);
-    }
-    return rows;
-}
-
-double num(const Row& row, const std::string& key) {
-    const auto it = row.find(key);
-    return it == row.end() ? std::nan("") : std::strtod(it->second.c_str(), nullptr);
-}
+using specula::test::CsvRow;
+using specula::test::num;
+using specula::test::readCsv;
 
 TEST(ErrorBudgetBench, QuickBenchWritesTheBudget) {
     const specula::test::TempDir dir("budget-bench");
@@ -62,7 +35,7 @@ TEST(ErrorBudgetBench, QuickBenchWritesTheBudget) {
             specula::test::shellQuote(out.string()));
     ASSERT_EQ(r.status, 0) << r.err;
     std::set<std::string> budgeted;
-    for (const Row& row : readCsv(out / "bench.csv")) {
+    for (const CsvRow& row : readCsv(out / "bench.csv")) {
         const std::string method = row.at("method"), params = row.at("params");
         if (num(row, "budget_rays") == 0) {
             EXPECT_EQ(row.at("budget_dominant"), "-");

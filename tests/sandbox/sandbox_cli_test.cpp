@@ -3,6 +3,7 @@
 // and the window walk under Xvfb.
 #include "engine/image/image_io.h"
 
+#include "support/csv_table.h"
 #include "support/shell_tool.h"
 
 #include <gtest/gtest.h>
@@ -43,45 +44,10 @@ struct TempDir : specula::test::TempDir {
     explicit TempDir(const std::string& name) : specula::test::TempDir("sandbox-" + name) {}
 };
 
-using Table = std::vector<std::map<std::string, std::string>>;
-
-Table readCsv(const fs::path& file) {
-    std::ifstream in(file);
-    std::string line;
-    std::vector<std::string> header;
-    Table rows;
-    auto split = [](const std::string& s) {
-        std::vector<std::string> f;
-        std::stringstream ss(s);
-        std::string x;
-        while (std::getline(ss, x, ','))
-            f.push_back(x);
-        return f;
-    };
-    if (!std::getline(in, line)) return rows;
-    header = split(line);
-    while (std::getline(in, line)) {
-        const auto f = split(line);
-        EXPECT_EQ(f.size(), header.size()) << line;
-        std::map<std::string, std::string> row;
-        for (std::size_t i = 0; i < header.size() && i < f.size(); ++i)
-            row[header[i]] = f[i];
-        rows.push_back(row);
-    }
-    return rows;
-}
-
-double num(const std::map<std::string, std::string>& row, const std::string& key) {
-    const auto it = row.find(key);
-    EXPECT_NE(it, row.end()) << "no column " << key;
-    if (it == row.end()) return std::nan("");
-    char* end = nullptr;
-    const double v = std::strtod(it->second.c_str(), &end);
-    EXPECT_TRUE(end && *end == '\0') << key << " = '" << it->second << "'";
-    return v;
-}
-
+using Table = specula::test::CsvTable;
 using specula::test::lineCount;
+using specula::test::num;
+using specula::test::readCsv;
 
 } // namespace
 
