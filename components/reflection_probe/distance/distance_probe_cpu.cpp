@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
@@ -75,6 +76,9 @@ struct TwinFetches {
         return weight > 0.f ? sum / weight : vec3(sampleNearest(img, uv, Wrap::Clamp));
     }
     static bool seesNothing(float d, float dInf) { return d >= 0.5f * dInf; }
+    // Experiment::exactSearch: lookupLayer runs lookupExact instead of the layer's method.
+    bool exactSearch = false;
+    bool exactSearchOn() const { return exactSearch; }
     mutable bool skyFetched = false;
     vec3 fetchSky(vec3 dir) const {
         skyFetched = true;
@@ -105,6 +109,8 @@ struct TwinFetches {
 #define HAS_SECANT 1
 #define HAS_AVGDIST 1
 #define HAS_MARCH 1
+// The error budget's exact search (lookupExact), through the shader's own layer loop.
+#define SPECULA_EXACT_SEARCH_HOOK
 
 #define HAS_LAYERS 0
 struct TwinSingle : TwinFetches {
@@ -133,69 +139,6 @@ struct TwinLayered : TwinFetches {
 
 } // namespace glsl
 
-namespace {
-
-// Experiment::exactSearch on one layer: the first crossing of f(t) = stored distance - |l|
-// from > 0 to <= 0 over [t0, t1], found by a projection-uniform march dense enough to put
-// about four points in every texel the ray's projection crosses (the projection of 2D spans
-// at most half the sphere, two faces' edges), then bisected to float precision. No crossing:
-// the span's end answers through the d_inf rule, as the shader's searches do.
-glsl::LayerHit exactLayerHit(glsl::TwinLayered& tw, int layer, glm::vec3 x, glm::vec3 lhat,
-                             float t0, float t1, const glsl::DistanceParams& p) {
-    const glsl::TwinLayered::RaySpan span = tw.makeSpan(t0, t1, 1);
-    const glsl::TwinLayered::MarchFrame m = tw.marchFrame(x, lhat, span);
-    const int points = std::max(64, 8 * p.faceRes);
-    int fetches = 0;
-    auto f = [&](float t) {
-        const glm::vec3 l = x + t * lhat;
-        ++fetches;
-        return tw.fetchDistance(layer, l) - glm::length(l);
-    };
-    float ta = t0, tb = t1;
-    bool crossed = false;
-    for (int k = 1; k <= points && !crossed; ++k) {
-        const float t = tw.marchT(span, m, k, points);
-        if (f(t) <= 0.f) {
-            tb = t;
-            crossed = true;
-        } else {
-            ta = t;
-        }
-    }
-    if (crossed)
-        for (int n = 0; n < 48 && tb - ta > 1e-7f * std::max(1.f, tb); ++n) {
-            const float mid = 0.5f * (ta + tb);
-            (f(mid) > 0.f ? ta : tb) = mid;
-        }
-    const glm::vec3 l = x + tb * lhat;
-    const float d = tw.fetchDistance(layer, l);
-    return tw.finishRectified(layer, x, lhat, l, d, fetches + 1, p.dInf);
-}
-
-// The exact search over what the configured lookup searches: the composite over (0, 2D), or
-// every object layer over its box, the nearest hit along the ray winning (probeHit's rule).
-glsl::LayerHit exactHit(glsl::TwinLayered& tw, const DistanceLookupConfig& c, glm::vec3 x,
-                        glm::vec3 lhat) {
-    const glsl::DistanceParams& p = c.params;
-    if (!(c.features & kFeatureLayers)) return exactLayerHit(tw, 0, x, lhat, 0.f, 2.f * p.range, p);
-    glsl::LayerHit best = tw.makeHit(glm::vec3(0.f), false, 0, p.dInf);
-    for (int i = 1; i <= p.layerCount; ++i) {
-        const glm::vec2 span = tw.layerSpan(i, x, lhat);
-        const float t1 = std::min(span.y, 2.f * p.range);
-        if (span.x > t1 || span.x >= best.t) continue;
-        const glsl::LayerHit h = exactLayerHit(tw, i, x, lhat, span.x, t1, p);
-        best.fetches += h.fetches;
-        if (h.hit && h.t < best.t) {
-            best.t = h.t;
-            best.radiance = h.radiance;
-            best.hit = true;
-        }
-    }
-    return best;
-}
-
-} // namespace
-
 struct CpuDistanceProbe::Twin {
     glsl::TwinSingle single;
     glsl::TwinLayered layered;
@@ -213,12 +156,6 @@ CpuDistanceProbe::~CpuDistanceProbe() = default;
 
 glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches,
                                      bool* sawSky) const {
-    if (experiment_.exactSearch) {
-        const glsl::LayerHit h = exactHit(twin_->layered, config_, x, lhat);
-        fetches += h.fetches + (h.hit ? 0 : 1);
-        if (sawSky) *sawSky = !h.hit;
-        return h.hit ? h.radiance : twin_->layered.fetchSky(lhat);
-    }
     glsl::TwinFetches& f = (config_.features & kFeatureLayers)
                                ? static_cast<glsl::TwinFetches&>(twin_->layered)
                                : static_cast<glsl::TwinFetches&>(twin_->single);
@@ -233,6 +170,7 @@ glm::vec3 CpuDistanceProbe::radiance(glm::vec3 x, glm::vec3 lhat, int& fetches,
 void CpuDistanceProbe::setExperiment(const Experiment& e) {
     experiment_ = e;
     twin_->single.sameSurface = twin_->layered.sameSurface = e.sameSurfaceRadiance;
+    twin_->single.exactSearch = twin_->layered.exactSearch = e.exactSearch;
 }
 
 CpuDistanceProbe::CentreView CpuDistanceProbe::centreView(glm::vec3 h) const {
@@ -281,6 +219,25 @@ CpuDistanceProbe::CompositeHit CpuDistanceProbe::compositeHit(glm::vec3 x, glm::
         p.method, 0, x, lhat, p, twin_->single.makeSpan(0.f, 2.f * p.range, p.maxSteps));
     if (!h.hit) return {twin_->single.fetchSky(lhat), p.dInf, false, h.fetches + 1};
     return {h.radiance, h.t, true, h.fetches};
+}
+
+CpuDistanceProbe::CompositeHit CpuDistanceProbe::lookupHit(glm::vec3 x, glm::vec3 lhat) const {
+    const glsl::DistanceParams& p = config_.params;
+    const glsl::LayerHit h = (config_.features & kFeatureLayers)
+                                 ? twin_->layered.probeHit(x, lhat, p)
+                                 : twin_->single.probeHit(x, lhat, p);
+    if (!h.hit) return {twin_->single.fetchSky(lhat), p.dInf, false, h.fetches + 1};
+    return {h.radiance, h.t, true, h.fetches};
+}
+
+CpuDistanceProbe::CompositeHit CpuDistanceProbe::objectLayerHit(int layer, glm::vec3 x,
+                                                                glm::vec3 lhat) const {
+    const glsl::DistanceParams& p = config_.params;
+    if (!(config_.features & kFeatureLayers) || layer < 1 || layer > p.layerCount)
+        throw Error(twin_->single.asset->manifestPath, "layers",
+                    "object layer " + std::to_string(layer) + " is not in the layered lookup");
+    const glsl::LayerHit h = twin_->layered.lookupObjectLayer(layer, x, lhat, p, p.dInf);
+    return {h.radiance, h.t, h.hit, h.fetches};
 }
 
 CpuDistanceProbe::GlossySample CpuDistanceProbe::glossySample(glm::vec3 x, glm::vec3 lhat,

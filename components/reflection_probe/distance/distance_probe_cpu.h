@@ -46,6 +46,13 @@ public:
         int fetches = 0;
     };
     CompositeHit compositeHit(glm::vec3 x, glm::vec3 lhat) const;
+    // The configured lookup's hit, as radiance() finds it (layered: the nearest over the
+    // object layers; the experiment's search when set), with its fetches (the sky's included).
+    CompositeHit lookupHit(glm::vec3 x, glm::vec3 lhat) const;
+    // Layered mode: object layer `layer` (1..layerCount) alone, searched by its method over
+    // the ray's stretch inside its box as the layered loop searches it; radiance 0 and
+    // t = d_inf when it finds nothing (no sky). Throws Error for a layer not in the lookup.
+    CompositeHit objectLayerHit(int layer, glm::vec3 x, glm::vec3 lhat) const;
 
     // The shader's glossy path (HAS_GLOSSY, shaders/distance_glossy_lookup.glsl.h) for a
     // reflector of perceptual roughness `roughness`: the search of the configured method (the
@@ -70,14 +77,16 @@ public:
     glm::vec3 sky(glm::vec3 dir) const;
 
     // Controlled experiments of the bench's error budget (sandbox/lib/error_budget.h): each
-    // removes one source of error from radiance(). All off by default, where the twin reads
-    // exactly what the shader reads. Set before looking up, never while another thread does.
+    // removes one source of error from every lookup of the twin (radiance(), lookupHit() and
+    // the rest). All off by default, where the twin reads exactly what the shader reads. Set
+    // before looking up, never while another thread does.
     struct Experiment {
         // The method's own way to the hit (a search to d_e with its step budget, one step at
         // d-bar, the box wall, or none at all for envmap) replaced by the exact first
         // crossing along the stored distances (a dense projection-uniform march, then
-        // bisection to float precision), on the composite or, layered, on every object
-        // layer: what the method's approximation of the hit costs.
+        // bisection to float precision; lookupExact in the shared lookup, run through the
+        // shader's own layer loop), on the composite or, layered, on every object layer:
+        // what the method's approximation of the hit costs.
         bool exactSearch = false;
         // Radiance filtered only over the texels whose stored distance agrees with the
         // nearest texel's (sameSurfaceSlack): never a blend across a depth discontinuity (a

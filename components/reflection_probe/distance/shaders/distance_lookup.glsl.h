@@ -83,98 +83,16 @@ int spanSteps(float width, DistanceParams p) {
     return int(clamp(n, 1.0f, float(p.maxSteps)));
 }
 
-// March points uniform in the ray's projection onto the cube map (see lookupMarch): point k
-// of `count` lies at t0 + s a / (1 - a) with a = aMax k / count, the last one at t1.
-struct MarchFrame {
-    float s;
-    float aMax;
-};
-
-MarchFrame marchFrame(vec3 x, vec3 lhat, RaySpan span) {
-    float width = max(span.t1 - span.t0, 0.0f);
-    MarchFrame m;
-    m.s = max(max(length(x + span.t0 * lhat), 0.25f * width), 1e-6f);
-    m.aMax = width / (width + m.s); // < 1: the last point lands on t1
-    return m;
-}
-
-float marchT(RaySpan span, MarchFrame m, int k, int count) {
-    float a = m.aMax * float(k) / float(count);
-    return span.t0 + m.s * a / (1.0f - a);
-}
-
-// What a march to the first crossing found: the last point before the surface (ta, with
-// f = fa > 0; haveA when its stored distance is finite, so fa is a usable secant end) and
-// the first beyond it (tb, fb < 0; crossed), or a point within d_e of its stored distance
-// (converged), or neither (the whole span stayed in front of the stored surface). l and d:
-// the last point fetched and its stored distance.
-struct Bracket {
-    float ta;
-    float fa;
-    bool haveA;
-    float tb;
-    float fb;
-    bool crossed;
-    bool converged;
-    vec3 l;
-    float d;
-    int fetches;
-};
-
-// The span itself as a bracket nothing has been fetched for.
-Bracket openBracket(vec3 x, vec3 lhat, RaySpan span, DistanceParams p) {
-    Bracket b;
-    b.ta = span.t0;
-    b.fa = 0.0f;
-    b.haveA = false;
-    b.tb = span.t1;
-    b.fb = 0.0f;
-    b.crossed = false;
-    b.converged = false;
-    b.l = x + span.t0 * lhat;
-    b.d = p.dInf;
-    b.fetches = 0;
-    return b;
-}
-
-// Marches `count` projection-uniform points along the span until f = stored distance - |l|
-// turns from > 0 to < 0: the first crossing, the surface the ray meets first. Where the ray
-// passes behind a nearer object as seen from the centre, f turns negative, positive again
-// and negative once more at the farther surface; a search that starts mid-span can settle
-// on that later crossing.
-Bracket bracketFirstCrossing(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span,
-                             int count) {
-    MarchFrame m = marchFrame(x, lhat, span);
-    Bracket b = openBracket(x, lhat, span, p);
-    for (int k = 1; k <= count; ++k) {
-        float t = marchT(span, m, k, count);
-        b.l = x + t * lhat;
-        b.d = fetchDistance(layer, b.l);
-        b.fetches += 1;
-        float f = b.d - length(b.l);
-        if (abs(f) < p.tolerance) {
-            b.converged = true;
-            break;
-        }
-        if (f < 0.0f) {
-            b.tb = t;
-            b.fb = f;
-            b.crossed = true;
-            break;
-        }
-        b.ta = t;
-        b.fa = f;
-        b.haveA = !isInfiniteDistance(b.d, p.dInf);
-    }
-    return b;
-}
+// The march to the first crossing (MarchFrame, bracketFirstCrossing), its own file for
+// length; no guard of its own: it is part of this file.
+#include "components/reflection_probe/distance/shaders/distance_bracket.glsl.h"
 
 #if HAS_BISECTION || HAS_AVGDIST
 // Bisection: start mid-span (t = D for the whole range) and move by half the remaining
 // width towards the surface until the stored distance agrees with |l| within d_e
 // (condition 1) or the steps run out. The average-distance correction is its one-step
-// case on the empty span at d-bar (one fetch at x + d-bar l), so a shader that mixes the
-// two methods over its layers runs a single loop.
+// case on the empty span at avgDistanceT (one fetch), so a shader that mixes the two
+// methods over its layers runs a single loop.
 LayerHit lookupBisection(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
     float step = 0.5f * (span.t1 - span.t0);
     vec3 l = x + (span.t0 + step) * lhat;
@@ -349,7 +267,33 @@ LayerHit lookupFirstCrossing(int method, vec3 x, vec3 lhat, DistanceParams p, Ra
 }
 #endif
 
+#if HAS_BISECTION || HAS_AVGDIST
+// Where along x + t lhat the average-distance correction looks (one fetch): Wang et al.'s
+// x + d-bar lhat on the composite (layer 0), whose span is the whole ray. An object layer is
+// searched only over the ray's stretch inside its box (layerSpan); there the point is the
+// one at d-bar from the centre, where the layer's stored surface lies on average (x + d-bar
+// lhat is d-bar from x, which is not the centre once the reflector moves off it), clamped
+// into the stretch: a point outside the box cannot lie on the object, and the d_inf it
+// reads there made the object vanish from the reflection (issue 15: on the room the rays
+// that lost their small object that way held 96 % of the layered lookup's search error).
+float avgDistanceT(int layer, vec3 x, vec3 lhat, RaySpan span) {
+    float avg = layerAvgDistance(layer);
+    if (layer == 0) return avg;
+    float xl = dot(x, lhat);
+    float disc = xl * xl - dot(x, x) + avg * avg; // |x + t lhat| = d-bar
+    return clamp(disc > 0.0f ? sqrt(disc) - xl : avg, span.t0, span.t1);
+}
+#endif
+
+#ifdef SPECULA_EXACT_SEARCH_HOOK
+// The CPU twin's exact search (lookupExact), never compiled into a shader.
+#include "components/reflection_probe/distance/shaders/distance_exact_search.glsl.h"
+#endif
+
 LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
+#ifdef SPECULA_EXACT_SEARCH_HOOK
+    if (exactSearchOn()) return lookupExact(layer, x, lhat, p, span);
+#endif
 #if HAS_BISECTION || HAS_SECANT
     // The composite holds every object, so its f may cross zero more than once along a ray;
     // an object layer holds one, searched only within its box (layered mode).
@@ -358,10 +302,11 @@ LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, DistanceParams p,
 #endif
 #if HAS_BISECTION || HAS_AVGDIST
     if (method == kMethodBisection || method == kMethodAvgDist) {
-        // Average distance: one fetch at x + d-bar l, exact when the object lies at the
-        // layer's mean distance.
-        float avg = layerAvgDistance(layer);
-        RaySpan s = method == kMethodAvgDist ? makeSpan(avg, avg, 1) : span;
+        RaySpan s = span;
+        if (method == kMethodAvgDist) {
+            float t = avgDistanceT(layer, x, lhat, span);
+            s = makeSpan(t, t, 1);
+        }
         return lookupBisection(layer, x, lhat, p, s);
     }
 #endif
@@ -388,6 +333,19 @@ LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, DistanceParams p,
 #endif
 }
 
+#if HAS_LAYERS
+// Object layer i's lookup by its method over the stretch of the ray inside its box, cut at
+// 2D (every hit lies within it); no hit, at no fetch, where the ray misses the box or enters
+// it only at tMax or beyond (behind a nearer hit).
+LayerHit lookupObjectLayer(int i, vec3 x, vec3 lhat, DistanceParams p, float tMax) {
+    vec2 span = layerSpan(i, x, lhat);
+    float t1 = min(span.y, 2.0f * p.range);
+    if (span.x > t1 || span.x >= tMax) return makeHit(vec3(0.0f), false, 0, p.dInf);
+    return lookupLayer(layerMethod(i), i, x, lhat, p,
+                       makeSpan(span.x, t1, spanSteps(t1 - span.x, p)));
+}
+#endif
+
 // The surface seen from probe-local point x along the unit reflected direction lhat: the
 // nearest hit along the ray over the object layers (layered), or the composite's lookup by
 // p.method; hit = false (t = d_inf) when nothing was found and the sky answers.
@@ -404,11 +362,7 @@ LayerHit probeHit(vec3 x, vec3 lhat, DistanceParams p) {
     float fromCentre = length(x);
     for (int i = 1; i <= p.layerCount; ++i) {
         if (layerReach(i) - fromCentre >= best.t) break;
-        vec2 span = layerSpan(i, x, lhat);
-        float t1 = min(span.y, 2.0f * p.range); // every hit lies within 2D
-        if (span.x > t1 || span.x >= best.t) continue;
-        RaySpan s = makeSpan(span.x, t1, spanSteps(t1 - span.x, p));
-        LayerHit h = lookupLayer(layerMethod(i), i, x, lhat, p, s);
+        LayerHit h = lookupObjectLayer(i, x, lhat, p, best.t);
         best.fetches += h.fetches;
         if (h.hit && h.t < best.t) {
             best.t = h.t;
