@@ -1,6 +1,7 @@
 #include "pem_infer.h"
 
 #include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "components/reflection_probe/pem/pem_map_levels.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 #include "engine/math/cube_face.h"
@@ -43,11 +44,16 @@ void validate(const PemSamples& samples, const PemInferOptions& o) {
     if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance))
         throw Error("", "tolerance", "expected a finite tolerance > 0");
     if (o.maxIterations < 1) throw Error("", "max_iterations", "expected at least 1");
+    if (o.mipLevels < 1 || o.mipLevels > PemMap::maxLevels(o.faceRes) ||
+        (o.local && o.mipLevels != 1))
+        throw Error("", "mip_levels",
+                    "expected 1 to " + std::to_string(PemMap::maxLevels(o.faceRes)) +
+                        " levels (1 for a local layer), got " + std::to_string(o.mipLevels));
     if (o.warmStart) {
-        bool ok = o.warmStart->size() == std::size_t(PemMap::texelCount(o.faceRes));
+        bool ok = o.warmStart->size() == std::size_t(PemMap::texelCount(o.faceRes, o.mipLevels));
         for (std::size_t t = 0; ok && t < o.warmStart->size(); ++t)
             ok = finite((*o.warmStart)[t]);
-        if (!ok) throw Error("", "warm_start", "expected 6 * face_res^2 finite texels");
+        if (!ok) throw Error("", "warm_start", "expected every level's texels, all finite");
     }
     if (o.prior) {
         bool ok = o.prior->size() == std::size_t(PemMap::texelCount(o.faceRes));
@@ -74,6 +80,19 @@ void validate(const PemSamples& samples, const PemInferOptions& o) {
 // Clamp to what a cooked probe may hold; NaN (never expected from finite input) reads 0.
 float toRange(double v) {
     return v > 0.0 ? float(std::min(v, double(kMaxRadiance))) : 0.f;
+}
+
+// Rows lambda * (parent - mean of its children) from `row` on, one per texel of levels 1 ..
+// levels-1, the children as pemBoxFilteredLevels averages them. Returns the next row.
+int appendLevelRows(int faceRes, int levels, double lambda, int row,
+                    std::vector<Eigen::Triplet<double>>& entries) {
+    forEachPemLevelParent(faceRes, levels, [&](int parent, const int* children, int count) {
+        entries.emplace_back(row, parent, lambda);
+        for (int c = 0; c < count; ++c)
+            entries.emplace_back(row, children[c], -lambda / double(count));
+        ++row;
+    });
+    return row;
 }
 
 } // namespace
@@ -122,7 +141,8 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     map.boxMax = o.boxMax;
     map.distance = o.local ? nullptr : o.distance;
     map.local = o.local;
-    const int texels = PemMap::texelCount(o.faceRes);
+    map.levels = o.mipLevels;
+    const int texels = PemMap::texelCount(o.faceRes, o.mipLevels);
     const PemLookupCpu lookup(map); // weights need the geometry only
 
     // Rows 0 .. S-1: one per sample, the lookup's weights. Then one row per neighbour pair.
@@ -132,7 +152,8 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     PemWeights w;
     const int sampleRows = int(samples.size());
     for (int s = 0; s < sampleRows; ++s) {
-        lookup.weights(samples[std::size_t(s)].x, samples[std::size_t(s)].l, w);
+        const PemSample& p = samples[std::size_t(s)];
+        lookup.weights(p.x, p.l, w, p.footprint());
         for (const auto& [t, weight] : w) {
             entries.emplace_back(s, t, double(weight));
             seen[std::size_t(t)] = 1;
@@ -142,16 +163,23 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     int rows = sampleRows;
     if (o.regularisation > 0.f) {
         const double lambda = o.regularisation;
-        for (const auto& [a, b] : pemNeighbourPairs(o.faceRes)) {
-            entries.emplace_back(rows, a, lambda);
-            entries.emplace_back(rows, b, -lambda);
-            ++rows;
+        for (int level = 0; level < o.mipLevels; ++level) {
+            const int offset = PemMap::levelOffset(o.faceRes, level);
+            for (const auto& [a, b] : pemNeighbourPairs(PemMap::levelRes(o.faceRes, level))) {
+                entries.emplace_back(rows, offset + a, lambda);
+                entries.emplace_back(rows, offset + b, -lambda);
+                ++rows;
+            }
         }
+        rows = appendLevelRows(o.faceRes, o.mipLevels, lambda, rows, entries);
     }
-    // Prior rows: w (t - prior_t), the prior's part going to the right-hand side.
+    // Prior rows: w (t - prior_t), the prior's part going to the right-hand side; every
+    // level's prior is the level-0 prior box-filtered down.
     const bool usePrior = o.prior && o.priorWeight > 0.f;
     const int priorRow = rows;
+    std::vector<glm::vec3> prior;
     if (usePrior) {
+        prior = pemBoxFilteredLevels(*o.prior, o.faceRes, o.mipLevels);
         for (int t = 0; t < texels; ++t)
             entries.emplace_back(rows++, t, double(o.priorWeight));
     }
@@ -167,14 +195,15 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     map.texels.assign(std::size_t(texels), glm::vec3(0.f));
     // Channel 3 is the local layer's coverage: the same rows, its prior 0.
     const int channels = o.alphaTargets ? 4 : 3;
-    if (o.alphaTargets) map.alpha.assign(std::size_t(texels), 0.f);
+    // A local map without coverage targets (a refit of its RGB) still holds one alpha per
+    // texel, so the residual below can look it up; the caller keeps its own.
+    if (o.alphaTargets || o.local) map.alpha.assign(std::size_t(texels), 0.f);
     for (int c = 0; c < channels; ++c) {
         for (int s = 0; s < sampleRows; ++s)
             b[s] = c < 3 ? samples[std::size_t(s)].target[c] : (*o.alphaTargets)[std::size_t(s)];
         if (usePrior)
             for (int t = 0; t < texels; ++t)
-                b[priorRow + t] =
-                    c < 3 ? double(o.priorWeight) * (*o.prior)[std::size_t(t)][c] : 0.0;
+                b[priorRow + t] = c < 3 ? double(o.priorWeight) * prior[std::size_t(t)][c] : 0.0;
         guess.setZero();
         if (o.warmStart && c < 3)
             for (int t = 0; t < texels; ++t)
@@ -193,7 +222,8 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     // The residual of what will be displayed: the clamped map through the lookup itself.
     double sum = 0;
     for (const PemSample& p : samples) {
-        const glm::dvec3 d = glm::dvec3(lookup.radiance(p.x, p.l)) - glm::dvec3(p.target);
+        const glm::dvec3 d =
+            glm::dvec3(lookup.radiance(p.x, p.l, p.footprint())) - glm::dvec3(p.target);
         sum += glm::dot(d, d);
     }
     r.residualRms = std::sqrt(sum / (3.0 * double(samples.size())));

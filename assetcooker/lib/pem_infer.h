@@ -31,6 +31,12 @@ struct PemSample {
     glm::vec3 distant{0.f};
     bool selfHit = false;
     bool onHull = true;
+    // The pixel's footprint as the shader differentiates it (PemFootprint: fine derivatives
+    // of x and l along the window's x and y, per displayed pixel), which picks the MIP level
+    // of multi-level maps. Zero: level 0.
+    glm::vec3 dxdX{0.f}, dxdY{0.f}, dldX{0.f}, dldY{0.f};
+
+    PemFootprint footprint() const { return {dxdX, dxdY, dldX, dldY}; }
 };
 using PemSamples = std::vector<PemSample>;
 
@@ -61,6 +67,13 @@ struct PemInferOptions {
     // is 0: coverage nobody saw reads as the distant layer.
     std::optional<PemLocalSphere> local;
     const std::vector<float>* alphaTargets = nullptr;
+    // MIP levels of the map, 1 .. PemMap::maxLevels(faceRes) (Hakura §4: all levels are
+    // unknowns of one solve, each sample's row reading the levels its footprint picks).
+    // Smoothness rows stay within a level; a level's prior is the prior box-filtered down
+    // (pemBoxFilteredLevels); rows lambda * (parent - mean of its children) tie each texel to
+    // the level above, so a level no footprint reaches becomes the filtered one. 1 for a local
+    // layer. warmStart then holds every level.
+    int mipLevels = 1;
 };
 
 struct PemInference {
@@ -75,7 +88,7 @@ struct PemInference {
 // Throws Error naming the field: "samples" (none; a non-finite x, l or target; l not unit),
 // "face_res", "box", "regularisation", "tolerance", "max_iterations", "warm_start", "prior",
 // "prior_weight", "distance.*" (checkPemDistanceGeometry), "local" (a radius not > 0, or
-// alpha targets without a sphere or not one per finite sample in [0, 1]).
+// alpha targets without a sphere or not one per finite sample in [0, 1]), "mip_levels".
 PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o);
 
 // Every unordered pair of texels that share a texel edge, within a face or across a cube

@@ -99,6 +99,7 @@ PemLayers inferPemLayers(const PemSamples& samples, const PemInferOptions& dista
     }
     PemInferOptions o = local;
     o.local = sphere;
+    o.mipLevels = 1; // the local layer is read at level 0
     o.distance = nullptr;
     o.warmStart = nullptr;
     o.alphaTargets = &alpha;
@@ -124,7 +125,8 @@ PemLayers inferPemLayers(const PemSamples& samples, const PemInferOptions& dista
     for (std::size_t r = 0; r < l.size(); ++r) {
         const glm::vec4 over = localLookup.localRadiance(l[r].x, l[r].l);
         const glm::vec3 full = alpha[r] > 0.f ? l[r].target : l[r].distant;
-        l[r].target = full - (1.f - over.a) * distantLookup.radiance(l[r].x, l[r].l);
+        l[r].target =
+            full - (1.f - over.a) * distantLookup.radiance(l[r].x, l[r].l, l[r].footprint());
     }
     const std::vector<float> keptAlpha = out.local.map.alpha;
     const std::vector<glm::vec3> first = out.local.map.texels;

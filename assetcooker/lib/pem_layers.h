@@ -46,9 +46,9 @@ struct PemLayers {
 // The distant map from every sample (target: PemSample::distant off the hull, the full target
 // on it, where nothing is drawn over the distant layer) with `distant`'s options;
 // the local map from the off-hull samples (target: selfHit ? target : 0, alpha: selfHit) on
-// `sphere` at localFaceRes with `local`'s regularisation and tolerance (its geometry and
-// prior are replaced: the local layer's prior is 0). Without an off-hull sample the local map
-// is all zero (alpha 0: the distant layer alone).
+// `sphere` at localFaceRes with `local`'s regularisation and tolerance (its geometry, MIP
+// levels and prior are replaced: one level, prior 0). Without an off-hull sample the local
+// map is all zero (alpha 0: the distant layer alone).
 PemLayers inferPemLayers(const PemSamples& samples, const PemInferOptions& distant,
                          const PemInferOptions& local, const PemLocalSphere& sphere);
 

@@ -2,6 +2,7 @@
 
 #include "components/reflection_probe/walk_path.h"
 #include "engine/core/error.h"
+#include "engine/raytrace/triangle_plane.h"
 
 #include <algorithm>
 #include <cmath>
@@ -62,6 +63,37 @@ void traceLayers(const GroundTruthTracer& tracer, const Hit& hit, glm::vec3 orig
     }
 }
 
+// The reflected direction as tracePemSamples computes it for the primary ray `dir`.
+glm::vec3 mirrorOf(const Hit& hit, glm::vec3 dir) {
+    const glm::vec3 n = glm::dot(hit.normal, dir) > 0.f ? -hit.normal : hit.normal;
+    return glm::normalize(glm::reflect(dir, n));
+}
+
+// GLSL's dFdxFine / dFdyFine of x and l at sub-pixel (px, py) of `fine` (ReflectorQuadPixel's
+// quads: columns (2i, 2i + 1), window rows counted from the bottom), the partners on the
+// plane of `hit`'s triangle, times `scale` sub-pixels per displayed pixel.
+void fillFootprint(const ecs::Registry& registry, const CameraView& fine, int px, int py,
+                   const Hit& hit, glm::vec3 centre, float scale, PemSample& s) {
+    auto partner = [&](int x, int y, glm::vec3& xOut, glm::vec3& lOut) {
+        glm::vec3 origin, dir;
+        fine.primaryRay(x, y, origin, dir);
+        const std::optional<Hit> h = hitOnTrianglePlane(registry, hit, origin, dir);
+        // Parallel to the plane: the pixel itself, a zero derivative (as the quad twin).
+        xOut = h ? h->position - centre : s.x;
+        lOut = h ? mirrorOf(*h, dir) : s.l;
+    };
+    glm::vec3 xp, lp;
+    partner(px ^ 1, py, xp, lp);
+    const float sx = (px & 1) ? -scale : scale; // an odd column is the quad's right pixel
+    s.dxdX = sx * (xp - s.x);
+    s.dldX = sx * (lp - s.l);
+    const int row = fine.height - 1 - py; // window row
+    partner(px, fine.height - 1 - (row ^ 1), xp, lp);
+    const float sy = (row & 1) ? -scale : scale;
+    s.dxdY = sy * (xp - s.x);
+    s.dldY = sy * (lp - s.l);
+}
+
 } // namespace
 
 PemSamples tracePemSamples(const GroundTruthTracer& tracer, const CameraView& camera,
@@ -99,6 +131,9 @@ PemSamples tracePemSamples(const GroundTruthTracer& tracer, const CameraView& ca
                     const glm::vec3 origin2 = offsetAlong(hit->position, ng);
                     s.target = tracer.radiance(origin2, s.l, 1);
                     if (o.layers) traceLayers(tracer, *hit, origin2, o, s);
+                    if (o.registry)
+                        fillFootprint(*o.registry, fine, x, y, *hit, probeCentre,
+                                      float(o.supersample), s);
                     rows[std::size_t(y)].push_back(s);
                 }
         });
@@ -118,7 +153,9 @@ PemSamples tracePemSamples(ProbeScene& scene, const CameraView& camera, glm::vec
     if (scene.markup.mirrorEntities.empty())
         throw Error(scene.path, "specula_reflector", "expected at least one reflector, found none");
     const GroundTruthTracer tracer(scene.registry, groundTruthOptions(scene, o.environmentOnly));
-    return tracePemSamples(tracer, camera, probeCentre, o, scene.path);
+    PemSampleOptions withRegistry = o;
+    if (!withRegistry.registry) withRegistry.registry = &scene.registry;
+    return tracePemSamples(tracer, camera, probeCentre, withRegistry, scene.path);
 }
 
 void validatePemCookSettings(const PemCookSettings& s, const std::string& file) {
@@ -140,6 +177,7 @@ void validatePemCookSettings(const PemCookSettings& s, const std::string& file) 
     if (s.localLayer != "auto" && s.localLayer != "on" && s.localLayer != "off")
         throw Error(file, "local_layer", "expected auto, on or off, got '" + s.localLayer + "'");
     if (s.localFaceRes != 0) requireRange(file, "local_face_res", s.localFaceRes, 1, 1024);
+    requireRange(file, "mip_levels", s.mipLevels, 1, PemMap::maxLevels(s.faceRes));
     if (s.localSphere != "bound" && s.localSphere != "fit")
         throw Error(file, "local_sphere", "expected bound or fit, got '" + s.localSphere + "'");
     if (s.parameter != "viewpoint" && s.parameter != "reflector")

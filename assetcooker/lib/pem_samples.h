@@ -31,6 +31,12 @@ struct PemSampleOptions {
     // it lacks counts as all hull). false: those fields keep their defaults.
     bool layers = false;
     const std::unordered_map<ecs::Entity, PemHullFlags>* hull = nullptr;
+    // The tracer's registry: set, each sample gets its pixel's footprint (PemSample::dxdX,
+    // dxdY, dldX, dldY), its quad partners shaded on its own triangle's plane as the GPU
+    // shades them (triangle_plane.h). With supersample s > 1 the partners are the sub-pixel
+    // grid's, the differences scaled by s: the displayed pixel is s sub-pixels wide. Null:
+    // zero footprints (MIP level 0).
+    const ecs::Registry* registry = nullptr;
 };
 
 // One PemSample per (sub-pixel) primary ray that hits a reflector of the markup: x = hit -
@@ -85,6 +91,9 @@ struct PemCookSettings {
     // points that meet the bowl at one point see different things there; the exact sphere
     // sends them all to one texel, a sphere off the bowl's centre spreads them.
     std::string localSphere = "bound";
+    // MIP levels of the distant maps, all inferred together (PemInferOptions::mipLevels), 1 ..
+    // PemMap::maxLevels(faceRes); 1: level 0 alone, as before MIP levels existed.
+    int mipLevels = 1;
 };
 
 // How well one sample's map fits, measured by the cooker against the ray tracer on the
@@ -106,7 +115,7 @@ struct PemSampleFit {
 
 // Throws Error naming the field ("samples", "face_res", "supersample", "regularisation",
 // "image_size", "geometry", "prior_weight" (needs the distance geometry), "parameter", "path",
-// "local_layer", "local_face_res", "local_sphere").
+// "local_layer", "local_face_res", "local_sphere", "mip_levels").
 void validatePemCookSettings(const PemCookSettings& s, const std::string& file);
 
 // What the cooking API gives every baker: the probe centre, a progress callback (fraction of

@@ -1,6 +1,8 @@
 #pragma once
 // What the bench's parts share (bench.cpp, bench_pem.cpp): measuring one probe row against
 // the ground truth of its camera, and the row's progress line.
+#include "components/reflection_probe/pem/pem_asset.h"
+#include "components/reflection_probe/pem/pem_probe.h"
 #include "sandbox/lib/accuracy_plot.h"
 #include "sandbox/lib/bench.h"
 #include "sandbox/lib/bench_methods.h"
@@ -13,6 +15,8 @@
 #include <vector>
 
 namespace specula {
+
+struct CookResult; // assetcooker/lib/cook.h
 
 // The ground truth of one camera: environment only, full (multi-bounce), and the reflector
 // pixels measured (the mirror mask eroded by one pixel).
@@ -52,6 +56,23 @@ struct PemBenchSweep {
 void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string& sceneName,
                    const std::string& outDir, const PemBenchSweep& sweep, BenchFrameBudget budget,
                    double envmapMs, BenchReport& report, PlotPanel& panel, std::ostream& log);
+
+// Texture fetches per reflector pixel of the blend at `probe`, counted by the CPU twin on the
+// camera's reflector rays as Embree finds them (the shader's inputs up to normal
+// interpolation): a distance-geometry lookup reads the distance cube while it searches; a
+// trilinear read of MIP levels counts as one filtered fetch, as a bilinear one does.
+double pemFetchesPerPixel(ProbeScene& scene, const CameraView& cam, const PemAsset& asset,
+                          const PemProbe& probe);
+
+// The MIP comparison of one PEM bake (issue 12: every level inferred together), N = samples
+// of `level0` (an appendPemRows bake): the same settings baked again with every level down to
+// 1^2 faces inferred (outDir/probes/<scene>_pemN_mip, rows "N=.. t=on mip") and level0's maps
+// with their box-filtered chain (<scene>_pemN_filtered, rows "... filtered-mip"), drawn on
+// and off the manifold as the level-0 rows; a log line compares the three.
+void appendPemMipRows(ReflectionScene& scene, FrameRenderer& fr, const std::string& sceneName,
+                      const std::string& outDir, const PemBenchSweep& sweep, int samples,
+                      const CookResult& level0, BenchFrameBudget budget, double envmapMs,
+                      BenchReport& report, PlotPanel& panel, std::ostream& log);
 
 // The budget bakes faces twice the bench's per side only up to this size: the bake grows
 // with the texels (4x), and 512^2 is the largest the full bench's 256^2 doubles to.

@@ -39,9 +39,8 @@ void logCookerFit(std::ostream& log, const std::string& sceneName, int samples,
     log << line << std::flush;
 }
 
-// Texture fetches per reflector pixel of the blend at `probe`, counted by the CPU twin on the
-// camera's reflector rays as Embree finds them (the shader's inputs up to normal
-// interpolation): a distance-geometry lookup reads the distance cube while it searches.
+} // namespace
+
 double pemFetchesPerPixel(ProbeScene& scene, const CameraView& cam, const PemAsset& asset,
                           const PemProbe& probe) {
     // With a local layer the hull flags tell which pixels read it (PemSample::onHull).
@@ -67,6 +66,8 @@ double pemFetchesPerPixel(ProbeScene& scene, const CameraView& cam, const PemAss
                (asset.localLayer && !r.onHull ? perLayer : 0);
     return sum / double(rays.size());
 }
+
+namespace {
 
 // outDir/pem_<scene>.png: full truth and PEM on and off the manifold, the PEM's error
 // against the full truth below each PEM tile (`heat`: one per tile, empty under a truth).
@@ -163,6 +164,10 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
             report.rows.push_back(row);
         }
         if (picture) writePemPicture(outDir, sceneName, tiles, heat, labels, sweep.width);
+        // The MIP comparison once per scene, on the first N's bake as the cooker chose it.
+        if (b == 0)
+            appendPemMipRows(scene, fr, sceneName, outDir, sweep, samples, cooked, budget, envmapMs,
+                             report, panel, log);
     }
 }
 

@@ -4,7 +4,8 @@
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "engine/core/error.h"
 #include "engine/image/image_io.h"
-#include "support/scratch_dir_test.h"
+#include "pem_files_fixture.h"
+#include "pem_fixtures.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -12,8 +13,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <functional>
-#include <random>
 
 using namespace specula;
 using nlohmann::json;
@@ -22,55 +21,20 @@ namespace fs = std::filesystem;
 namespace {
 
 PemAsset layeredAsset(int faceRes, int localRes, int count) {
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> u(0.f, 1.f);
     PemAsset a;
     a.centre = {0.f, 1.f, 0.f};
     a.faceRes = faceRes;
     a.localLayer = true;
     a.localFaceRes = localRes;
     a.localSphere = {{0.1f, -0.05f, 0.f}, 0.45f};
-    for (int k = 0; k < count; ++k) {
-        PemSampleMap s;
-        s.parameter = float(k) / float(count);
-        s.map = {faceRes, a.boxMin, a.boxMax, {}, nullptr};
-        for (int t = 0; t < PemMap::texelCount(faceRes); ++t)
-            s.map.texels.emplace_back(u(rng), u(rng), u(rng));
-        s.local.faceRes = localRes;
-        s.local.local = a.localSphere;
-        for (int t = 0; t < PemMap::texelCount(localRes); ++t) {
-            const float alpha = u(rng);
-            s.local.alpha.push_back(alpha);
-            s.local.texels.emplace_back(alpha * u(rng), alpha * u(rng), alpha * u(rng));
-        }
-        a.samples.push_back(std::move(s));
-    }
-    return a;
+    return test::randomPemAsset(a, count, 5);
 }
 
-class PemLocalFiles : public test::ScratchDirTest {
+class PemLocalFiles : public test::PemFilesTest {
 protected:
-    PemLocalFiles() : ScratchDirTest("specula-pem-local") {}
+    PemLocalFiles() : PemFilesTest("specula-pem-local") {}
 
-    std::string dir() const { return (root_ / "pem").string(); }
-    std::string manifest() const { return dir() + "/manifest.json"; }
-    std::string localFile(int k) const { return dir() + "/local_0" + std::to_string(k) + ".exr"; }
-
-    void editManifest(const std::function<void(json&)>& edit) const {
-        json m = json::parse(std::ifstream(manifest()));
-        edit(m);
-        std::ofstream(manifest()) << m.dump(1);
-    }
-    void expectRefused(const std::string& fileSuffix, const std::string& field) const {
-        try {
-            readPemProbe(manifest());
-            ADD_FAILURE() << "expected " << field << " to be refused";
-        } catch (const Error& e) {
-            std::printf("refused: %s\n", e.what());
-            EXPECT_TRUE(e.file().ends_with(fileSuffix)) << e.what();
-            EXPECT_EQ(e.field(), field) << e.what();
-        }
-    }
+    std::string localFile(int k) const { return file("local_0" + std::to_string(k) + ".exr"); }
 };
 
 } // namespace

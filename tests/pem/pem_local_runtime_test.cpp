@@ -10,13 +10,13 @@
 #include "engine/image/compare.h"
 #include "engine/raytrace/ground_truth.h"
 #include "engine/scene/mesh_bounds.h"
+#include "pem_fixtures.h"
 #include "support/probe_room.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <filesystem>
-#include <random>
 #include <unistd.h>
 
 using namespace specula;
@@ -30,8 +30,6 @@ constexpr int kWidth = 200, kHeight = 150;
 // Three samples of random distant (box) and local maps, the local sphere around the
 // reflectors.
 PemAsset randomLayered(glm::vec3 centre, const Aabb& reflectors) {
-    std::mt19937 rng(13);
-    std::uniform_real_distribution<float> u(0.f, 1.f);
     PemAsset a;
     a.centre = centre;
     a.faceRes = 16;
@@ -41,22 +39,7 @@ PemAsset randomLayered(glm::vec3 centre, const Aabb& reflectors) {
     a.localFaceRes = 12;
     a.localSphere = {0.5f * (reflectors.min + reflectors.max) - centre,
                      0.5f * glm::length(reflectors.max - reflectors.min)};
-    for (int k = 0; k < 3; ++k) {
-        PemSampleMap s;
-        s.parameter = float(k) / 3.f;
-        s.map = {a.faceRes, a.boxMin, a.boxMax, {}, nullptr};
-        for (int t = 0; t < PemMap::texelCount(a.faceRes); ++t)
-            s.map.texels.emplace_back(u(rng), u(rng), u(rng));
-        s.local.faceRes = a.localFaceRes;
-        s.local.local = a.localSphere;
-        for (int t = 0; t < PemMap::texelCount(a.localFaceRes); ++t) {
-            const float alpha = u(rng);
-            s.local.alpha.push_back(alpha);
-            s.local.texels.emplace_back(alpha * u(rng), alpha * u(rng), alpha * u(rng));
-        }
-        a.samples.push_back(std::move(s));
-    }
-    return a;
+    return test::randomPemAsset(a, 3, 13);
 }
 
 } // namespace

@@ -6,6 +6,7 @@
 #include "engine/core/glsl_host.h" // glm, which sampling.h expects
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
+#include "pem_fixtures.h"
 #include "pem_room.h"
 
 #include <gtest/gtest.h>
@@ -19,21 +20,6 @@ using namespace specula;
 using namespace specula::test;
 
 namespace {
-
-// A local map of random premultiplied RGB and alpha (rgb <= alpha, as premultiplied colour).
-PemMap randomLocal(int n, PemLocalSphere sphere, unsigned seed) {
-    PemMap m;
-    m.faceRes = n;
-    m.local = sphere;
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.f, 1.f);
-    for (int t = 0; t < PemMap::texelCount(n); ++t) {
-        const float a = u(rng);
-        m.alpha.push_back(a);
-        m.texels.emplace_back(a * u(rng), a * u(rng), a * u(rng));
-    }
-    return m;
-}
 
 // Where x + t l meets the sphere last (t > 0, the larger root), in double: written apart from
 // the shared lookup. Only called for rays that cross the sphere.

@@ -1,5 +1,7 @@
 #include "pem_asset.h"
 
+#include "components/reflection_probe/pem/pem_map_levels.h"
+
 #include "components/reflection_probe/distance/distance_probe_asset.h" // kMaxRadiance
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
@@ -113,17 +115,21 @@ bool sameGeometry(const PemDistanceGeometry* a, const PemDistanceGeometry* b) {
 // Every texel's RGB finite in [0, kMaxRadiance]; the error names the face, texel and channel.
 void checkRadiance(const PemMap& m, const std::string& file, std::size_t k) {
     static const char* faces[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
-    const int n = m.faceRes;
-    for (int t = 0; t < PemMap::texelCount(n); ++t)
-        for (int c = 0; c < 3; ++c) {
-            const float v = m.texels[std::size_t(t)][c];
-            if (v >= 0.f && v <= kMaxRadiance) continue; // false for NaN too
-            throw Error(file, "radiance",
-                        "sample " + std::to_string(k) + " face " + faces[t / (n * n)] + " texel (" +
-                            std::to_string(t % n) + ", " + std::to_string(t / n % n) +
-                            ") channel " + "RGB"[c] + " holds " + number(v) +
-                            "; expected a finite radiance in [0, " + number(kMaxRadiance) + "]");
-        }
+    for (int level = 0; level < m.levels; ++level) {
+        const int n = PemMap::levelRes(m.faceRes, level);
+        const int offset = PemMap::levelOffset(m.faceRes, level);
+        for (int t = 0; t < PemMap::texelCount(n); ++t)
+            for (int c = 0; c < 3; ++c) {
+                const float v = m.texels[std::size_t(offset + t)][c];
+                if (v >= 0.f && v <= kMaxRadiance) continue; // false for NaN too
+                throw Error(
+                    level > 0 ? file + " (level " + std::to_string(level) + ")" : file, "radiance",
+                    "sample " + std::to_string(k) + " face " + faces[t / (n * n)] + " texel (" +
+                        std::to_string(t % n) + ", " + std::to_string(t / n % n) + ") channel " +
+                        "RGB"[c] + " holds " + number(v) + "; expected a finite radiance in [0, " +
+                        number(kMaxRadiance) + "]");
+            }
+    }
     for (std::size_t t = 0; t < m.alpha.size(); ++t) {
         const float v = m.alpha[t];
         if (v >= 0.f && v <= 1.f) continue; // false for NaN too
@@ -199,6 +205,11 @@ void checkAsset(const PemAsset& a, const std::string& manifest,
                     a.distance ? "a box-geometry asset holds a distance cube"
                                : "distance geometry without its distance cube");
     if (a.distance) checkPemDistanceGeometry(*a.distance, manifest, distanceFile);
+    if (a.mipLevels < 1 || a.mipLevels > PemMap::maxLevels(a.faceRes))
+        throw Error(manifest, "mip_levels",
+                    "expected an integer in [1, " + std::to_string(PemMap::maxLevels(a.faceRes)) +
+                        "] for faces of " + std::to_string(a.faceRes) + ", got " +
+                        std::to_string(a.mipLevels));
     if (a.samples.empty() || a.samples.size() > std::size_t(kMaxPemSamples))
         throw Error(manifest, "samples",
                     "expected 1 to " + std::to_string(kMaxPemSamples) + " sample maps, got " +
@@ -212,16 +223,41 @@ void checkAsset(const PemAsset& a, const std::string& manifest,
             throw Error(manifest, samplePath(k) + "parameter",
                         "parameters must increase strictly: " + number(s.parameter) + " follows " +
                             number(a.samples[k - 1].parameter));
+        const int texels = PemMap::texelCount(a.faceRes, a.mipLevels);
         if (s.map.faceRes != a.faceRes || s.map.boxMin != a.boxMin || s.map.boxMax != a.boxMax ||
-            s.map.texels.size() != std::size_t(PemMap::texelCount(a.faceRes)) ||
+            s.map.levels != a.mipLevels || s.map.texels.size() != std::size_t(texels) ||
             !sameGeometry(s.map.distance.get(), a.distance.get()))
             throw Error(manifest, samplePath(k) + "map",
-                        "expected " + std::to_string(PemMap::texelCount(a.faceRes)) +
-                            " texels of face resolution " + std::to_string(a.faceRes) +
-                            " over the asset's box and geometry");
+                        "expected " + std::to_string(texels) + " texels of face resolution " +
+                            std::to_string(a.faceRes) + " in " + std::to_string(a.mipLevels) +
+                            " level(s) over the asset's box and geometry");
         checkRadiance(s.map, files[k], k);
     }
     checkLocal(a, manifest, localFiles);
+}
+
+// Levels 1 .. levels-1 of a sample's map from its "mips" files, each exactly its size.
+void readPemLevels(const ManifestFields& r, const json& sample, const std::string& path,
+                   const fs::path& dir, int levels, PemMap& map) {
+    map.levels = levels;
+    if (levels <= 1) return;
+    const json& mips = r.member(sample, "mips", path);
+    if (!mips.is_array() || mips.size() != std::size_t(levels - 1))
+        throw Error(r.file, path + "mips",
+                    "expected an array of " + std::to_string(levels - 1) + " files (levels 1 to " +
+                        std::to_string(levels - 1) + ")");
+    for (int level = 1; level < levels; ++level) {
+        const std::string field = path + "mips[" + std::to_string(level - 1) + "].";
+        const int n = PemMap::levelRes(map.faceRes, level);
+        const ManifestFields::CheckedFile file =
+            r.checkedFile(mips[std::size_t(level - 1)], field, dir, maxSampleFileBytes(n));
+        const Image img = r.namedFile(
+            field, [&] { return readFloatExr(file.path, {.width = n, .height = 6 * n}); });
+        if (img.channels < 3)
+            throw Error(file.path, "channels",
+                        "expected RGB, got " + std::to_string(img.channels) + " channel(s)");
+        pemUnstackLevel(img, level, map);
+    }
 }
 
 } // namespace
@@ -245,6 +281,12 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
             json sample = {{"parameter", asset.samples[k].parameter},
                            {"file", name},
                            {"checksum", fileChecksum(path)}};
+            for (int level = 1; level < asset.mipLevels; ++level) {
+                const std::string mip = pemLevelFileName(k, level);
+                const std::string mipPath = (tmp / mip).string();
+                writeImage(mipPath, pemStackLevel(asset.samples[k].map, level));
+                sample["mips"].push_back({{"file", mip}, {"checksum", fileChecksum(mipPath)}});
+            }
             if (asset.localLayer) {
                 const std::string local = localFileName(k);
                 const std::string localPath = (tmp / local).string();
@@ -260,6 +302,7 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
             manifest["local_layer"] = {{"face_res", asset.localFaceRes},
                                        {"centre", vec3Json(asset.localSphere.centre)},
                                        {"radius", asset.localSphere.radius}};
+        if (asset.mipLevels > 1) manifest["mip_levels"] = asset.mipLevels;
         if (asset.imageWidth > 0) manifest["image_size"] = {asset.imageWidth, asset.imageHeight};
         if (!asset.skySource.empty()) manifest["sky_source"] = asset.skySource;
         if (const PemDistanceGeometry* g = asset.distance.get()) {
@@ -347,6 +390,9 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
         a.localSphere.centre = r.vec3(l, "centre", "local_layer.", kMaxCoordinate);
         a.localSphere.radius = float(r.number(l, "radius", "local_layer.", 0.0, FLT_MAX));
     }
+    // Absent in manifests written before MIP levels, and in single-level assets.
+    if (m.contains("mip_levels"))
+        a.mipLevels = r.integer(m, "mip_levels", "", 1, PemMap::maxLevels(a.faceRes));
     const json& samples = r.member(m, "samples", "");
     if (!samples.is_array() || samples.empty() || samples.size() > std::size_t(kMaxPemSamples))
         throw Error(manifest.path, "samples",
@@ -369,6 +415,7 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
             throw Error(file.path, "channels",
                         "expected RGB, got " + std::to_string(img.channels) + " channel(s)");
         s.map = unstackMap(img, a);
+        readPemLevels(r, j, path, dir, a.mipLevels, s.map);
         if (a.localLayer) {
             const std::string localPath = path + "local.";
             const ManifestFields::CheckedFile local = r.checkedFile(

@@ -11,7 +11,9 @@
 // distance geometry ("geometry": "distance") adds distance.exr, M x 6M in the same layout,
 // one channel: the environment's distance from the centre per texel of its own cube. An asset
 // with a local layer ("local_layer": face resolution, sphere) adds local_NN.exr per sample,
-// L x 6L in the same layout, RGBA: premultiplied local radiance and coverage alpha.
+// L x 6L in the same layout, RGBA: premultiplied local radiance and coverage alpha. An asset
+// with MIP levels ("mip_levels": L > 1) adds sample_NN_mipK.exr per sample and level k >= 1,
+// max(N >> k, 1) x 6 max(N >> k, 1) in the same layout, listed in the sample's "mips".
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/pem/pem_lookup_cpu.h"
 
@@ -57,6 +59,10 @@ struct PemAsset {
     bool localLayer = false;
     int localFaceRes = 0; // 1 .. 4096 with a local layer
     PemLocalSphere localSphere;
+    // MIP levels of every sample's distant map (Hakura §4: inferred together, not filtered
+    // copies), 1 .. PemMap::maxLevels(faceRes); each sample's map.levels equals it. Manifests
+    // without "mip_levels" hold level 0 alone.
+    int mipLevels = 1;
 };
 
 // Most samples a manifest may list (each is a full cube map).
@@ -68,8 +74,8 @@ inline constexpr int kMaxPemSamples = 1024;
 // and the field: "centre", "parameter_kind", "path", "face_res", "box", "geometry", "distance.*"
 // (checkPemDistanceGeometry; distance.exr for the distances), "samples",
 // "samples[k].parameter", "samples[k].map" (size, box or geometry unlike the asset's),
-// "radiance", "local_layer.*" (face_res, centre, radius), "samples[k].local" (the local map
-// unlike the asset's layer), "alpha" (a local map's coverage outside [0, 1]).
+// "radiance", "mip_levels", "local_layer.*" (face_res, centre, radius), "samples[k].local" (the
+// local map unlike the asset's layer), "alpha" (a local map's coverage outside [0, 1]).
 void writePemProbe(const PemAsset& asset, const std::string& dir, const std::string& sourceScene);
 
 // Reads and validates a manifest and its images: format, version and flavour, every field's
@@ -79,7 +85,9 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
 // exactly M x 6M with a matching checksum whose first channel lies in (0, d_inf]; a local
 // layer: every sample's "local" file an RGBA float EXR of exactly L x 6L with a matching
 // checksum (a missing or wrong-sized one names the manifest and "samples[k].local.file"),
-// RGB as the maps', alpha in [0, 1]. Errors name the file and the field.
+// RGB as the maps', alpha in [0, 1]; MIP levels: every sample's "mips" lists one file per
+// level past 0, each exactly its level's size (a missing one names the manifest and
+// "samples[k].mips[i].file", a mis-sized one its file). Errors name the file and the field.
 PemAsset readPemProbe(const ProbeManifest& manifest);
 PemAsset readPemProbe(const std::string& manifestPath);
 

@@ -16,13 +16,30 @@ namespace glsl {
 // At namespace scope once, so the lookups included in the structs below share the types.
 #include "components/reflection_probe/distance/shaders/distance_lookup_types.glsl.h"
 
+// The twins always compile the MIP path: a single-level map clamps the lod to 0, which
+// reads level 0 alone through the same bilinear the shader's PEM_MIP 0 variant runs.
+#define PEM_MIP 1
+
+// The map's texel index of (level, face, i, j), levels stacked as PemMap keeps them.
+int pemTexelIndex(const PemMap& m, int level, int face, int i, int j) {
+    const int n = PemMap::levelRes(m.faceRes, level);
+    return PemMap::levelOffset(m.faceRes, level) + (face * n + j) * n + i;
+}
+
+// What the MIP hooks of pem_lookup.glsl.h read: the lod the pixel's footprint gave.
+struct PemLevelOfDetail {
+    float lookupLod = 0.0f;
+    int levels = 1;
+    float pemLookupLod() const { return lookupLod; }
+    int pemMapLevels() const { return levels; }
+};
+
 // Reads the map, as the GPU's texelFetch will.
-struct PemTexelRead {
+struct PemTexelRead : PemLevelOfDetail {
     const PemMap* map = nullptr;
 
-    vec3 fetchTexel(int face, int i, int j) const {
-        const int n = map->faceRes;
-        return map->texels[std::size_t((face * n + j) * n + i)];
+    vec3 fetchTexel(int level, int face, int i, int j) const {
+        return map->texels[std::size_t(pemTexelIndex(*map, level, face, i, j))];
     }
 };
 
@@ -33,17 +50,17 @@ struct PemTexelRead {
 // arithmetic it used to apply them. Texel indices are recorded on the way; they depend on
 // the ray only (the distance cube is geometry, not a texel), so every pass fetches the same
 // texels in the same order.
-struct PemTexelProbe {
-    static constexpr int kMaxFetches = 16; // 4 now; trilinear MIP lookups will need 8
+struct PemTexelProbe : PemLevelOfDetail {
+    static constexpr int kMaxFetches = 16; // 4 bilinear, 8 trilinear
     const PemMap* map = nullptr;
     int pass = 0;
     int fetches = 0;
     std::array<int, kMaxFetches> index{};
 
-    vec3 fetchTexel(int face, int i, int j) {
+    vec3 fetchTexel(int level, int face, int i, int j) {
         const int k = fetches++;
         assert(k < kMaxFetches);
-        if (pass == 0) index[std::size_t(k)] = (face * map->faceRes + j) * map->faceRes + i;
+        if (pass == 0) index[std::size_t(k)] = pemTexelIndex(*map, level, face, i, j);
         vec3 unit(0.0f);
         if (k / 3 == pass) unit[k % 3] = 1.0f;
         return unit;
@@ -65,16 +82,28 @@ struct PemDistanceRead {
     int pemDistanceFaceRes() const { return geometry->faceRes; }
 };
 
-// The shared lookups are included inside structs so their fetch calls bind to the members.
+// The shared lookups are included inside structs so their fetch calls bind to the members;
+// each struct gets its own copy of the taps (pem_taps.glsl.h), hence the #undef of its guard.
 struct PemReadTwin : PemTexelRead {
 #include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
 };
 #undef SPECULA_PEM_LOOKUP_GLSL_H
+#undef SPECULA_PEM_TAPS_GLSL_H
 
 struct PemProbeTwin : PemTexelProbe {
 #include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
 };
 #undef SPECULA_PEM_LOOKUP_GLSL_H
+#undef SPECULA_PEM_TAPS_GLSL_H
+
+// The level of detail: the footprint through the box geometry (pem_lod.glsl.h needs
+// pemBoxExit, hence the box lookup beside it; its fetches are never called).
+struct PemLodTwin : PemTexelRead {
+#include "components/reflection_probe/pem/shaders/pem_lod.glsl.h"
+#include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
+};
+#undef SPECULA_PEM_LOOKUP_GLSL_H
+#undef SPECULA_PEM_TAPS_GLSL_H
 
 // The local layer: RGBA texels, premultiplied RGB and alpha.
 struct PemLocalReadTwin : PemTexelRead {
@@ -85,12 +114,14 @@ struct PemLocalReadTwin : PemTexelRead {
 #include "components/reflection_probe/pem/shaders/pem_local_lookup.glsl.h"
 };
 #undef SPECULA_PEM_LOCAL_LOOKUP_GLSL_H
+#undef SPECULA_PEM_TAPS_GLSL_H
 
 // Alpha is filtered with the RGB weights, so measuring RGB's is enough.
 struct PemLocalProbeTwin : PemTexelProbe {
-    vec4 fetchLocalTexel(int face, int i, int j) { return vec4(fetchTexel(face, i, j), 0.0f); }
+    vec4 fetchLocalTexel(int face, int i, int j) { return vec4(fetchTexel(0, face, i, j), 0.0f); }
 #include "components/reflection_probe/pem/shaders/pem_local_lookup.glsl.h"
 };
+#undef SPECULA_PEM_TAPS_GLSL_H
 
 // The distance hooks take the distance lookup's `layer` argument, which a single-layer
 // lookup does not need: GLSL does not mind, C++ warns.
@@ -101,6 +132,7 @@ struct PemDistanceReadTwin : PemTexelRead, PemDistanceRead {
 #include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
 };
 #undef SPECULA_PEM_LOOKUP_GLSL_H
+#undef SPECULA_PEM_TAPS_GLSL_H
 #undef SPECULA_PEM_DISTANCE_LOOKUP_GLSL_H
 #undef SPECULA_DISTANCE_LOOKUP_GLSL_H
 
@@ -109,6 +141,7 @@ struct PemDistanceProbeTwin : PemTexelProbe, PemDistanceRead {
 #include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
 };
 #pragma GCC diagnostic pop
+#undef PEM_MIP
 
 } // namespace glsl
 
@@ -120,7 +153,19 @@ std::string number(double v) {
     return buf;
 }
 
-template <typename Twin> glm::vec3 lookup(Twin& twin, const PemMap& m, glm::vec3 x, glm::vec3 l) {
+// The level of detail for footprint f on map m (pem_lod.glsl.h; 0 for a single level).
+float levelOfDetail(const PemMap& m, glm::vec3 x, glm::vec3 l, const PemFootprint& f) {
+    if (m.levels <= 1) return 0.f;
+    if (std::isfinite(f.lod)) return f.lod;
+    glsl::PemLodTwin twin;
+    return twin.pemFootprintLod(x, l, f.dxdX, f.dxdY, f.dldX, f.dldY, m.boxMin, m.boxMax,
+                                m.faceRes);
+}
+
+template <typename Twin>
+glm::vec3 lookup(Twin& twin, const PemMap& m, glm::vec3 x, glm::vec3 l, const PemFootprint& f) {
+    twin.levels = m.levels;
+    twin.lookupLod = levelOfDetail(m, x, l, f);
     if constexpr (std::is_same_v<Twin, glsl::PemLocalReadTwin> ||
                   std::is_same_v<Twin, glsl::PemLocalProbeTwin>) {
         return glm::vec3(twin.pemLocalRadiance(x, l, m.local->centre, m.local->radius, m.faceRes));
@@ -137,13 +182,14 @@ template <typename Twin> glm::vec3 lookup(Twin& twin, const PemMap& m, glm::vec3
 
 // Runs the recording twin pass by pass (PemTexelProbe) and gathers its weights.
 template <typename Twin>
-void measureWeights(Twin& twin, const PemMap& m, glm::vec3 x, glm::vec3 l, PemWeights& out) {
+void measureWeights(Twin& twin, const PemMap& m, glm::vec3 x, glm::vec3 l, const PemFootprint& f,
+                    PemWeights& out) {
     out.clear();
     twin.map = &m;
     int fetches = 0;
     do {
         twin.fetches = 0;
-        const glm::vec3 w = lookup(twin, m, x, l);
+        const glm::vec3 w = lookup(twin, m, x, l, f);
         assert(twin.pass == 0 || twin.fetches == fetches);
         fetches = twin.fetches;
         for (int c = 0; c < 3 && 3 * twin.pass + c < fetches; ++c) {
@@ -199,16 +245,16 @@ void checkPemDistanceGeometry(const PemDistanceGeometry& g, const std::string& f
     }
 }
 
-glm::vec3 PemLookupCpu::radiance(glm::vec3 x, glm::vec3 l) const {
+glm::vec3 PemLookupCpu::radiance(glm::vec3 x, glm::vec3 l, const PemFootprint& f) const {
     if (map_->local) return glm::vec3(localRadiance(x, l));
     if (map_->distance) {
         glsl::PemDistanceReadTwin twin;
         twin.map = map_;
-        return lookup(twin, *map_, x, l);
+        return lookup(twin, *map_, x, l, f);
     }
     glsl::PemReadTwin twin;
     twin.map = map_;
-    return lookup(twin, *map_, x, l);
+    return lookup(twin, *map_, x, l, f);
 }
 
 glm::vec4 PemLookupCpu::localRadiance(glm::vec3 x, glm::vec3 l) const {
@@ -218,24 +264,30 @@ glm::vec4 PemLookupCpu::localRadiance(glm::vec3 x, glm::vec3 l) const {
     return twin.pemLocalRadiance(x, l, map_->local->centre, map_->local->radius, map_->faceRes);
 }
 
+float PemLookupCpu::lod(glm::vec3 x, glm::vec3 l, const PemFootprint& f) const {
+    glsl::PemLodTwin twin;
+    return twin.pemFootprintLod(x, l, f.dxdX, f.dxdY, f.dldX, f.dldY, map_->boxMin, map_->boxMax,
+                                map_->faceRes);
+}
+
 int PemLookupCpu::textureFetches(glm::vec3 x, glm::vec3 l) const {
     if (map_->local || !map_->distance) return 1;
     glsl::PemDistanceReadTwin twin;
     twin.map = map_;
-    lookup(twin, *map_, x, l);
-    return twin.distanceReads + 1; // the search's distance reads, then the map's bilinear read
+    lookup(twin, *map_, x, l, PemFootprint{});
+    return twin.distanceReads + 1; // the search's distance reads, then the map's filtered read
 }
 
-void PemLookupCpu::weights(glm::vec3 x, glm::vec3 l, PemWeights& out) const {
+void PemLookupCpu::weights(glm::vec3 x, glm::vec3 l, PemWeights& out, const PemFootprint& f) const {
     if (map_->local) {
         glsl::PemLocalProbeTwin twin;
-        measureWeights(twin, *map_, x, l, out);
+        measureWeights(twin, *map_, x, l, f, out);
     } else if (map_->distance) {
         glsl::PemDistanceProbeTwin twin;
-        measureWeights(twin, *map_, x, l, out);
+        measureWeights(twin, *map_, x, l, f, out);
     } else {
         glsl::PemProbeTwin twin;
-        measureWeights(twin, *map_, x, l, out);
+        measureWeights(twin, *map_, x, l, f, out);
     }
 }
 

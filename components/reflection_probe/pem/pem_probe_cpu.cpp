@@ -27,6 +27,7 @@ glsl::PemParams pemParams(const PemAsset& asset, const PemProbe& settings) {
     p.wb = w.wb;
     p.layerA = 6 * w.a;
     p.layerB = 6 * w.b;
+    p.mapLevels = asset.mipLevels;
     if (const PemDistanceGeometry* g = asset.distance.get()) {
         p.distanceFaceRes = g->faceRes;
         p.dInf = g->dInf;
@@ -42,10 +43,11 @@ glsl::PemParams pemParams(const PemAsset& asset, const PemProbe& settings) {
     return p;
 }
 
-glm::vec3 PemProbeCpu::radiance(glm::vec3 x, glm::vec3 l, bool onHull) const {
+glm::vec3 PemProbeCpu::radiance(glm::vec3 x, glm::vec3 l, bool onHull,
+                                const PemFootprint& f) const {
     // As the shader: sample a's lookup, mixed with sample b's when b has any weight.
     auto sample = [&](int layer) {
-        return PemLookupCpu(asset_->samples[std::size_t(layer / 6)].map).radiance(x, l);
+        return PemLookupCpu(asset_->samples[std::size_t(layer / 6)].map).radiance(x, l, f);
     };
     glm::vec3 colour = sample(params_->layerA);
     if (params_->wb > 0.f) colour = glm::mix(colour, sample(params_->layerB), params_->wb);

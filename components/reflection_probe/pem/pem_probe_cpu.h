@@ -20,7 +20,8 @@ std::vector<float> pemSampleParameters(const PemAsset& asset);
 
 // The block the shader reads for `settings` on `asset`: box, face resolution, centre, the
 // two samples' first array layers and weight from pemBlend, the distance geometry's search
-// parameters (zero for box maps) and the local layer's sphere (zero without one).
+// parameters (zero for box maps), the local layer's sphere (zero without one) and the maps'
+// MIP levels.
 glsl::PemParams pemParams(const PemAsset& asset, const PemProbe& settings);
 
 class PemProbeCpu {
@@ -33,7 +34,9 @@ public:
     // Fresnel is not applied (the shader applies it after the lookup). onHull: the pixel's
     // triangle is on its reflector's hull (pem_hull.h; the shader's OUTPUT 3), so an asset's
     // local layer is skipped there as the shader skips it; assets without one ignore it.
-    glm::vec3 radiance(glm::vec3 x, glm::vec3 l, bool onHull = true) const;
+    // f: the pixel's footprint, which picks the MIP level of multi-level maps.
+    glm::vec3 radiance(glm::vec3 x, glm::vec3 l, bool onHull = true,
+                       const PemFootprint& f = {}) const;
 
 private:
     const PemAsset* asset_;

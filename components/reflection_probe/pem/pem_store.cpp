@@ -15,7 +15,8 @@ std::size_t mapBytes(const PemAsset& a) {
     const std::size_t local = a.localLayer ? std::size_t(PemMap::texelCount(a.localFaceRes)) *
                                                  a.samples.size() * 4 * sizeof(float)
                                            : 0;
-    return std::size_t(PemMap::texelCount(a.faceRes)) * a.samples.size() * 4 * sizeof(float) +
+    return std::size_t(PemMap::texelCount(a.faceRes, a.mipLevels)) * a.samples.size() * 4 *
+               sizeof(float) +
            distance + local;
 }
 
@@ -34,20 +35,33 @@ gpu::Texture uploadMaps(const PemAsset& a, bool local) {
                         std::to_string(maxLayers) + " layers)");
     gpu::Texture maps = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
     const GLuint tex = maps.id();
-    glTextureStorage3D(tex, 1, GL_RGBA32F, n, n, layers);
+    // The distant maps' MIP levels are the texture's own levels (texelFetch reads level k);
+    // the local layer has one.
+    const int levels = local ? 1 : a.mipLevels;
+    glTextureStorage3D(tex, levels, GL_RGBA32F, n, n, layers);
     std::vector<float> rgba(std::size_t(PemMap::texelCount(n)) * 4);
     for (std::size_t s = 0; s < a.samples.size(); ++s) {
         const PemMap& m = local ? a.samples[s].local : a.samples[s].map;
-        for (std::size_t t = 0; t < m.texels.size(); ++t)
-            for (int c = 0; c < 4; ++c)
-                rgba[t * 4 + std::size_t(c)] = c < 3 ? m.texels[t][c] : (local ? m.alpha[t] : 1.f);
-        // Faces are contiguous N x N blocks in cube order: one upload of six layers.
-        glTextureSubImage3D(tex, 0, 0, 0, 6 * int(s), n, n, 6, GL_RGBA, GL_FLOAT, rgba.data());
+        for (int level = 0; level < levels; ++level) {
+            const int size = PemMap::levelRes(n, level);
+            const std::size_t offset = std::size_t(PemMap::levelOffset(n, level));
+            const std::size_t count = std::size_t(PemMap::texelCount(size));
+            for (std::size_t t = 0; t < count; ++t)
+                for (int c = 0; c < 4; ++c)
+                    rgba[t * 4 + std::size_t(c)] =
+                        c < 3 ? m.texels[offset + t][c] : (local ? m.alpha[t] : 1.f);
+            // Faces are contiguous blocks in cube order: one upload of six layers per level.
+            glTextureSubImage3D(tex, level, 0, 0, 6 * int(s), size, size, 6, GL_RGBA, GL_FLOAT,
+                                rgba.data());
+        }
     }
-    // The shader reads with texelFetch at indices it clamps itself (pemFetchBilinear): no
-    // filtering, no wrapping; NEAREST keeps any sampling of the array exact too.
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    // The shader reads with texelFetch at levels and indices it picks and clamps itself
+    // (pemFetchMap): no filtering, no wrapping. A mipmapped NEAREST minification filter with
+    // every level present keeps the texture complete for texelFetch of any level.
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER,
+                        levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_MAX_LEVEL, levels - 1);
     return maps;
 }
 
@@ -78,6 +92,7 @@ gpu::Program PemVariant::build() const {
         gpu::ShaderSource::file("components/reflection_probe/pem/shaders/pem_reflector.frag"),
         {std::string("HAS_FRESNEL=") + (fresnel ? "1" : "0"), "OUTPUT=" + std::to_string(output),
          std::string("GEOMETRY_DISTANCE=") + (distance ? "1" : "0"),
+         std::string("PEM_MIP=") + (mip ? "1" : "0"),
          std::string("HAS_LOCAL_LAYER=") + (local ? "1" : "0")});
 }
 
@@ -126,7 +141,7 @@ void PemStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector,
                              const PemProbeGpu& g, const PemProbe&) {
     const Mesh* mesh = ctx.registry.find<Mesh>(reflector);
     const PemVariant v{r.fresnelF0 >= 0.f, ctx.output, g.asset->distance != nullptr,
-                       g.asset->localLayer && mesh != nullptr};
+                       g.asset->localLayer && mesh != nullptr, g.asset->mipLevels > 1};
     gpu::Program& prog = variants_.get(v);
     ctx.stats.drew(v.filter().name());
     prog.use();

@@ -1,6 +1,7 @@
 #pragma once
 // The GPU side of parameterized-environment-map probes: every sample map of the asset as one
-// RGBA32F texture array (six layers per sample, NEAREST: the lookup filters itself), a
+// RGBA32F texture array (six layers per sample, every MIP level, NEAREST: the lookup filters
+// itself), a
 // distance-geometry asset's distance cube as six R32F layers, and the blend of the two
 // samples nearest the parameter as one uniform block. A parameter edit rewrites the block
 // only; the textures are uploaded once per probe.
@@ -32,13 +33,14 @@ struct PemVariant {
     int output = 0;
     bool distance = false; // distance geometry (GEOMETRY_DISTANCE), else box
     bool local = false;    // a local layer over the distant one (HAS_LOCAL_LAYER)
+    bool mip = false;      // distant maps with MIP levels, read trilinear (PEM_MIP)
 
     auto operator<=>(const PemVariant&) const = default;
-    // The twin-input outputs (1, 2, 3) write no colour, so Fresnel is irrelevant to them.
-    PemVariant filter() const { return {fresnel && output == 0, output, distance, local}; }
+    // The twin-input outputs (1 to 4) write no colour, so Fresnel is irrelevant to them.
+    PemVariant filter() const { return {fresnel && output == 0, output, distance, local, mip}; }
     std::string name() const {
         return std::string(distance ? "pem-distance" : "pem") + (local ? "+local" : "") +
-               (fresnel ? "+fresnel" : "");
+               (mip ? "+mip" : "") + (fresnel ? "+fresnel" : "");
     }
     gpu::Program build() const;
 };

@@ -4,13 +4,13 @@
 // land in the wrong place and two neighbouring maps ghost when blended. Here the reflected
 // ray is rectified against a distance cube captured at the map centre by the distance
 // flavour's own search (distance_lookup.glsl.h, secant on its single composite layer), and
-// the direction of the point it finds indexes the PEM map through the same per-face
-// bilinear as the box lookup. The distance cube only picks WHICH texels are read, so the
-// result stays linear in the map's texels and the cooker measures the rendering matrix's
-// rows exactly as for box geometry.
+// the direction of the point it finds indexes the PEM map through the same filter (per-face
+// bilinear, trilinear across MIP levels) as the box lookup. The distance cube only picks
+// WHICH texels are read, so the result stays linear in the map's texels and the cooker
+// measures the rendering matrix's rows exactly as for box geometry.
 //
 // The includer provides, before including this file (GLSL needs declarations first):
-//   cubeFaceUv, pem_lookup.glsl.h (pemFetchBilinear, hence fetchTexel),
+//   cubeFaceUv, pem_lookup.glsl.h (pemFetchMap, hence fetchTexel and its MIP hooks),
 //   distance_lookup_types.glsl.h (DistanceParams, kMethodSecant),
 //   float fetchDistanceTexel(int face, int i, int j)   the distance cube, level 0
 //   int pemMapFaceRes()        texels along a face edge of the PEM map
@@ -31,11 +31,11 @@ float fetchDistance(int layer, vec3 dir) {
 // The PEM map at the direction of the point found (or of the ray, where the cube sees
 // nothing): both read the map itself, so every texel the lookup reads is inferable.
 vec3 fetchRadiance(int layer, vec3 dir) {
-    return pemFetchBilinear(cubeFaceUv(dir), pemMapFaceRes());
+    return pemFetchMap(cubeFaceUv(dir), pemMapFaceRes());
 }
 
 vec3 fetchSky(vec3 dir) {
-    return pemFetchBilinear(cubeFaceUv(dir), pemMapFaceRes());
+    return pemFetchMap(cubeFaceUv(dir), pemMapFaceRes());
 }
 
 // The single-layer secant search only: every other method compiles out.

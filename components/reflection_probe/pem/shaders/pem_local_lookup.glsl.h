@@ -14,6 +14,8 @@
 #ifndef SPECULA_PEM_LOCAL_LOOKUP_GLSL_H
 #define SPECULA_PEM_LOCAL_LOOKUP_GLSL_H
 
+#include "components/reflection_probe/pem/shaders/pem_taps.glsl.h"
+
 // Distance along l (unit) from x to the far intersection with the sphere (c, r). From inside
 // the sphere that is the only forward one; from outside it is the exit of a ray that crosses
 // the sphere. A ray that misses it (only from outside) takes its closest approach, so the
@@ -26,22 +28,14 @@ float pemSphereFar(vec3 x, vec3 l, vec3 c, float r) {
     return max(sqrt(disc) - b, 0.0f);
 }
 
-// pemFetchBilinear's filter on the RGBA local cube: clamped to the face edge, four fetches.
+// pemFetchBilinear's filter (the same taps) on the RGBA local cube, level 0.
 vec4 pemLocalFetchBilinear(vec3 faceUv, int faceRes) {
-    int face = int(faceUv.z);
-    vec2 f = vec2(faceUv.x, faceUv.y) * float(faceRes) - vec2(0.5f);
-    vec2 f0 = floor(f);
-    vec2 a = f - f0;
-    int i0 = int(f0.x);
-    int j0 = int(f0.y);
-    int i1 = min(i0 + 1, faceRes - 1);
-    int j1 = min(j0 + 1, faceRes - 1);
-    i0 = max(i0, 0);
-    j0 = max(j0, 0);
-    vec4 top = (1.0f - a.x) * fetchLocalTexel(face, i0, j0) + a.x * fetchLocalTexel(face, i1, j0);
-    vec4 bottom =
-        (1.0f - a.x) * fetchLocalTexel(face, i0, j1) + a.x * fetchLocalTexel(face, i1, j1);
-    return (1.0f - a.y) * top + a.y * bottom;
+    PemTaps t = pemBilinearTaps(faceUv, faceRes);
+    vec4 top = (1.0f - t.a.x) * fetchLocalTexel(t.face, t.i0, t.j0) +
+               t.a.x * fetchLocalTexel(t.face, t.i1, t.j0);
+    vec4 bottom = (1.0f - t.a.x) * fetchLocalTexel(t.face, t.i0, t.j1) +
+                  t.a.x * fetchLocalTexel(t.face, t.i1, t.j1);
+    return (1.0f - t.a.y) * top + t.a.y * bottom;
 }
 
 // Premultiplied local radiance and coverage for the reflected ray x + t l (x probe-local, l

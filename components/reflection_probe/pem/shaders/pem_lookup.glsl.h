@@ -5,12 +5,17 @@
 //
 // Positions are probe-local; the map's centre is the origin. The includer provides
 //   cubeFaceUv (engine/math/cube_face.glsl.h) and
-//   vec3 fetchTexel(int face, int i, int j)   texel (column i, row j; row 0 first stored) of
-//                                            `face`, 0 <= i, j < faceRes, level 0
+//   vec3 fetchTexel(int level, int face, int i, int j)   texel (column i, row j; row 0 first
+//                       stored) of `face` at MIP level `level`, 0 <= i, j < max(faceRes >> level, 1)
+// and, when PEM_MIP is 1 (the map has more than one level),
+//   float pemLookupLod()   the pixel's level of detail (pem_lod.glsl.h's pemFootprintLod)
+//   int pemMapLevels()     the map's MIP levels
 // The lookup must stay linear in the fetched texels: the cooker measures its weights by
 // feeding it unit texels (pem_lookup_cpu.cpp).
 #ifndef SPECULA_PEM_LOOKUP_GLSL_H
 #define SPECULA_PEM_LOOKUP_GLSL_H
+
+#include "components/reflection_probe/pem/shaders/pem_taps.glsl.h"
 
 // Distance along l from x (inside the box) to the wall the ray leaves through. Axes with a
 // zero component are skipped; a unit l has a component of at least 1/sqrt(3), so the result
@@ -24,24 +29,32 @@ float pemBoxExit(vec3 x, vec3 l, vec3 boxMin, vec3 boxMax) {
     return max(t, 0.0f);
 }
 
-// Bilinear within one face, clamped to the face edge: what a GL_LINEAR, CLAMP_TO_EDGE fetch
-// from one layer of a 2D array reads (texel centres at (i + 0.5) / N), written out as four
-// fetches so the weights are ours, not the filtering hardware's 8-bit fractions.
-// Level 0 only: the paper's MIP levels (all inferred together) are not built yet (issue 12).
-vec3 pemFetchBilinear(vec3 faceUv, int faceRes) {
-    int face = int(faceUv.z);
-    vec2 f = vec2(faceUv.x, faceUv.y) * float(faceRes) - vec2(0.5f);
-    vec2 f0 = floor(f);
-    vec2 a = f - f0;
-    int i0 = int(f0.x);
-    int j0 = int(f0.y);
-    int i1 = min(i0 + 1, faceRes - 1);
-    int j1 = min(j0 + 1, faceRes - 1);
-    i0 = max(i0, 0);
-    j0 = max(j0, 0);
-    vec3 top = (1.0f - a.x) * fetchTexel(face, i0, j0) + a.x * fetchTexel(face, i1, j0);
-    vec3 bottom = (1.0f - a.x) * fetchTexel(face, i0, j1) + a.x * fetchTexel(face, i1, j1);
-    return (1.0f - a.y) * top + a.y * bottom;
+// Bilinear within one face of MIP level `level` (faceRes its texels along an edge), four
+// fetches with pem_taps.glsl.h's weights.
+vec3 pemFetchBilinear(vec3 faceUv, int faceRes, int level) {
+    PemTaps t = pemBilinearTaps(faceUv, faceRes);
+    vec3 top = (1.0f - t.a.x) * fetchTexel(level, t.face, t.i0, t.j0) +
+               t.a.x * fetchTexel(level, t.face, t.i1, t.j0);
+    vec3 bottom = (1.0f - t.a.x) * fetchTexel(level, t.face, t.i0, t.j1) +
+                  t.a.x * fetchTexel(level, t.face, t.i1, t.j1);
+    return (1.0f - t.a.y) * top + t.a.y * bottom;
+}
+
+// The map read at a cube face coordinate. PEM_MIP: trilinear between the two levels around
+// the pixel's lod (pemLookupLod, clamped to the asset's levels), each level's own bilinear;
+// a whole lod reads one level, exactly as a single-level map does. Without PEM_MIP: level 0.
+vec3 pemFetchMap(vec3 faceUv, int faceRes) {
+#if PEM_MIP
+    float lod = clamp(pemLookupLod(), 0.0f, float(pemMapLevels() - 1));
+    int l0 = int(floor(lod));
+    float a = lod - float(l0);
+    vec3 c0 = pemFetchBilinear(faceUv, max(faceRes >> l0, 1), l0);
+    if (a <= 0.0f) return c0;
+    int l1 = min(l0 + 1, pemMapLevels() - 1);
+    return (1.0f - a) * c0 + a * pemFetchBilinear(faceUv, max(faceRes >> l1, 1), l1);
+#else
+    return pemFetchBilinear(faceUv, faceRes, 0);
+#endif
 }
 
 // Radiance the map holds for the reflected ray x + t l (l unit): the ray meets the map's box,
@@ -49,7 +62,7 @@ vec3 pemFetchBilinear(vec3 faceUv, int faceRes) {
 // maps").
 vec3 pemRadiance(vec3 x, vec3 l, vec3 boxMin, vec3 boxMax, int faceRes) {
     vec3 hit = x + pemBoxExit(x, l, boxMin, boxMax) * l;
-    return pemFetchBilinear(cubeFaceUv(hit), faceRes);
+    return pemFetchMap(cubeFaceUv(hit), faceRes);
 }
 
 #endif

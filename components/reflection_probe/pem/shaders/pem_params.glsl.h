@@ -30,7 +30,7 @@ struct PemParams {
     // The local layer (HAS_LOCAL_LAYER shaders; zero without one): its cube's face
     // resolution and sphere (PemLocalSphere, probe-local).
     int localFaceRes;
-    int pad0;
+    int mapLevels; // MIP levels of every sample's distant map (PEM_MIP shaders read them)
     vec3 localCentre;
     float localRadius;
 };
@@ -42,6 +42,7 @@ static_assert(offsetof(PemParams, layerA) == 44 && offsetof(PemParams, layerB) =
 static_assert(offsetof(PemParams, distanceFaceRes) == 52 && offsetof(PemParams, dInf) == 56);
 static_assert(offsetof(PemParams, range) == 60 && offsetof(PemParams, tolerance) == 64);
 static_assert(offsetof(PemParams, maxSteps) == 68 && offsetof(PemParams, localFaceRes) == 72);
+static_assert(offsetof(PemParams, mapLevels) == 76);
 static_assert(offsetof(PemParams, localCentre) == 80 && offsetof(PemParams, localRadius) == 92);
 static_assert(sizeof(PemParams) == 96);
 #endif

@@ -1,9 +1,11 @@
 // Reflector pixels of a parameterized-environment-map probe: the lookup of the two samples
 // the parameter block names, mixed by its weight (texel by texel: one lookup). Defines: GEOMETRY_DISTANCE (0 the box
 // lookup, pem_lookup.glsl.h; 1 the distance-rectified one, pem_distance_lookup.glsl.h),
-// HAS_FRESNEL (0/1), HAS_LOCAL_LAYER (0/1: the local layer over the distant one, off the
+// HAS_FRESNEL (0/1), PEM_MIP (0/1: the distant maps have MIP levels, read trilinear at the
+// level the pixel's footprint picks, pem_lod.glsl.h), HAS_LOCAL_LAYER (0/1: the local layer over the distant one, off the
 // reflector's hull; pem_local_lookup.glsl.h), OUTPUT (0 colour, 1 probe-local position, 2
-// reflected direction, 3 the hull flag in red: inputs for the CPU twin).
+// reflected direction, 3 the hull flag in red, 4 the MIP level of detail in red, 0 without
+// PEM_MIP: inputs for the CPU twin).
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
@@ -39,13 +41,28 @@ out vec4 fragColor;
 // The lookup is linear in the texels, so blending the two samples' texels as they are fetched
 // equals blending the two lookups (the CPU twin blends lookups): one search, not two, for the
 // same ray and the same geometry.
-vec3 fetchTexel(int face, int i, int j) {
-    vec3 a = texelFetch(uPemMaps, ivec3(i, j, uPem.layerA + face), 0).rgb;
+vec3 fetchTexel(int level, int face, int i, int j) {
+    vec3 a = texelFetch(uPemMaps, ivec3(i, j, uPem.layerA + face), level).rgb;
     if (uPem.wb <= 0.0) return a;
-    return mix(a, texelFetch(uPemMaps, ivec3(i, j, uPem.layerB + face), 0).rgb, uPem.wb);
+    return mix(a, texelFetch(uPemMaps, ivec3(i, j, uPem.layerB + face), level).rgb, uPem.wb);
 }
 
+#if PEM_MIP
+// Set once per pixel in main, where control flow is uniform, from fine derivatives: the
+// lookup may run inside the distance search's loop, where derivatives are undefined.
+float gPemLod = 0.0;
+float pemLookupLod() {
+    return gPemLod;
+}
+int pemMapLevels() {
+    return uPem.mapLevels;
+}
+#endif
+
 #include "components/reflection_probe/pem/shaders/pem_lookup.glsl.h"
+#if PEM_MIP
+#include "components/reflection_probe/pem/shaders/pem_lod.glsl.h"
+#endif
 
 #if GEOMETRY_DISTANCE
 #include "components/reflection_probe/distance/shaders/distance_lookup_types.glsl.h"
@@ -95,6 +112,10 @@ void main() {
     vec3 geometric = normalize(cross(dFdx(vWorldPos), dFdy(vWorldPos)));
     vec3 n = safeNormal(vNormal, geometric);
     vec3 lhat = normalize(mirrorDirection(v, n));
+#if PEM_MIP
+    gPemLod = pemFootprintLod(x, lhat, dFdxFine(x), dFdyFine(x), dFdxFine(lhat), dFdyFine(lhat),
+                              uPem.boxMin, uPem.boxMax, uPem.faceRes);
+#endif
 
     vec3 colour = blendedRadiance(x, lhat);
     float hull = 1.0;
@@ -116,6 +137,12 @@ void main() {
     fragColor = vec4(lhat, 1.0);
 #elif OUTPUT == 3
     fragColor = vec4(hull, 0.0, 0.0, 1.0);
+#elif OUTPUT == 4
+#if PEM_MIP
+    fragColor = vec4(gPemLod, 0.0, 0.0, 1.0);
+#else
+    fragColor = vec4(0.0, 0.0, 0.0, 1.0);
+#endif
 #else
     fragColor = vec4(colour, 1.0);
 #endif
