@@ -156,6 +156,20 @@ LevelCookOptions levelCookOptions(const BakeArgs& a, const CookOptions& options,
     return level;
 }
 
+LevelCookOptions shardedCookOptions(const BakeArgs& a, const CookOptions& options,
+                                    const ProbeScene& scene, const char* flag) {
+    if (a.flavour == "pem" && !isLevel(a, scene)) {
+        LevelCookOptions pem;
+        pem.cook = options;
+        return pem;
+    }
+    if (!isLevel(a, scene))
+        throw UsageError(flag, a.scene + " has one probe: `specula-cook bake` bakes it (shards "
+                                         "split a level: several probes, --probe twice or "
+                                         "--probes FILE; or a PEM's samples: --flavour pem)");
+    return levelCookOptions(a, options, scene);
+}
+
 void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
     sub->add_option("SCENE", a.scene, "the glTF/GLB scene")->required();
     sub->add_option("--out", a.out, "output folder (replaced atomically; never half-written)")

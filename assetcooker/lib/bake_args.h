@@ -68,4 +68,10 @@ bool isLevel(const BakeArgs& a, const ProbeScene& scene);
 LevelCookOptions levelCookOptions(const BakeArgs& a, const CookOptions& options,
                                   const ProbeScene& scene);
 
+// What a sharded bake (shards, bake --slurm) splits: a level (levelCookOptions), or one PEM
+// (its cooking options as they are). Throws UsageError naming `flag` for one probe of the
+// distance or light-field flavours: `specula-cook bake` bakes it whole.
+LevelCookOptions shardedCookOptions(const BakeArgs& a, const CookOptions& options,
+                                    const ProbeScene& scene, const char* flag);
+
 } // namespace specula::cook

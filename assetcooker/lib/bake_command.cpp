@@ -56,11 +56,14 @@ constexpr const char* kBakeDescription =
     "A level's bake options can live in a file beside the scene: --config FILE (TOML or INI)\n"
     "with a [bake] section, e.g. face-res = 128; flags on the command line win.\n"
     "\n"
-    "--slurm bakes a level on a Slurm cluster: a job array of `specula-cook bake-shard` over\n"
-    "the shards DIR/.shards lacks, then `specula-cook merge` (--dependency=afterok), with a\n"
-    "progress bar; failed shards are resubmitted (--retries) and then reported by index and\n"
-    "reason. DIR must be a folder shared by every node (same path everywhere), as must SCENE\n"
-    "and this executable. The result is the plain bake's, byte for byte.\n";
+    "--slurm bakes a level, or a PEM's samples, on a Slurm cluster: a job array of\n"
+    "`specula-cook bake-shard` over the leaf shards DIR/.shards lacks (distance probes,\n"
+    "light-field parts, PEM traces), a second array over the shards that depend on them\n"
+    "(light-field probes, PEM sample maps) and `specula-cook merge`, each after the one before\n"
+    "succeeded (--dependency=afterok), with a progress bar; failed shards are resubmitted\n"
+    "(--retries) and then reported by index and reason. DIR must be a folder shared by every\n"
+    "node (same path everywhere), as must SCENE and this executable. The result is the plain\n"
+    "bake's, byte for byte: a level in DIR, a PEM in DIR/pem/ (DIR holds the shard store).\n";
 
 constexpr const char* kBakeFooter =
     "Signals: SIGINT/SIGTERM at any moment before the final rename leave DIR as it was and\n"

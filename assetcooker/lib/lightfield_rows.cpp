@@ -1,5 +1,6 @@
 #include "lightfield_rows.h"
 
+#include "assetcooker/lib/binary_file.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 
@@ -14,53 +15,11 @@ namespace specula {
 
 namespace {
 
+using binary::put;
+using binary::Reader;
+
 constexpr char kMagic[8] = {'S', 'P', 'L', 'F', 'R', 'O', 'W', 'S'};
 constexpr std::uint32_t kVersion = 1;
-
-// Little-endian, whatever the host.
-template <class T> void put(std::string& out, T value) {
-    std::uint64_t bits = 0;
-    if constexpr (std::is_same_v<T, float>) {
-        bits = std::bit_cast<std::uint32_t>(value);
-    } else {
-        bits = std::uint64_t(value);
-    }
-    for (std::size_t i = 0; i < sizeof(T); ++i)
-        out.push_back(char((bits >> (8 * i)) & 0xff));
-}
-
-// Reads the file's fields in order; every read checked against the bytes left.
-class Reader {
-public:
-    Reader(const std::string& file, const std::string& bytes) : file_(file), bytes_(bytes) {}
-
-    template <class T> T get(const std::string& field) {
-        need(sizeof(T), field);
-        std::uint64_t bits = 0;
-        for (std::size_t i = 0; i < sizeof(T); ++i)
-            bits |= std::uint64_t(std::uint8_t(bytes_[at_ + i])) << (8 * i);
-        at_ += sizeof(T);
-        if constexpr (std::is_same_v<T, float>)
-            return std::bit_cast<float>(std::uint32_t(bits));
-        else
-            return T(bits);
-    }
-    void need(std::size_t count, const std::string& field) const {
-        if (count > bytes_.size() - at_)
-            throw Error(file_, field,
-                        "truncated: needs " + std::to_string(count) + " more bytes, the file has " +
-                            std::to_string(bytes_.size() - at_) + " left (" +
-                            std::to_string(bytes_.size()) + " bytes in all)");
-    }
-    const char* here() const { return bytes_.data() + at_; }
-    void skip(std::size_t count) { at_ += count; }
-    std::size_t left() const { return bytes_.size() - at_; }
-
-private:
-    const std::string& file_;
-    const std::string& bytes_;
-    std::size_t at_ = 0;
-};
 
 void expectInt(const std::string& file, const std::string& field, std::int32_t got, int want) {
     if (got != want)

@@ -1,6 +1,7 @@
 #include "shard_bake.h"
 
 #include "assetcooker/lib/shard_install.h"
+#include "assetcooker/lib/shard_pem.h"
 
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/probe_folder.h"
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <optional>
 
 namespace specula {
 
@@ -22,7 +24,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr int kShardListVersion = 2; // 2: light-field part shards, shard_rows
+constexpr int kShardListVersion = 3; // 2: light-field part shards, shard_rows; 3: PEM shards
 
 // The shard's hash: what its bytes depend on (see shard_bake.h), hexadecimal.
 std::string shardHash(const Shard& s, const LevelProbeEntry& e, const json& settings,
@@ -71,14 +73,6 @@ int listCameras(const ShardList& list) {
 
 } // namespace
 
-std::string shardStore(const std::string& dir) {
-    return (fs::path(dir) / ".shards").string();
-}
-
-std::string shardListPath(const std::string& dir) {
-    return (fs::path(shardStore(dir)) / "shards.json").string();
-}
-
 ShardList writeShardList(ProbeScene& scene, const LevelCookOptions& options, std::ostream* log,
                          int shardRows) {
     ShardList list;
@@ -89,11 +83,9 @@ ShardList writeShardList(ProbeScene& scene, const LevelCookOptions& options, std
                             " (the cameras a slab side), got " + std::to_string(shardRows));
         list.shardRows = shardRows == 0 ? lf->cameras : shardRows;
     }
-    const LevelPlan plan = planLevel(scene, options, log);
     list.scene = scene.path;
     list.sky = scene.skyPath;
     list.settings = cookSettingsToJson(options.cook.flavour);
-    list.level = plan.index;
     json shards = json::array();
     auto add = [&](Shard s, const LevelProbeEntry& e) {
         s.hash = shardHash(s, e, list.settings, scene, list.shardRows);
@@ -102,7 +94,16 @@ ShardList writeShardList(ProbeScene& scene, const LevelCookOptions& options, std
         list.shards.push_back(s);
     };
     const int cameras = listCameras(list);
-    for (std::size_t i = 0; i < list.level.probes.size(); ++i) {
+    if (std::holds_alternative<PemCookSettings>(options.cook.flavour)) {
+        planPemShards(scene, options.cook, list);
+        const std::vector<Shard> planned = std::move(list.shards);
+        list.shards.clear();
+        for (const Shard& s : planned)
+            add(s, list.level.probes.front());
+    } else {
+        list.level = planLevel(scene, options, log).index;
+    }
+    for (std::size_t i = 0; i < list.level.probes.size() && !isPemList(list); ++i) {
         LevelProbeEntry& e = list.level.probes[i];
         e.manifestChecksum.clear(); // known once merged
         if (list.shardRows > 0)
@@ -125,14 +126,6 @@ ShardList writeShardList(ProbeScene& scene, const LevelCookOptions& options, std
     fs::create_directories(shardStore(options.cook.out));
     writeFileAtomically(shardListPath(options.cook.out), doc.dump(2) + "\n");
     return list;
-}
-
-std::string shardTimePath(const std::string& dir, const Shard& s) {
-    return (fs::path(shardStore(dir)) / (s.hash + ".time.json")).string();
-}
-
-std::string mergeTimePath(const std::string& dir) {
-    return (fs::path(shardStore(dir)) / "merge.time.json").string();
 }
 
 ShardList readShardList(const std::string& dir) {
@@ -177,6 +170,12 @@ ShardList readShardList(const std::string& dir) {
                             "expected 0 .. " +
                                 std::to_string(6 * blocksPerSlab(cameras, list.shardRows) - 1));
             setPartRows(s, cameras, list.shardRows);
+        } else if (isPemList(list)) {
+            if (s.kind != kPemTraceShard && s.kind != kPemSampleShard)
+                throw Error(file, field + "kind", "expected pem-trace or pem-sample");
+            if (s.part < 0 || s.part >= pemListSamples(list))
+                throw Error(file, field + "part",
+                            "expected a sample 0 .. " + std::to_string(pemListSamples(list) - 1));
         } else if (s.kind != kProbeShard || s.part != 0) {
             throw Error(file, field + "kind",
                         std::string("expected a probe shard (part 0)") +
@@ -187,66 +186,6 @@ ShardList readShardList(const std::string& dir) {
         list.shards.push_back(s);
     }
     return list;
-}
-
-std::string shardOutputPath(const std::string& dir, const Shard& s) {
-    const fs::path store(shardStore(dir));
-    return (s.kind == kLightFieldRowsShard ? store / (s.hash + ".rows") : store / s.hash).string();
-}
-
-bool shardPresent(const std::string& dir, const Shard& s) {
-    std::error_code ec;
-    // A probe folder's manifest is the last file its writer renames in; a part's file is
-    // renamed in whole.
-    if (s.kind == kLightFieldRowsShard) return fs::is_regular_file(shardOutputPath(dir, s), ec);
-    return fs::is_regular_file(fs::path(shardOutputPath(dir, s)) / "manifest.json", ec);
-}
-
-std::vector<int> shardDependencies(const ShardList& list, int index) {
-    std::vector<int> deps;
-    const Shard& s = list.shards[std::size_t(index)];
-    if (s.kind != kProbeShard) return deps;
-    for (std::size_t i = 0; i < list.shards.size(); ++i)
-        if (list.shards[i].kind == kLightFieldRowsShard && list.shards[i].probe == s.probe)
-            deps.push_back(int(i));
-    return deps;
-}
-
-std::vector<int> leafShardsToBake(const std::string& dir, const ShardList& list) {
-    std::vector<bool> needed(list.shards.size(), false);
-    for (std::size_t i = 0; i < list.shards.size(); ++i) {
-        if (list.shards[i].kind != kProbeShard || shardPresent(dir, list.shards[i])) continue;
-        const std::vector<int> deps = shardDependencies(list, int(i));
-        if (deps.empty()) needed[i] = true;
-        for (const int d : deps)
-            if (!shardPresent(dir, list.shards[std::size_t(d)])) needed[std::size_t(d)] = true;
-    }
-    std::vector<int> out;
-    for (std::size_t i = 0; i < needed.size(); ++i)
-        if (needed[i]) out.push_back(int(i));
-    return out;
-}
-
-std::string shardLabel(const ShardList& list, int index) {
-    const Shard& s = list.shards[std::size_t(index)];
-    std::string label = "probe " + list.level.probes[std::size_t(s.probe)].volume.name;
-    if (s.kind == kLightFieldRowsShard)
-        label += ", part " + std::to_string(s.part) + ": slab " + std::to_string(s.slab) +
-                 " rows " + std::to_string(s.j0) + " .. " + std::to_string(s.j1 - 1);
-    return label;
-}
-
-std::string describeShards(const ShardList& list) {
-    std::string text = std::to_string(list.shards.size()) + " shards";
-    if (list.shardRows > 0) {
-        std::size_t parts = 0;
-        for (const Shard& s : list.shards)
-            parts += s.kind == kLightFieldRowsShard ? 1 : 0;
-        text += " (" + std::to_string(parts) + " light-field part shards of " +
-                std::to_string(list.shardRows) + " camera rows + " +
-                std::to_string(list.shards.size() - parts) + " probe shards)";
-    }
-    return text;
 }
 
 namespace {
@@ -274,7 +213,11 @@ void checkPartsPresent(const std::string& dir, const ShardList& list, int index)
     if (missingCount > 0)
         throw Error(shardListPath(dir), "shards",
                     "shard " + std::to_string(index) + " (" + shardLabel(list, index) +
-                        ") assembles " + std::to_string(deps.size()) + " part shards; " +
+                        (list.shards[std::size_t(index)].kind == kProbeShard ? ") assembles "
+                                                                             : ") reads ") +
+                        std::to_string(deps.size()) +
+                        (list.shards[std::size_t(index)].kind == kProbeShard ? " part shards; "
+                                                                             : " trace shards; ") +
                         std::to_string(missingCount) + " not baked: " + missing +
                         "; run specula-cook bake-shard for each");
 }
@@ -300,6 +243,7 @@ std::vector<LightFieldRows> readParts(const std::string& dir, const ShardList& l
 void computeShard(const std::string& dir, const ShardList& list, int index, ProbeScene& scene,
                   std::ostream* log) {
     const Shard& s = list.shards[std::size_t(index)];
+    if (isPemList(list)) return computePemShard(dir, list, index, scene);
     const LevelCookOptions level = shardLevelOptions(dir, list);
     CookOptions o = levelProbeCookOptions(scene, level, list.level.probes[std::size_t(s.probe)],
                                           shardOutputPath(dir, s));
@@ -348,9 +292,8 @@ ShardOutcome bakeShard(const std::string& dir, int index, std::ostream* log) {
         return outcome;
     }
     const auto start = std::chrono::steady_clock::now();
-    // A probe shard's parts are checked before the scene is loaded: a missing one fails fast.
-    if (s.kind == kProbeShard && !shardDependencies(list, index).empty())
-        checkPartsPresent(dir, list, index);
+    // A shard's dependencies are checked before the scene is loaded: a missing one fails fast.
+    if (!shardDependencies(list, index).empty()) checkPartsPresent(dir, list, index);
     ProbeScene scene(list.scene, list.sky);
     checkSceneUnchanged(dir, list, index, scene, environmentOf(scene));
     computeShard(dir, list, index, scene, log);
@@ -359,6 +302,33 @@ ShardOutcome bakeShard(const std::string& dir, int index, std::ostream* log) {
     writeTime(shardTimePath(dir, s), timeWhat(list, index), outcome.seconds);
     return outcome;
 }
+
+namespace {
+
+// Every probe shard's folder installed in DIR and DIR/level.json written (cookLevel's bytes).
+void installLevel(const std::string& dir, ShardList& list, LevelCookResult& result,
+                  std::ostream* log) {
+    LevelPlan plan; // the previous index, for the probes no longer in the level
+    std::error_code ec;
+    if (fs::is_regular_file(fs::path(dir) / "level.json", ec)) try {
+            plan.previous = readLevelIndex((fs::path(dir) / "level.json").string());
+        } catch (const Error&) {
+        }
+    for (const Shard& s : list.shards) {
+        if (s.kind != kProbeShard) continue;
+        LevelProbeEntry& e = list.level.probes[std::size_t(s.probe)];
+        const fs::path to = fs::path(dir) / e.folder;
+        installShard(shardOutputPath(dir, s), to, list.scene);
+        e.manifestChecksum = fileChecksum((to / "manifest.json").string());
+        result.probes.push_back({e.volume.name, e.folder, true, "merged", 0.0});
+    }
+    result.index = (fs::path(dir) / "level.json").string();
+    writeLevelIndex(list.level, result.index);
+    plan.index = list.level;
+    warnOfDroppedProbes(plan, dir, result.warnings, log);
+}
+
+} // namespace
 
 LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
     const auto start = std::chrono::steady_clock::now();
@@ -374,22 +344,27 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
                         " shards not baked: " + missing +
                         "; run specula-cook bake-shard for each (nothing was merged)");
     }
-    // The probe shards still missing have all their parts: assemble them here, in parallel
-    // over the probes, before anything is installed (a malformed part stops the merge).
+    // The final shards still missing have all their dependencies: computed here (the probe
+    // shards in parallel over the probes) before anything is installed (a malformed part
+    // stops the merge). A PEM's merge reads the scene in any case: the asset's distance cube.
     std::vector<int> assemble;
     for (std::size_t i = 0; i < list.shards.size(); ++i)
         if (!shardPresent(dir, list.shards[i])) assemble.push_back(int(i));
-    if (!assemble.empty()) {
-        if (log) *log << "assembling " << assemble.size() << " probe shards from their parts\n";
-        ProbeScene scene(list.scene, list.sky);
-        const EmbreeScene environment = environmentOf(scene);
+    std::optional<ProbeScene> scene;
+    if (!assemble.empty() || isPemList(list)) {
+        scene.emplace(list.scene, list.sky);
+        const EmbreeScene environment = environmentOf(*scene);
         for (const int i : assemble)
-            checkSceneUnchanged(dir, list, i, scene, environment);
+            checkSceneUnchanged(dir, list, i, *scene, environment);
+        if (isPemList(list)) checkSceneUnchanged(dir, list, 0, *scene, environment);
+    }
+    if (!assemble.empty()) {
+        if (log) *log << "computing " << assemble.size() << " shards from their dependencies\n";
         std::vector<std::exception_ptr> errors(assemble.size());
-        tbb::parallel_for(std::size_t(0), assemble.size(), [&](std::size_t k) {
+        auto computeOne = [&](std::size_t k) {
             const auto probeStart = std::chrono::steady_clock::now();
             try {
-                computeShard(dir, list, assemble[k], scene, nullptr);
+                computeShard(dir, list, assemble[k], *scene, nullptr);
                 writeTime(
                     shardTimePath(dir, list.shards[std::size_t(assemble[k])]),
                     timeWhat(list, assemble[k]),
@@ -399,29 +374,24 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
             } catch (...) {
                 errors[k] = std::current_exception();
             }
-        });
+        };
+        // A PEM sample's inference runs in parallel itself: one sample at a time.
+        if (isPemList(list))
+            for (std::size_t k = 0; k < assemble.size(); ++k)
+                computeOne(k);
+        else
+            tbb::parallel_for(std::size_t(0), assemble.size(), computeOne);
         for (const std::exception_ptr& e : errors)
             if (e) std::rethrow_exception(e);
     }
-    LevelPlan plan; // the previous index, for the probes no longer in the level
-    std::error_code ec;
-    if (fs::is_regular_file(fs::path(dir) / "level.json", ec)) try {
-            plan.previous = readLevelIndex((fs::path(dir) / "level.json").string());
-        } catch (const Error&) {
-        }
     LevelCookResult result;
-    for (const Shard& s : list.shards) {
-        if (s.kind != kProbeShard) continue;
-        LevelProbeEntry& e = list.level.probes[std::size_t(s.probe)];
-        const fs::path to = fs::path(dir) / e.folder;
-        installShard(shardOutputPath(dir, s), to, list.scene);
-        e.manifestChecksum = fileChecksum((to / "manifest.json").string());
-        result.probes.push_back({e.volume.name, e.folder, true, "merged", 0.0});
+    if (isPemList(list)) {
+        installPemShards(dir, list, *scene);
+        result.index = (fs::path(dir) / kPemFolder / "manifest.json").string();
+        result.probes.push_back({kPemFolder, kPemFolder, true, "merged", 0.0});
+    } else {
+        installLevel(dir, list, result, log);
     }
-    result.index = (fs::path(dir) / "level.json").string();
-    writeLevelIndex(list.level, result.index);
-    plan.index = list.level;
-    warnOfDroppedProbes(plan, dir, result.warnings, log);
     result.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writeTime(mergeTimePath(dir), "merge", result.seconds);

@@ -14,12 +14,19 @@
 // parts (lightfield_rows.h) and writes the probe's folder exactly as a plain bake does. A
 // shard with no dependencies (a part, a distance probe) is a leaf: what a farm runs.
 //
+// A PEM bake (shard_pem.h): a "pem-trace" leaf per parameter sample, then a "pem-sample"
+// shard per sample depending on the traces (the local layer is decided from all of them);
+// the merge writes the PEM folder DIR/pem/. The probe shards and the PEM sample shards are
+// the final shards: the level (or the PEM) is made of them.
+//
 //   DIR/.shards/shards.json   the list (writeShardList): the scene, the sky, the settings,
 //                             shard_rows, the planned level index and each shard's kind,
 //                             probe, part, hash
 //   DIR/.shards/<hash>/       one computed probe shard: the probe's cooked folder, exactly as
 //                             a plain bake writes it (bakeShard: written beside, then renamed)
 //   DIR/.shards/<hash>.rows   one computed part shard (writeLightFieldRows, atomically)
+//   DIR/.shards/<hash>.trace, <hash>.map   one PEM trace, one PEM sample's maps
+//                             (pem_shard_files.h, atomically)
 //   DIR/.shards/<hash>.time.json  the seconds bakeShard took for it (load + bake), for the farm
 //                             simulation (farm_sim.h); beside the folder, so merge never
 //                             installs it and the merged bytes do not depend on it
@@ -30,7 +37,8 @@
 // probe shard's folder as DIR/<probe folder>/ and writes DIR/level.json: the same files, byte
 // for byte, as cookLevel (level_bake.h), which bakes each probe whole in-process, whatever
 // the shard count, the rows a part and the order. slurm_bake.h runs the leaves as a Slurm job
-// array and the merge as a job after it.
+// array, the final shards with dependencies as a second array after it, and the merge as a
+// job after that.
 #include "assetcooker/lib/level_bake.h"
 #include "assetcooker/lib/shard_settings.h"
 
@@ -73,23 +81,31 @@ std::string shardTimePath(const std::string& dir, const Shard& s);
 std::string mergeTimePath(const std::string& dir);
 // Where a computed shard lies: DIR/.shards/<hash>/ (probe) or DIR/.shards/<hash>.rows (part).
 std::string shardOutputPath(const std::string& dir, const Shard& s);
-// Whether the store holds the shard (a probe folder's manifest, a part's file).
+// Whether the store holds the shard (a probe folder's manifest, a part's or PEM shard's file).
 bool shardPresent(const std::string& dir, const Shard& s);
+// A probe shard or a PEM sample shard: what the merge installs (see above).
+bool isFinalShard(const Shard& s);
 
-// The shards `index` depends on (a light-field probe shard: its parts), in list order; empty
-// for a leaf.
+// The shards `index` depends on (a light-field probe shard: its parts; a PEM sample shard:
+// the trace shards), in list order; empty for a leaf.
 std::vector<int> shardDependencies(const ShardList& list, int index);
 // The leaves a bake still needs, in list order: those not in the store, except the parts of
 // probe shards already there.
 std::vector<int> leafShardsToBake(const std::string& dir, const ShardList& list);
-// "probe NAME" or "probe NAME, part P: slab S rows J0 .. J1-1", for reports.
+// The final shards with dependencies the store lacks (light-field probes, PEM samples), in
+// list order: what a farm runs once the leaves are in.
+std::vector<int> dependentShardsToBake(const std::string& dir, const ShardList& list);
+// "probe NAME", "probe NAME, part P: slab S rows J0 .. J1-1", "PEM sample K: trace" or
+// "PEM sample K: maps", for reports.
 std::string shardLabel(const ShardList& list, int index);
 
 // "N shards", with "(P light-field part shards of R camera rows + Q probe shards)" for a
 // light-field level.
 std::string describeShards(const ShardList& list);
 
-// Plans the level (options.cook.out is DIR) and writes the shard list atomically; returns it.
+// Plans the level, or the PEM when options.cook.flavour is a PemCookSettings (one probe:
+// options.cook.probeCentre, else the markup's), (options.cook.out is DIR) and writes the
+// shard list atomically; returns it.
 // shardRows: a light-field level's camera rows a part shard traces, 1 .. NUM (0: NUM, one
 // part a slab); ignored for a distance level. Throws Error naming the file and field
 // ("shard_rows" when out of range).
@@ -110,11 +126,12 @@ struct ShardOutcome {
 // malformed. Throws Error naming the list and the count when the index is out of range.
 ShardOutcome bakeShard(const std::string& dir, int index, std::ostream* log);
 
-// Bakes the probe shards missing from the store whose parts are all there (in-process, in
-// parallel over the probes), then installs every probe shard's folder in DIR and writes
-// DIR/level.json (the level's as cookLevel writes it). Throws Error naming the missing shards
-// (index, probe, part, hash) and writes nothing in DIR when any leaf the level needs is
-// missing or a part is malformed.
+// Bakes the final shards missing from the store whose dependencies are all there
+// (in-process, in parallel over the probes), then installs every probe shard's folder in DIR
+// and writes DIR/level.json (the level's as cookLevel writes it), or a PEM's folder DIR/pem/
+// (the folder `specula-cook bake --flavour pem` writes; result.index is its manifest). Throws Error
+// naming the missing shards (index, probe, part, hash) and writes nothing in DIR when any leaf the
+// level needs is missing or a part is malformed.
 LevelCookResult mergeShards(const std::string& dir, std::ostream* log);
 
 } // namespace specula

@@ -28,20 +28,31 @@ constexpr const char* kShardsDescription =
     "I` for I = 0 .. N-1 (any order, on any machine that sees DIR and SCENE; a probe shard\n"
     "after its parts, or leave it to merge) and `specula-cook merge DIR`: the merged level\n"
     "is byte-identical to a plain bake with the same options, whatever --shard-rows. Takes\n"
-    "every option of `bake`.\n";
+    "every option of `bake`.\n"
+    "\n"
+    "A PEM (--flavour pem, one probe): a trace shard per parameter sample (its reflector\n"
+    "rays, DIR/.shards/<hash>.trace), then a sample shard per sample that reads its own\n"
+    "trace and the head of every other (self hits and off-hull points; none with\n"
+    "--local-layer off), decides the local layer as the plain bake does and infers that\n"
+    "sample's maps (DIR/.shards/<hash>.map). merge writes the PEM folder\n"
+    "DIR/pem/, byte-identical to `specula-cook bake SCENE --flavour pem --out DIR/pem` with\n"
+    "the same options (DIR itself holds the store, which a probe folder may not).\n";
 
 constexpr const char* kBakeShardDescription =
     "Computes shard I of DIR's shard list (written by `specula-cook shards`) into the shard\n"
     "store (a probe's folder DIR/.shards/<hash>/, a light-field part's DIR/.shards/<hash>.rows):\n"
     "written beside it, then renamed, so a killed run leaves no half shard; a shard already in\n"
     "the store (same hash) is skipped. A light-field probe shard traces nothing: it assembles\n"
-    "its part shards, which must be in the store (the missing ones are named).\n";
+    "its part shards, which must be in the store (the missing ones are named); a PEM sample\n"
+    "shard reads the trace shards likewise. A scene edited since the list was written is\n"
+    "refused (run `specula-cook shards` again).\n";
 
 constexpr const char* kMergeDescription =
-    "Assembles the level from DIR's shard store: first the light-field probe shards not yet\n"
-    "baked, from their part shards (in parallel over the probes); then every probe's folder\n"
-    "DIR/<probe>/ (each replaced atomically) and the level index DIR/level.json, the same\n"
-    "bytes a plain `specula-cook bake` writes. Refuses, naming them and writing nothing, when\n"
+    "Assembles the level from DIR's shard store: first the light-field probe shards (or PEM\n"
+    "sample shards) not yet baked, from their dependencies; then every probe's folder\n"
+    "DIR/<probe>/ (each replaced atomically) and the level index DIR/level.json, or a PEM's\n"
+    "folder DIR/pem/: the same bytes a plain `specula-cook bake` writes. Refuses, naming them and "
+    "writing nothing, when\n"
     "shards are missing or a part is malformed. The store is kept (a re-run of bake-shard\n"
     "skips what it holds).\n";
 
@@ -67,12 +78,9 @@ constexpr const char* kCancellableFooter =
 int runShards(const BakeArgs& a, std::ostream& out) {
     const CookOptions options = checkedCookOptions(a);
     ProbeScene scene(options.scene, options.sky);
-    if (!isLevel(a, scene))
-        throw UsageError("SCENE", a.scene + " has one probe: `specula-cook bake` bakes it (shards "
-                                            "split a level: several probes, --probe twice or "
-                                            "--probes FILE)");
+    const LevelCookOptions sharded = shardedCookOptions(a, options, scene, "SCENE");
     const int rows = checkedShardRows(a);
-    const ShardList list = writeShardList(scene, levelCookOptions(a, options, scene), &out, rows);
+    const ShardList list = writeShardList(scene, sharded, &out, rows);
     out << describeShards(list) << " -> " << shardListPath(a.out) << "\n";
     return cli::kExitOk;
 }
@@ -133,8 +141,8 @@ int runFarm(FarmArgs a, std::ostream& out) {
 void addShardCommands(cli::ToolCli& tool) {
     auto a = std::make_shared<BakeArgs>();
     CLI::App* shards = tool.addSubcommand(
-        "shards", "write a level bake's shard list (for bake-shard and merge)", kShardsDescription,
-        kFooter, [a](std::ostream& out) { return runShards(*a, out); });
+        "shards", "write a level's or a PEM's shard list (for bake-shard and merge)",
+        kShardsDescription, kFooter, [a](std::ostream& out) { return runShards(*a, out); });
     addBakeOptions(tool, shards, *a);
     addShardRowsOption(shards, a->shardRows);
 
@@ -165,8 +173,8 @@ void addShardCommands(cli::ToolCli& tool) {
         kMergeDescription, kCancellableFooter, [dir](std::ostream& out) {
             const SignalGuard guard;
             const LevelCookResult r = mergeShards(*dir, &out);
-            out << "merged " << r.probes.size() << " probes in " << r.seconds << " s -> " << r.index
-                << "\n";
+            out << "merged " << r.probes.size() << (r.probes.size() == 1 ? " probe" : " probes")
+                << " in " << r.seconds << " s -> " << r.index << "\n";
             return cli::kExitOk;
         });
     merge->add_option("DIR", *dir, "the level folder holding .shards/")->required();

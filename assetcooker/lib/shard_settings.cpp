@@ -37,8 +37,24 @@ json settingsJson(const LightFieldCookSettings& s) {
     return j;
 }
 
-json settingsJson(const PemCookSettings&) {
-    return {{"flavour", "pem"}};
+// Every PEM setting under its field name, for the writer and the reader alike: the
+// structured binding names them all, so a setting added to PemCookSettings stops this from
+// compiling until it is listed (a setting left out would bake shards under the defaults).
+template <class S, class F> void pemSettingFields(S& s, F&& f) {
+    auto& [samples, faceRes, supersample, regularisation, geometry, priorWeight, parameter, path,
+           imageWidth, imageHeight, localLayer, localFaceRes, localSphere, mipLevels] = s;
+    f("samples", samples), f("face_res", faceRes), f("supersample", supersample);
+    f("regularisation", regularisation), f("geometry", geometry), f("prior_weight", priorWeight);
+    f("parameter", parameter), f("path", path), f("image_width", imageWidth);
+    f("image_height", imageHeight), f("local_layer", localLayer);
+    f("local_face_res", localFaceRes), f("local_sphere", localSphere);
+    f("mip_levels", mipLevels);
+}
+
+json settingsJson(const PemCookSettings& s) {
+    json j = {{"flavour", "pem"}};
+    pemSettingFields(s, [&](const char* name, const auto& v) { j[name] = v; });
+    return j;
 }
 
 } // namespace
@@ -80,8 +96,16 @@ CookFlavour cookSettingsFromJson(const json& j, const std::string& file) {
             s.cellSize = jsonMember<float>(j, "cell_size", file, "settings.");
         return s;
     }
+    if (flavour == "pem") {
+        PemCookSettings s;
+        pemSettingFields(s, [&](const char* name, auto& v) {
+            v = jsonMember<std::decay_t<decltype(v)>>(j, name, file, "settings.");
+        });
+        validatePemCookSettings(s, file);
+        return s;
+    }
     throw Error(file, "settings.flavour",
-                "expected distance or lightfield (a level's flavours), got '" + flavour + "'");
+                "expected distance, lightfield or pem, got '" + flavour + "'");
 }
 
 } // namespace specula

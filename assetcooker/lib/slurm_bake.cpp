@@ -73,15 +73,23 @@ public:
         writeFileAtomically((slurmDir_ / "shard.sh").string(),
                             head + "exec " + cook + " bake-shard " + d +
                                 " --shard \"$SLURM_ARRAY_TASK_ID\"\n");
+        // The dependents' tasks are bake-shard too; a script of their own names them in
+        // squeue and the logs.
+        writeFileAtomically((slurmDir_ / "dependent.sh").string(),
+                            head + "exec " + cook + " bake-shard " + d +
+                                " --shard \"$SLURM_ARRAY_TASK_ID\"\n");
         writeFileAtomically((slurmDir_ / "merge.sh").string(),
                             head + "exec " + cook + " merge " + d + "\n");
     }
 
     SlurmBakeResult run() {
         const auto start = Clock::now();
-        // The leaves only: a light-field probe shard is assembled by the merge job.
+        // The leaves first, then the final shards with dependencies (light-field probes, PEM
+        // samples) as a second array once the first succeeded, then the merge.
         std::vector<int> pending = leafShardsToBake(dir_.string(), list_);
-        leaves_ = pending;
+        tracked_ = pending;
+        for (const int i : dependentShardsToBake(dir_.string(), list_))
+            tracked_.push_back(i);
         std::size_t leafCount = 0;
         for (std::size_t i = 0; i < list_.shards.size(); ++i)
             leafCount += shardDependencies(list_, int(i)).empty() ? 1 : 0;
@@ -91,23 +99,34 @@ public:
         std::unique_ptr<ProgressBar> bar;
         if (o_.progress) bar = std::make_unique<ProgressBar>("shards on slurm");
         for (int attempt = 0;; ++attempt) {
-            std::string array;
-            if (!pending.empty()) array = submitArray(pending);
-            const std::string merge = submitMerge(array);
+            const std::vector<int> dependents = dependentShardsToBake(dir_.string(), list_);
+            std::string array, second;
+            if (!pending.empty()) array = submitArray(pending, "shard.sh", "");
+            if (!dependents.empty()) second = submitArray(dependents, "dependent.sh", array);
+            const std::string merge = submitMerge(second.empty() ? array : second);
             if (!pending.empty()) {
                 const std::map<int, std::string> states = follow(array, pending, bar.get());
                 result_.shardWallSeconds = since(start);
                 pending = failedOf(array, states, attempt);
             }
+            if (pending.empty() && !second.empty()) {
+                const std::map<int, std::string> states = follow(second, dependents, bar.get());
+                result_.shardWallSeconds = since(start);
+                pending = failedOf(second, states, attempt);
+            } else if (!second.empty()) {
+                cancel(second, "the leaf shards failed");
+            }
             if (pending.empty()) {
                 finishMerge(merge);
                 break;
             }
-            cancel(merge);
+            cancel(merge, "shards failed");
+            // A failed dependent reruns in the next second array, after any leaf it needs.
+            std::erase_if(pending, [&](int i) { return !shardDependencies(list_, i).empty(); });
             if (attempt >= o_.retries) break;
             if (log_)
-                *log_ << "resubmitting shards " << joinIndices(pending) << " (retry " << attempt + 1
-                      << " of " << o_.retries << ")\n";
+                *log_ << "resubmitting the failed shards (retry " << attempt + 1 << " of "
+                      << o_.retries << ")\n";
         }
         bar.reset();
         if (!result_.failures.empty()) result_.merged = false;
@@ -140,16 +159,20 @@ private:
         return id;
     }
 
-    std::string submitArray(const std::vector<int>& shards) {
+    // An array job over `shards` running `script`, after job `after` succeeds (none: "").
+    std::string submitArray(const std::vector<int>& shards, const std::string& script,
+                            const std::string& after) {
         std::string spec = "--array=" + joinIndices(shards);
         if (o_.maxParallel > 0) spec += "%" + std::to_string(o_.maxParallel);
-        const std::string id =
-            submit({"--job-name=specula-shards", spec,
-                    "--output=" + (slurmDir_ / "logs" / "shard-%a-job%A.log").string()},
-                   "shard.sh");
-        result_.arrays.push_back(shards);
+        std::vector<std::string> argv = {
+            script == "shard.sh" ? "--job-name=specula-shards" : "--job-name=specula-dependents",
+            spec, "--output=" + (slurmDir_ / "logs" / "shard-%a-job%A.log").string()};
+        if (!after.empty()) argv.push_back("--dependency=afterok:" + after);
+        const std::string id = submit(argv, script);
+        (script == "shard.sh" ? result_.arrays : result_.dependentArrays).push_back(shards);
         if (log_)
-            *log_ << "submitted array job " << id << ": shards " << joinIndices(shards) << "\n";
+            *log_ << "submitted array job " << id << ": shards " << joinIndices(shards)
+                  << (after.empty() ? "" : " (after job " + after + " succeeds)") << "\n";
         return id;
     }
 
@@ -161,7 +184,7 @@ private:
         const std::string id = submit(argv, "merge.sh");
         if (log_)
             *log_ << "submitted merge job " << id
-                  << (array.empty() ? "" : " (after array job " + array + " succeeds)") << "\n";
+                  << (array.empty() ? "" : " (after job " + array + " succeeds)") << "\n";
         return id;
     }
 
@@ -213,11 +236,11 @@ private:
                     *log_ << "shard " << i << ": " << state << "\n";
                 last[i] = state;
             }
-            if (bar && !leaves_.empty()) {
+            if (bar && !tracked_.empty()) {
                 std::size_t done = 0;
-                for (const int i : leaves_)
+                for (const int i : tracked_)
                     done += present(i) ? 1 : 0;
-                bar->update(double(done) / double(leaves_.size()));
+                bar->update(double(done) / double(tracked_.size()));
             }
             if (!running) return last;
             runner_.pause(o_.pollSeconds);
@@ -245,7 +268,7 @@ private:
             f.index = i;
             const Shard& shard = list_.shards[std::size_t(i)];
             f.probe = list_.level.probes[std::size_t(shard.probe)].volume.name;
-            f.part = shard.kind == kLightFieldRowsShard ? shard.part : -1;
+            f.part = shard.kind == kProbeShard ? -1 : shard.part;
             f.label = shardLabel(list_, i);
             f.state = state == kGone         ? "UNKNOWN (left the queue without its shard)"
                       : state == "COMPLETED" ? "COMPLETED without its shard in the store"
@@ -276,9 +299,9 @@ private:
         if (log_) *log_ << "merge job " << merge << ": " << state << "\n";
     }
 
-    void cancel(const std::string& job) {
+    void cancel(const std::string& job, const char* why) {
         runner_.run({"scancel", job}); // it may have ended already: nothing to report
-        if (log_) *log_ << "cancelled merge job " << job << " (shards failed)\n";
+        if (log_) *log_ << "cancelled job " << job << " (" << why << ")\n";
     }
 
     fs::path dir_;
@@ -287,7 +310,7 @@ private:
     std::ostream* log_;
     fs::path slurmDir_;
     ShardList list_;
-    std::vector<int> leaves_; // the leaves submitted first (the progress bar's)
+    std::vector<int> tracked_; // the shards the first submission runs (the progress bar's)
     SlurmBakeResult result_;
 };
 

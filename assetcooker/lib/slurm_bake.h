@@ -1,11 +1,13 @@
 #pragma once
-// A level's shards (shard_bake.h) baked on a Slurm cluster: a job array of `specula-cook
-// bake-shard DIR --shard I` over the leaf shards the store lacks (a distance probe, a
-// light-field part: the shards with no dependencies), then a job running `specula-cook merge
-// DIR` once the array succeeded (--dependency=afterok), which assembles the light-field
-// probes from their parts and installs the level. The files, beside the store:
+// A level's or a PEM's shards (shard_bake.h) baked on a Slurm cluster: a job array of
+// `specula-cook bake-shard DIR --shard I` over the leaf shards the store lacks (a distance
+// probe, a light-field part, a PEM trace: the shards with no dependencies), a second array
+// over the dependent shards it lacks (a light-field probe assembling its parts, a PEM sample
+// inferring its maps) once the first succeeded (--dependency=afterok), then a job running
+// `specula-cook merge DIR` once that succeeded, which installs the level (or the PEM). The
+// files, beside the store:
 //
-//   DIR/.shards/slurm/shard.sh, merge.sh     the batch scripts
+//   DIR/.shards/slurm/shard.sh, dependent.sh, merge.sh     the batch scripts
 //   DIR/.shards/slurm/logs/shard-I-jobJ.log  task I of array job J (stdout and stderr)
 //   DIR/.shards/slurm/logs/merge-jobJ.log    the merge job
 //
@@ -35,16 +37,17 @@ struct SlurmOptions {
 struct SlurmShardFailure {
     int index = 0;
     std::string probe;   // the probe's name
-    int part = -1;       // a light-field part shard's part (-1: a whole probe)
-    std::string label;   // "probe NAME[, part P: slab S rows J0 .. J1]" (shardLabel)
+    int part = -1;       // a light-field part's part, a PEM shard's sample (-1: a whole probe)
+    std::string label;   // shardLabel's: "probe NAME[, part P: slab S rows J0 .. J1]", ...
     std::string state;   // the task's last state (FAILED, CANCELLED, TIMEOUT, ...)
     std::string log;     // its log file
     std::string logTail; // the log's last lines
 };
 
 struct SlurmBakeResult {
-    std::vector<std::vector<int>> arrays;    // the shard indices of each array job submitted
-    std::vector<std::string> jobs;           // every job id submitted, in order
+    std::vector<std::vector<int>> arrays;          // the leaf shards of each first array submitted
+    std::vector<std::vector<int>> dependentArrays; // the shards of each second array
+    std::vector<std::string> jobs;                 // every job id submitted, in order
     std::vector<SlurmShardFailure> failures; // shards that failed every attempt (nothing merged)
     std::string mergeState;                  // the merge job's end state ("" when not run)
     std::string mergeLog;
@@ -56,9 +59,12 @@ struct SlurmBakeResult {
 };
 
 // Submits the leaf shards DIR's store lacks (leafShardsToBake) (readShardList:
-// DIR/.shards/shards.json must exist) and the merge, follows them to the end and resubmits failed
-// shards up to options.retries times. Never throws for a failed job: failures and the merge's state
-// are in the result. Throws Error naming the command when the scheduler refuses a submission.
+// DIR/.shards/shards.json must exist), the dependent ones (dependentShardsToBake) and the
+// merge, follows them to the end and resubmits failed shards up to options.retries times (a
+// failed leaf cancels that submission's second array and merge; a failed dependent is
+// resubmitted in a second array of its own). Never throws for a failed job: failures and the
+// merge's state are in the result. Throws Error naming the command when the scheduler refuses a
+// submission.
 SlurmBakeResult bakeOnSlurm(const std::string& dir, const SlurmOptions& options,
                             ProcessRunner& runner, std::ostream* log);
 

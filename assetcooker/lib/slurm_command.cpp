@@ -1,6 +1,7 @@
 #include "slurm_command.h"
 
 #include "assetcooker/lib/shard_bake.h"
+#include "assetcooker/lib/shard_pem.h"
 #include "assetcooker/lib/slurm_bake.h"
 #include "engine/core/error.h"
 
@@ -11,9 +12,11 @@ namespace specula::cook {
 void addSlurmOptions(CLI::App* bake, SlurmArgs& s) {
     CLI::Option* slurm = bake->add_flag(
         "--slurm", s.slurm,
-        "bake a level's probes as a Slurm job array (sbatch, squeue and scancel in PATH): one\n"
-        "task a leaf shard (see `specula-cook shards`: a distance probe, a light-field part),\n"
-        "then a merge job once all succeeded (it assembles the light-field probes). DIR,\n"
+        "bake a level's probes, or a PEM's samples, as Slurm job arrays (sbatch, squeue and\n"
+        "scancel in PATH): one task a leaf shard (see `specula-cook shards`: a distance probe,\n"
+        "a light-field part, a PEM sample's trace), then a second array of the dependent shards\n"
+        "(a light-field probe assembling its parts, a PEM sample's maps) once all succeeded,\n"
+        "then a merge job once those did (a PEM goes to DIR/pem/). DIR,\n"
         "SCENE, the sky and this specula-cook must be visible at the same paths on every node\n"
         "(a shared folder); jobs run in the current directory. Re-running resumes: shards\n"
         "already in DIR/.shards are not resubmitted. Batch scripts and logs go to\n"
@@ -46,10 +49,8 @@ int runSlurmBake(const BakeArgs& args, const SlurmArgs& s, std::ostream& out) {
     const int rows = checkedShardRows(a);
     const CookOptions options = checkedCookOptions(a);
     ProbeScene scene(options.scene, options.sky);
-    if (!isLevel(a, scene))
-        throw UsageError("--slurm", a.scene + " has one probe: --slurm bakes a level (several "
-                                              "probes, --probe twice or --probes FILE)");
-    const ShardList list = writeShardList(scene, levelCookOptions(a, options, scene), &out, rows);
+    const ShardList list =
+        writeShardList(scene, shardedCookOptions(a, options, scene, "--slurm"), &out, rows);
     out << describeShards(list) << " -> " << shardListPath(a.out) << "\n";
     SlurmOptions o;
     o.partition = s.partition;
@@ -66,10 +67,15 @@ int runSlurmBake(const BakeArgs& args, const SlurmArgs& s, std::ostream& out) {
                                              " shards failed every attempt; nothing was merged "
                                              "(see above)");
     }
-    out << "level: " << list.shards.size() << " shards, " << r.shardsBaked << " baked on slurm in "
-        << r.arrays.size() << " submissions (" << r.shardWallSeconds << " s, shards' own bake "
+    const bool pem = isPemList(list);
+    out << (pem ? "pem: " : "level: ") << list.shards.size() << " shards, " << r.shardsBaked
+        << " baked on slurm in " << r.arrays.size() + r.dependentArrays.size()
+        << " array submissions (" << r.shardWallSeconds << " s, shards' own bake "
         << r.shardComputeSeconds << " s), merged, total " << r.seconds << " s -> "
-        << (std::filesystem::path(a.out) / "level.json").string() << "\n";
+        << (pem ? std::filesystem::path(a.out) / kPemFolder / "manifest.json"
+                : std::filesystem::path(a.out) / "level.json")
+               .string()
+        << "\n";
     return cli::kExitOk;
 }
 

@@ -1,7 +1,9 @@
 // `bake --slurm` through a real one-node Slurm (scripts/local-slurm, started here when it is
 // not running and stopped after; skipped unless root with slurm-wlm and munge installed, as in
 // CI after scripts/install-deps). The two-room level (two probes), 16^2 faces or a 2^2 x 8^2
-// light field: the sharded bake equals the in-process bake byte for byte (both flavours); a
+// light field: the sharded bake equals the in-process bake byte for byte (both flavours, the
+// light-field probe shards in a second array after their parts), and so does a PEM of the
+// bowl room (its trace shards, then its sample shards as a second array, then the merge); a
 // shard cancelled with scancel is reported, and the resume submits that shard alone and gives
 // the same files; a shard that fails every time is reported by index and nothing is merged.
 // Prints the per-shard scheduling overhead (not asserted).
@@ -136,21 +138,48 @@ TEST_F(SlurmCluster, BothFlavoursBakeOnTheClusterToThePlainBakeByteForByte) {
         const SlurmBakeResult r = bakeOnSlurm(dir, slurm(0), runner, nullptr);
         ASSERT_TRUE(r.merged) << slurmFailureReport(r);
         // Distance: a shard a probe; light field: each probe's 6 parts (one a slab) in the
-        // array, its own shard assembled by the merge job.
+        // array, its own shard in the second array.
         const std::vector<int> leaves =
             flavour.index() == 0 ? std::vector<int>{0, 1}
                                  : std::vector<int>{0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12};
         EXPECT_EQ(r.arrays, (std::vector<std::vector<int>>{leaves}));
-        EXPECT_EQ(r.shardsBaked, int(leaves.size()));
-        std::cout << (flavour.index() == 0 ? "distance" : "light field") << ": " << leaves.size()
-                  << " leaf shards on slurm " << r.shardWallSeconds
+        const std::vector<std::vector<int>> dependents =
+            flavour.index() == 0 ? std::vector<std::vector<int>>{}
+                                 : std::vector<std::vector<int>>{{6, 13}};
+        EXPECT_EQ(r.dependentArrays, dependents);
+        EXPECT_EQ(r.shardsBaked, int(leaves.size() + (flavour.index() == 0 ? 0 : 2)));
+        std::cout << (flavour.index() == 0 ? "distance" : "light field") << ": " << r.shardsBaked
+                  << " shards on slurm (" << leaves.size() << " leaves) " << r.shardWallSeconds
                   << " s from submission to the last shard's end, their "
                   << "bakes " << r.shardComputeSeconds << " s: overhead "
-                  << (r.shardWallSeconds - r.shardComputeSeconds) / double(leaves.size())
-                  << " s per shard; with "
-                  << "the merge job " << r.seconds << " s\n";
+                  << (r.shardWallSeconds - r.shardComputeSeconds) / double(r.shardsBaked)
+                  << " s per shard; with the merge job " << r.seconds << " s\n";
         expectSameFiles();
     }
+}
+
+TEST_F(SlurmCluster, APemBakesOnTheClusterToThePlainBakeByteForByte) {
+    const std::string bowl = std::string(SPECULA_SOURCE_DIR) + "/assets/bowl_room/bowl_room.gltf";
+    PemCookSettings p;
+    p.samples = 3;
+    p.faceRes = 12;
+    p.imageWidth = 64, p.imageHeight = 48;
+    ProbeScene scene(bowl, "");
+    LevelCookOptions o = options("plain/pem", p);
+    o.cook.scene = bowl;
+    cookProbe(scene, o.cook, nullptr);
+    o.cook.out = (root_ / "sharded").string();
+    writeShardList(scene, o, nullptr);
+    SystemProcessRunner runner;
+    const SlurmBakeResult r = bakeOnSlurm(o.cook.out, slurm(0), runner, nullptr);
+    ASSERT_TRUE(r.merged) << slurmFailureReport(r);
+    EXPECT_EQ(r.arrays, (std::vector<std::vector<int>>{{0, 1, 2}}));
+    EXPECT_EQ(r.dependentArrays, (std::vector<std::vector<int>>{{3, 4, 5}}));
+    EXPECT_EQ(r.shardsBaked, 6);
+    std::cout << "pem: 6 shards on slurm " << r.shardWallSeconds << " s to the last shard's end, "
+              << "their bakes " << r.shardComputeSeconds << " s; with the merge job " << r.seconds
+              << " s\n";
+    expectSameFiles();
 }
 
 TEST_F(SlurmCluster, ACancelledShardAloneRerunsOnResumeAndTheResultIsTheSame) {

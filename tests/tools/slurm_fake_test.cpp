@@ -4,7 +4,9 @@
 // is resubmitted up to --retries times, alone; one that fails every time is reported by index,
 // probe, state and log, and the merge job is cancelled each time, never left to run. A
 // light-field level: only its part shards (the leaves) go in the array, the probe shards are
-// the merge's; a failing part is reported by index, probe and part.
+// the merge's; a failing part is reported by index, probe and part. The dependent shards
+// (light-field probes, PEM samples) go in a second array after the first succeeded
+// (--dependency=afterok), the merge after that; a job whose dependency failed never runs.
 #include "assetcooker/lib/shard_bake.h"
 #include "assetcooker/lib/slurm_bake.h"
 #include "support/scratch_dir_test.h"
@@ -12,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <set>
@@ -21,6 +24,8 @@ namespace specula {
 namespace {
 
 namespace fs = std::filesystem;
+
+const std::string kBowlRoom = SPECULA_SOURCE_DIR "/assets/bowl_room/bowl_room.gltf";
 
 class FakeSlurm : public ProcessRunner {
 public:
@@ -41,18 +46,36 @@ public:
         std::string out;
         for (const auto& [id, state] : jobs_)
             out += id + "|" + state + "\n";
-        // Each look moves every pending job to its end.
+        // Each look moves every pending job whose dependency succeeded to its end (a job's
+        // dependency has a smaller id: it moved first).
         for (auto& [id, state] : jobs_)
-            if (state == "PENDING") state = finish(id);
+            if (state == "PENDING" && dependencyMet(id)) state = finish(id);
         return {0, out};
     }
     void pause(double) override { ++pauses; }
 
+    std::map<std::string, std::vector<std::string>> submitted; // job id -> its argv
+
 private:
+    // Slurm's afterok: every task of the job it waits for COMPLETED. One that failed leaves
+    // it pending for ever (DependencyNeverSatisfied) until cancelled.
+    bool dependencyMet(const std::string& id) const {
+        const std::string job = id.substr(0, id.find('_'));
+        const auto it = after_.find(job);
+        if (it == after_.end()) return true;
+        for (const auto& [other, state] : jobs_)
+            if ((other == it->second || other.rfind(it->second + "_", 0) == 0) &&
+                state != "COMPLETED")
+                return false;
+        return true;
+    }
+
     ProcessResult sbatch(const std::vector<std::string>& argv) {
         const std::string id = std::to_string(next_++);
+        submitted[id] = argv;
         bool merge = false;
         for (const std::string& a : argv) {
+            if (a.rfind("--dependency=afterok:", 0) == 0) after_[id] = a.substr(21);
             if (a.rfind("--array=", 0) == 0) {
                 std::istringstream list(a.substr(8));
                 for (std::string i; std::getline(list, i, ',');)
@@ -76,8 +99,8 @@ private:
             return "FAILED";
         }
         const Shard s = readShardList(dir_).shards[std::size_t(shard)];
-        if (s.kind == kLightFieldRowsShard) {
-            std::ofstream(shardOutputPath(dir_, s)) << "rows";
+        if (s.kind != kProbeShard) { // a part's, a PEM trace's or a PEM sample's file
+            std::ofstream(shardOutputPath(dir_, s)) << "shard";
             return "COMPLETED";
         }
         const fs::path folder = shardOutputPath(dir_, s);
@@ -89,6 +112,7 @@ private:
     std::string dir_;
     int next_ = 100;
     std::map<std::string, std::string> jobs_;
+    std::map<std::string, std::string> after_; // job id -> the job it waits for
 };
 
 class SlurmFake : public test::ScratchDirTest {
@@ -196,6 +220,11 @@ TEST_F(SlurmFake, ALightFieldLevelSubmitsItsPartsAndReportsAFailingPart) {
     const SlurmBakeResult r = bakeOnSlurm(dir_, options(1), slurm, nullptr);
     EXPECT_FALSE(r.merged);
     EXPECT_EQ(r.arrays, (std::vector<std::vector<int>>{parts, {15}}));
+    // The probe shards were submitted after the parts each time, and cancelled with the
+    // merge when a part failed: never run.
+    EXPECT_EQ(r.dependentArrays, (std::vector<std::vector<int>>{{12, 25}, {12, 25}}));
+    EXPECT_EQ(slurm.cancelled, (std::vector<std::string>{"101", "102", "104", "105"}));
+    EXPECT_FALSE(shardPresent(dir_, list.shards[12]));
     ASSERT_EQ(r.failures.size(), 1u);
     EXPECT_EQ(r.failures[0].index, 15);
     EXPECT_EQ(r.failures[0].probe, "room_b_probe");
@@ -209,6 +238,73 @@ TEST_F(SlurmFake, ALightFieldLevelSubmitsItsPartsAndReportsAFailingPart) {
     const SlurmBakeResult resumed = bakeOnSlurm(dir_, options(0), again, nullptr);
     EXPECT_TRUE(resumed.merged);
     EXPECT_EQ(resumed.arrays, (std::vector<std::vector<int>>{{15}}));
+    EXPECT_EQ(resumed.dependentArrays, (std::vector<std::vector<int>>{{12, 25}}));
+    EXPECT_TRUE(shardPresent(dir_, list.shards[12]));
+}
+
+// Array 1 holds the leaves, array 2 (afterok on array 1) the dependents, the merge waits for
+// array 2; the scripts both run bake-shard.
+TEST_F(SlurmFake, APemBakeRunsTracesThenSamplesThenTheMerge) {
+    PemCookSettings p;
+    p.samples = 3;
+    p.faceRes = 8;
+    p.imageWidth = 32, p.imageHeight = 24;
+    LevelCookOptions o;
+    o.cook.scene = kBowlRoom;
+    o.cook.out = dir_;
+    o.cook.flavour = p;
+    o.cook.progress = false;
+    ProbeScene scene(kBowlRoom, "");
+    writeShardList(scene, o, nullptr);
+    FakeSlurm slurm(dir_);
+    const SlurmBakeResult r = bakeOnSlurm(dir_, options(0), slurm, nullptr);
+    EXPECT_TRUE(r.merged);
+    EXPECT_EQ(r.arrays, (std::vector<std::vector<int>>{{0, 1, 2}}));
+    EXPECT_EQ(r.dependentArrays, (std::vector<std::vector<int>>{{3, 4, 5}}));
+    ASSERT_EQ(r.jobs, (std::vector<std::string>{"100", "101", "102"}));
+    auto has = [&](const std::string& job, const std::string& arg) {
+        const std::vector<std::string>& argv = slurm.submitted[job];
+        return std::find(argv.begin(), argv.end(), arg) != argv.end();
+    };
+    EXPECT_TRUE(has("100", "--array=0,1,2"));
+    EXPECT_TRUE(has("101", "--array=3,4,5"));
+    EXPECT_TRUE(has("101", "--dependency=afterok:100"));
+    EXPECT_TRUE(has("102", "--dependency=afterok:101"));
+    EXPECT_TRUE(slurm.submitted["101"].back().ends_with("dependent.sh"));
+    std::ifstream script(fs::path(dir_) / ".shards/slurm/dependent.sh");
+    std::stringstream text;
+    text << script.rdbuf();
+    EXPECT_NE(text.str().find("bake-shard '" + dir_ + "' --shard \"$SLURM_ARRAY_TASK_ID\""),
+              std::string::npos)
+        << text.str();
+}
+
+// A sample shard that fails every time: reported by index and sample, the traces are not
+// resubmitted, the merge never runs.
+TEST_F(SlurmFake, AFailingPemSampleIsReportedAndOnlyItIsResubmitted) {
+    PemCookSettings p;
+    p.samples = 2;
+    p.faceRes = 8;
+    p.imageWidth = 32, p.imageHeight = 24;
+    LevelCookOptions o;
+    o.cook.scene = kBowlRoom;
+    o.cook.out = dir_;
+    o.cook.flavour = p;
+    o.cook.progress = false;
+    ProbeScene scene(kBowlRoom, "");
+    writeShardList(scene, o, nullptr);
+    FakeSlurm slurm(dir_);
+    slurm.failuresLeft[3] = 100;
+    const SlurmBakeResult r = bakeOnSlurm(dir_, options(1), slurm, nullptr);
+    EXPECT_FALSE(r.merged);
+    EXPECT_EQ(r.arrays, (std::vector<std::vector<int>>{{0, 1}}));
+    EXPECT_EQ(r.dependentArrays, (std::vector<std::vector<int>>{{2, 3}, {3}}));
+    ASSERT_EQ(r.failures.size(), 1u);
+    EXPECT_EQ(r.failures[0].index, 3);
+    EXPECT_EQ(r.failures[0].part, 1);
+    const std::string report = slurmFailureReport(r);
+    EXPECT_NE(report.find("shard 3 (PEM sample 1: maps): FAILED"), std::string::npos) << report;
+    EXPECT_FALSE(fs::exists(fs::path(dir_) / "pem"));
 }
 
 } // namespace
