@@ -2,6 +2,7 @@
 
 #include "assetcooker/lib/cook.h"
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
+#include "components/reflection_probe/distance/distance_store.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "components/reflection_probe/reflector_pixels.h"
 #include "engine/core/error.h"
@@ -57,9 +58,12 @@ void printByRoughness(std::ostream& log, const std::vector<std::string>& methods
 } // namespace
 
 const std::vector<std::string>& glossyBenchMethods() {
-    static const std::vector<std::string> methods{
-        "envmap+chain", "boxproj+chain", "rectified (roughness level)",
-        "rectified (footprint level)", "light field glossy"};
+    static const std::vector<std::string> methods{"envmap+chain",
+                                                  "boxproj+chain",
+                                                  "rectified (roughness level)",
+                                                  "rectified (footprint level)",
+                                                  "layered (footprint level)",
+                                                  "light field glossy"};
     return methods;
 }
 
@@ -137,6 +141,11 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
     search.method = DistanceMethod::Secant;
     search.errorTolerance = 0.01f;
     const CpuGlossyDistanceProbe distance(distanceAsset, search);
+    // Layered: the object layers as the store holds them (half floats), the same chain.
+    const DistanceProbeAsset storedAsset = storedDistanceAsset(distanceAsset);
+    const CpuDistanceProbe layered(storedAsset,
+                                   makeLookupConfig(layeredSearch(search), storedAsset),
+                                   std::make_shared<const CubeChain>(distance.chain()));
     const CpuLightFieldProbe lightField(lightFieldAsset);
 
     const CameraView camera = reflectionScene.camera(o.width, o.height);
@@ -160,14 +169,17 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
         result.mirrorPixels = long(pixels.size());
         for (std::size_t m = 0; m < methods.size(); ++m) {
             Image img = truth.color;
+            const GlossyBenchMethod method = GlossyBenchMethod(m);
             for (const ReflectorPixel& p : pixels) {
                 glm::vec3 c;
+                // The distance methods: the normalised prefiltered lighting times the
+                // directional albedo, as the shaders do (E = 1 for a mirror).
+                const float e = r > 0.f ? ggxAlbedo(std::min(p.cosView(), 1.f), r) : 1.f;
+                const glm::vec3 x = p.position - distanceAsset.centre;
                 if (m < kGlossyModes.size()) {
-                    // The normalised prefiltered lighting times the directional albedo, as the
-                    // shaders do (E = 1 for a mirror).
-                    const float e = r > 0.f ? ggxAlbedo(std::min(p.cosView(), 1.f), r) : 1.f;
-                    c = e * distance.radiance(p.position - distanceAsset.centre, p.lhat, r,
-                                              kGlossyModes[m]);
+                    c = e * distance.radiance(x, p.lhat, r, kGlossyModes[m]);
+                } else if (method == GlossyBenchMethod::LayeredFootprint) {
+                    c = e * layered.glossySample(x, p.lhat, r).radiance;
                 } else {
                     c = lightField.reflectedRadiance(p.position - lightFieldAsset.cellCentre,
                                                      p.lhat, p.normal, r);
@@ -179,7 +191,7 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
             row.method = methods[m];
             row.psnr = clampedPsnr(compareImages(img, truth.color, &mask));
             row.noiseFloorPsnr = noise;
-            row.memoryMiB = double(textures.bytes(GlossyBenchMethod(m), r)) / (1024.0 * 1024.0);
+            row.memoryMiB = double(textures.bytes(method, r)) / (1024.0 * 1024.0);
             result.rows.push_back(row);
         }
         log << "roughness " << r << ": " << pixels.size() << " reflector pixels, truth noise floor "

@@ -3,9 +3,10 @@
 // distance probe (secant search) and a small light-field probe (8 x 8 cameras of 64^2) of the
 // scene are baked once through the cooking API; then, for each roughness, every reflector gets
 // that roughness, the environment-only GGX ground truth is traced (and its noise floor: seed 1
-// against seed 2), and every reflector pixel is looked up five ways: envmap + chain, boxproj +
-// chain, rectified (level by roughness), rectified (level by footprint) and the light field's
-// glossy lookup. PSNR on the eroded reflector pixels goes to glossy.csv and a printed table,
+// against seed 2), and every reflector pixel is looked up six ways: envmap + chain, boxproj +
+// chain, rectified (level by roughness), rectified (level by footprint), layered (every object
+// layer searched, the nearest hit's footprint level) and the light field's glossy lookup.
+// PSNR on the eroded reflector pixels goes to glossy.csv and a printed table,
 // with each method's cost (glossy_timing.h): its GPU reflector pass as a ratio to the mirror
 // envmap pass of the same run (methods with a shader; unless timing is off) and the texture
 // memory it holds.
@@ -15,8 +16,8 @@
 #include <string>
 #include <vector>
 
-namespace specula::cli {
-class ToolCli;
+    namespace specula::cli {
+    class ToolCli;
 }
 
 namespace specula::sandbox {

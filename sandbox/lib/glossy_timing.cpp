@@ -1,5 +1,6 @@
 #include "glossy_timing.h"
 
+#include "components/reflection_probe/distance/distance_store.h"
 #include "components/reflection_probe/distance/distance_textures.h"
 #include "components/reflection_probe/lightfield/lightfield_mips.h"
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
@@ -16,11 +17,19 @@ namespace specula::sandbox {
 
 namespace {
 
-constexpr std::array<GlossyBenchMethod, 4> kGpuMethods{
+constexpr std::array<GlossyBenchMethod, 5> kGpuMethods{
     GlossyBenchMethod::EnvmapChain, GlossyBenchMethod::BoxprojChain,
-    GlossyBenchMethod::RectifiedFootprint, GlossyBenchMethod::LightField};
+    GlossyBenchMethod::RectifiedFootprint, GlossyBenchMethod::LayeredFootprint,
+    GlossyBenchMethod::LightField};
 
 } // namespace
+
+DistanceProbe layeredSearch(const DistanceProbe& search) {
+    DistanceProbe layered = search;
+    layered.method = DistanceMethod::Layered;
+    layered.layerMethod = search.method;
+    return layered;
+}
 
 bool hasGpuPath(GlossyBenchMethod method) {
     return std::find(kGpuMethods.begin(), kGpuMethods.end(), method) != kGpuMethods.end();
@@ -29,7 +38,8 @@ bool hasGpuPath(GlossyBenchMethod method) {
 std::size_t GlossyTextures::bytes(GlossyBenchMethod method, float roughness) const {
     const bool rough = roughness > 0.f;
     if (method == GlossyBenchMethod::LightField) return atlas + (rough ? mips + albedoTable : 0);
-    return cube + sky + (rough ? chain + albedoTable : 0);
+    return cube + sky + (method == GlossyBenchMethod::LayeredFootprint ? layers : 0) +
+           (rough ? chain + albedoTable : 0);
 }
 
 GlossyTextures glossyTextures(const DistanceProbeAsset& distance, const CubeChain& chain,
@@ -38,6 +48,7 @@ GlossyTextures glossyTextures(const DistanceProbeAsset& distance, const CubeChai
     t.cube = cubeArrayBytes(distance.faceRes, 1);
     t.sky = distance.sky.empty() ? 0 : skyTextureBytes(distance.sky);
     t.chain = chainArrayBytes(chain);
+    t.layers = layerTileBytes(storedLayerTiles(storedDistanceAsset(distance)));
     t.atlas = lightField.gpuBytes();
     if (lightFieldMaxLevel(lightField.res, lightField.compression) > 0)
         t.mips = buildLightFieldMips(lightField)
@@ -65,6 +76,8 @@ GlossyTiming timeGlossyPasses(ReflectionScene& rs, const std::string& distanceMa
     reg.emplace<DistanceProbe>(boxprojProbe, boxproj);
     const ecs::Entity searchProbe = probeOn(distanceManifest);
     reg.emplace<DistanceProbe>(searchProbe, search);
+    const ecs::Entity layeredProbe = probeOn(distanceManifest);
+    reg.emplace<DistanceProbe>(layeredProbe, layeredSearch(search));
     const ecs::Entity lightFieldProbe = probeOn(lightFieldManifest);
     reg.emplace<LightFieldProbe>(lightFieldProbe, LightFieldProbe{});
     const auto probeOf = [&](GlossyBenchMethod m) {
@@ -73,6 +86,8 @@ GlossyTiming timeGlossyPasses(ReflectionScene& rs, const std::string& distanceMa
             return boxprojProbe;
         case GlossyBenchMethod::RectifiedFootprint:
             return searchProbe;
+        case GlossyBenchMethod::LayeredFootprint:
+            return layeredProbe;
         case GlossyBenchMethod::LightField:
             return lightFieldProbe;
         default:
@@ -125,18 +140,19 @@ GlossyTiming timeGlossyPasses(ReflectionScene& rs, const std::string& distanceMa
         t.ratioToEnvmap = timing.envmapMs > 0 ? t.ms / timing.envmapMs : 0.0;
         timing.passes.push_back(t);
     }
-    // What the stores hold: three distance probes (composite and sky; with the chain once a
-    // rough reflector drew) and the light field (with its mips likewise). The albedo tables
-    // are the stores' own, outside their probes' count.
+    // What the stores hold: four distance probes (composite and sky; with the chain once a
+    // rough reflector drew), the layered one with the object layers' tiles, and the light
+    // field (with its mips likewise). The albedo tables are the stores' own, outside their
+    // probes' count.
     const bool rough =
         std::any_of(roughness.begin(), roughness.end(), [](float r) { return r > 0.f; });
-    timing.expectedStoreBytes = 3 * (textures.cube + textures.sky + (rough ? textures.chain : 0)) +
-                                textures.atlas + (rough ? textures.mips : 0);
+    timing.expectedStoreBytes = 4 * (textures.cube + textures.sky + (rough ? textures.chain : 0)) +
+                                textures.layers + textures.atlas + (rough ? textures.mips : 0);
     reg.view<Reflector>().each([&](ecs::Entity, Reflector& r) {
         r.probe = envmapProbe;
         r.roughness = 0.f;
     });
-    for (const ecs::Entity e : {boxprojProbe, searchProbe, lightFieldProbe})
+    for (const ecs::Entity e : {boxprojProbe, searchProbe, layeredProbe, lightFieldProbe})
         reg.destroy(e);
     return timing;
 }

@@ -29,20 +29,27 @@ enum class GlossyBenchMethod {
     BoxprojChain,
     RectifiedRoughnessLevel,
     RectifiedFootprint,
+    LayeredFootprint,
     LightField
 };
 
 // Whether the method has a shader (a pass to time).
 bool hasGpuPath(GlossyBenchMethod method);
 
+// The layered row's settings: every object layer searched by `search`'s method, the nearest
+// layer's hit read in the composite's chain (shaders/distance_glossy_lookup.glsl.h).
+DistanceProbe layeredSearch(const DistanceProbe& search);
+
 // The textures the method's probe holds on the GPU at roughness `roughness`, in bytes, as
-// the stores count them: the distance probe's composite cube (RGBA32F, one layer: these
-// methods search the composite alone) and its sky, plus at roughness > 0 the GGX chain's levels
-// past the composite; the light field's atlas, plus at roughness > 0 its mips. Rough rows add
-// the GGX albedo table (R32F, shared by every rough reflector of a store).
+// the stores count them: the distance probe's composite cube (RGBA32F, one layer) and its sky,
+// plus the object layers' tiles for the layered lookup (distance_store.h's storedLayerTiles),
+// plus at roughness > 0 the GGX chain's levels past the composite (layered mode reads the
+// composite's chain at the nearest layer's hit); the light field's atlas, plus at roughness
+// > 0 its mips. Rough rows add the GGX albedo table (R32F, shared by every rough reflector of
+// a store).
 struct GlossyTextures {
-    std::size_t cube = 0, sky = 0, chain = 0; // distance probe
-    std::size_t atlas = 0, mips = 0;          // light field
+    std::size_t cube = 0, sky = 0, chain = 0, layers = 0; // distance probe
+    std::size_t atlas = 0, mips = 0;                      // light field
     std::size_t albedoTable = 0;
 
     std::size_t bytes(GlossyBenchMethod method, float roughness) const;

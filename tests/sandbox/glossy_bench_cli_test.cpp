@@ -47,12 +47,12 @@ TEST(SandboxGlossy, WritesARowPerRoughnessAndMethodAndTheRectifiedModesAgreeAtRo
     EXPECT_TRUE(fs::exists(out / "probes/distance/manifest.json"));
     EXPECT_TRUE(fs::exists(out / "probes/lightfield/manifest.json"));
     const std::vector<std::string> rows = fileLines(out / "glossy.csv");
-    ASSERT_EQ(rows.size(), 1u + 2u * 5u);
+    ASSERT_EQ(rows.size(), 1u + 2u * 6u);
     EXPECT_EQ(rows[0], "roughness,method,psnr,noise_floor_psnr,ratio_to_envmap,memory_mib");
     for (const std::string roughness : {"0", "0.2"})
         for (const std::string method :
              {"envmap+chain", "boxproj+chain", "rectified (roughness level)",
-              "rectified (footprint level)", "light field glossy"})
+              "rectified (footprint level)", "layered (footprint level)", "light field glossy"})
             EXPECT_FALSE(valuesOf(rows, roughness, method).empty()) << roughness << " " << method;
     // At roughness 0 both rectified modes are the secant search's mirror lookup, bit for bit;
     // the truth is exact there (no noise), and noisy but measured at 0.2.
@@ -94,7 +94,8 @@ TEST(SandboxGlossy, HelpNamesEveryMethodAndPointsToBenchForTiming) {
     const ToolRun r = glossy("--help");
     ASSERT_EQ(r.status, 0) << r.err;
     for (const char* m : {"envmap+chain", "boxproj+chain", "rectified (roughness level)",
-                          "rectified (footprint level)", "light field glossy", "bench"})
+                          "rectified (footprint level)", "layered (footprint level)",
+                          "light field glossy", "bench"})
         EXPECT_NE(r.out.find(m), std::string::npos) << m;
 }
 

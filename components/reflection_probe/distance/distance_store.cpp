@@ -19,6 +19,16 @@ constexpr bool kHalfObjectLayers = true;
 
 } // namespace
 
+DistanceProbeAsset storedDistanceAsset(DistanceProbeAsset asset) {
+    if (kHalfObjectLayers && objectLayersFitHalf(asset)) roundObjectLayersToHalf(asset);
+    return asset;
+}
+
+LayerTiles storedLayerTiles(const DistanceProbeAsset& stored) {
+    return tileObjectLayers(stored, kLayerTileSize,
+                            kHalfObjectLayers && objectLayersFitHalf(stored));
+}
+
 DistanceVariant DistanceVariant::filter() const {
     DistanceVariant v = *this;
     if (v.output != 0) v.features &= ~(kFeatureFresnel | kFeatureGlossy);
@@ -45,13 +55,10 @@ gpu::Program DistanceVariant::build() const {
 
 DistanceProbeGpu DistanceStore::loadProbe(const ProbeManifest& manifest, ProbeFrameStats&) {
     DistanceProbeGpu g;
-    g.asset = assets_.get(manifest.path, [&] {
-        DistanceProbeAsset a = readDistanceProbe(manifest);
-        // The tiles' atlas holds half floats when they fit: the CPU copy (what the twin
-        // reads) holds the same rounded values.
-        if (kHalfObjectLayers && objectLayersFitHalf(a)) roundObjectLayersToHalf(a);
-        return a;
-    });
+    // The tiles' atlas holds half floats when they fit: the CPU copy (what the twin reads)
+    // holds the same rounded values.
+    g.asset = assets_.get(manifest.path,
+                          [&] { return storedDistanceAsset(readDistanceProbe(manifest)); });
     if (!g.asset->sky.empty()) g.sky = uploadSkyTexture(g.asset->sky);
     return g;
 }
@@ -69,8 +76,7 @@ void DistanceStore::applySettings(DistanceProbeGpu& g, const DistanceProbe& sett
             uploadCube(g.layers, 0, a.layers.front());
         }
         if (needed > 1) {
-            const LayerTiles tiles =
-                tileObjectLayers(a, kLayerTileSize, kHalfObjectLayers && objectLayersFitHalf(a));
+            const LayerTiles tiles = storedLayerTiles(a);
             g.tiles = uploadLayerTiles(tiles);
             g.tileGrid = glm::ivec4(tiles.tileSize, tiles.tilesPerFace, tiles.cols, tiles.rows);
             g.tileBytes = layerTileBytes(tiles);

@@ -34,6 +34,13 @@ struct DistanceProbeGpu {
     mutable gpu::Texture glossyTexture;
 };
 
+// The asset as a distance store holds it: the object layers rounded to half floats when they
+// fit (their atlas is then RGBA16F), so that the CPU twin reads what the GPU does.
+DistanceProbeAsset storedDistanceAsset(DistanceProbeAsset asset);
+// The object layers' tiles as the store uploads them for a layered lookup, of an asset as
+// storedDistanceAsset gives it.
+LayerTiles storedLayerTiles(const DistanceProbeAsset& stored);
+
 // A compiled feature set: the methods' bits, layers, glossy and Fresnel, and the output.
 struct DistanceVariant {
     std::uint32_t features = 0;
