@@ -36,6 +36,7 @@ CookOptions cookOptions(const BakeArgs& a) {
         s.priorWeight = a.prior;
         s.regularisation = a.smoothness;
         s.localLayer = a.localLayer;
+        s.mipLevels = a.mipLevels;
         o.flavour = s;
     } else {
         DistanceCookSettings s;
@@ -275,6 +276,12 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
                          "their own reflector again, measured; default), on or off"),
          "pem")
         ->check(CLI::IsMember({"auto", "on", "off"}));
+    only(sub->add_option("--mip-levels", a.mipLevels,
+                         "MIP levels of the distant maps, every level inferred together (the "
+                         "paper's MIP inference; the shader picks the level from the pixel's "
+                         "footprint): 1 (default) .. log2(face res) + 1"),
+         "pem")
+        ->check(CLI::Range(1, 16));
     only(sub->add_option("--parameter", a.parameter,
                          "what the maps vary with: viewpoint (the camera moves, default) or "
                          "reflector (the reflectors move before the scene camera)"),
@@ -299,6 +306,7 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
     tool.mapField("parameter", "--parameter");
     tool.mapField("path", "--path");
     tool.mapField("local_layer", "--local-layer");
+    tool.mapField("mip_levels", "--mip-levels");
     tool.mapField("geometry", "--geometry");
     tool.mapField("prior_weight", "--prior");
     tool.mapField("regularisation", "--smoothness");

@@ -31,7 +31,7 @@ struct BakeArgs {
     // a sharded light-field bake (shards, bake --slurm): camera rows a part shard traces
     std::optional<int> shardRows;
     // pem
-    int samples = 8, supersample = 1;
+    int samples = 8, supersample = 1, mipLevels = 1;
     std::string imageSize = "640x480", geometry = "distance";
     float prior = 0.05f, smoothness = 0.02f;
     std::string parameter = "viewpoint", path = "orbit";

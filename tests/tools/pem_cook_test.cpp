@@ -257,11 +257,21 @@ TEST_F(PemCook, BakeCommandLineTakesThePemFlagsAndRefusesBadOnes) {
     EXPECT_EQ(bake("--flavour distance --samples 2", &err), 2);
     EXPECT_NE(err.find("--samples"), std::string::npos) << err;
     EXPECT_EQ(bake("--flavour lightfield --face-res 16", &err), 2);
+    // 8^2 faces have 4 levels (8, 4, 2, 1): a fifth is refused naming the flag.
+    EXPECT_EQ(bake("--flavour pem --samples 1 --face-res 8 --mip-levels 5", &err), 2);
+    EXPECT_NE(err.find("--mip-levels"), std::string::npos) << err;
     EXPECT_FALSE(fs::exists(root_ / "cli"));
     ASSERT_EQ(bake("--flavour pem --samples 1 --face-res 8 --image-size 64x48", &err), 0) << err;
     const PemAsset cooked = readPemProbe((root_ / "cli" / "manifest.json").string());
     EXPECT_EQ(cooked.faceRes, 8);
     EXPECT_EQ(cooked.geometry, "distance"); // the default
+    EXPECT_EQ(cooked.mipLevels, 1);         // the default
+    fs::remove_all(root_ / "cli");
+    ASSERT_EQ(
+        bake("--flavour pem --samples 1 --face-res 8 --image-size 64x48 --mip-levels 4", &err), 0)
+        << err;
+    EXPECT_EQ(readPemProbe((root_ / "cli" / "manifest.json").string()).mipLevels, 4);
+    EXPECT_TRUE(fs::exists(root_ / "cli" / "sample_00_mip3.exr"));
 }
 
 // The cooker measures what its maps are worth: at each sample's own viewpoint (on the
