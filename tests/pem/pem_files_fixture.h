@@ -1,6 +1,7 @@
 #pragma once
-// A scratch folder for PEM assets on disk (pem_local_asset_test, pem_mip_asset_test): the
-// asset's paths, a manifest edit in place, and the reader's refusal checked by file and field.
+// A scratch folder for PEM assets on disk (pem_local_asset_test, pem_mip_asset_test,
+// probe/pem_runtime_test): the asset's paths, a manifest edit in place, and the reader's
+// refusal checked by file and field.
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "engine/core/error.h"
 #include "support/scratch_dir_test.h"

@@ -12,6 +12,7 @@
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
 #include "engine/raytrace/ground_truth.h"
+#include "support/mirror_rays.h"
 #include "support/probe_room.h"
 
 #include <gtest/gtest.h>
@@ -61,22 +62,9 @@ struct Fixture {
         const TraceOptions opts = groundTruthOptions(scene.probeScene(), true);
         const GroundTruthTracer tracer(scene.registry(), opts);
         const CameraView cam = scene.camera(kWidth, kHeight);
-        for (int py = 0; py < kHeight; ++py)
-            for (int px = 0; px < kWidth; ++px) {
-                glm::vec3 origin, d;
-                cam.primaryRay(px, py, origin, d);
-                const auto h = tracer.fullScene().intersect(origin, d);
-                if (!h || !opts.mirrors.contains(h->entity)) continue;
-                d = glm::normalize(d);
-                const glm::vec3 n = glm::dot(h->normal, d) > 0.f ? -h->normal : h->normal;
-                const glm::vec3 ng = glm::dot(h->geometricNormal, d) > 0.f ? -h->geometricNormal
-                                                                           : h->geometricNormal;
-                const glm::vec3 r = glm::normalize(glm::reflect(d, n));
-                const float m = std::max({std::abs(h->position.x), std::abs(h->position.y),
-                                          std::abs(h->position.z), 1.f});
-                const EnvSample e = tracer.traceEnvironment(h->position + 1e-4f * m * ng, r);
-                rays.push_back({h->position - asset.centre, r, e.distance, e.radiance, e.hit});
-            }
+        for (const test::MirrorRay& m : test::mirrorRays(tracer, opts, cam))
+            rays.push_back(
+                {m.position - asset.centre, m.dir, m.env.distance, m.env.radiance, m.env.hit});
     }
     ~Fixture() { std::filesystem::remove_all(dir); }
 

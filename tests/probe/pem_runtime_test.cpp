@@ -14,6 +14,7 @@
 #include "engine/image/image_io.h"
 #include "engine/raytrace/ground_truth.h"
 #include "engine/scene/mesh_bounds.h"
+#include "pem/pem_files_fixture.h"
 #include "support/probe_room.h"
 #include "support/scratch_dir_test.h"
 #include "twin_agreement.h"
@@ -77,31 +78,11 @@ void addDistanceGeometry(PemAsset& a, int m, unsigned seed = 9) {
         s.map.distance = g;
 }
 
-class PemAssetFiles : public test::ScratchDirTest {
+class PemAssetFiles : public test::PemFilesTest {
 protected:
-    PemAssetFiles() : ScratchDirTest("specula-pem-asset") {}
+    PemAssetFiles() : PemFilesTest("specula-pem-asset") {}
 
-    std::string dir() const { return (root_ / "pem").string(); }
-    std::string manifest() const { return dir() + "/manifest.json"; }
     std::string sampleFile(int k) const { return dir() + "/sample_0" + std::to_string(k) + ".exr"; }
-
-    // Rewrites the written manifest through `edit`.
-    void editManifest(const std::function<void(json&)>& edit) const {
-        json m = json::parse(std::ifstream(manifest()));
-        edit(m);
-        std::ofstream(manifest()) << m.dump(1);
-    }
-    // Reading must fail naming `file` (a suffix of it) and `field`.
-    void expectRefused(const std::string& fileSuffix, const std::string& field) const {
-        try {
-            readPemProbe(manifest());
-            ADD_FAILURE() << "expected " << field << " to be refused";
-        } catch (const Error& e) {
-            std::printf("refused: %s\n", e.what());
-            EXPECT_TRUE(e.file().ends_with(fileSuffix)) << e.what();
-            EXPECT_EQ(e.field(), field) << e.what();
-        }
-    }
 };
 
 } // namespace

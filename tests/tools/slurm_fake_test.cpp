@@ -125,13 +125,14 @@ protected:
         d.faceRes = 16;
         writeList(d, 0);
     }
-    void writeList(const CookFlavour& flavour, int shardRows) {
+    void writeList(const CookFlavour& flavour, int shardRows,
+                   const std::string& scenePath = test::kTwoRooms) {
         LevelCookOptions o;
-        o.cook.scene = test::kTwoRooms;
+        o.cook.scene = scenePath;
         o.cook.out = dir_;
         o.cook.flavour = flavour;
         o.cook.progress = false;
-        ProbeScene scene(test::kTwoRooms, "");
+        ProbeScene scene(scenePath, "");
         writeShardList(scene, o, nullptr, shardRows);
     }
     SlurmOptions options(int retries) const {
@@ -249,13 +250,7 @@ TEST_F(SlurmFake, APemBakeRunsTracesThenSamplesThenTheMerge) {
     p.samples = 3;
     p.faceRes = 8;
     p.imageWidth = 32, p.imageHeight = 24;
-    LevelCookOptions o;
-    o.cook.scene = kBowlRoom;
-    o.cook.out = dir_;
-    o.cook.flavour = p;
-    o.cook.progress = false;
-    ProbeScene scene(kBowlRoom, "");
-    writeShardList(scene, o, nullptr);
+    writeList(p, 0, kBowlRoom);
     FakeSlurm slurm(dir_);
     const SlurmBakeResult r = bakeOnSlurm(dir_, options(0), slurm, nullptr);
     EXPECT_TRUE(r.merged);
@@ -286,13 +281,7 @@ TEST_F(SlurmFake, AFailingPemSampleIsReportedAndOnlyItIsResubmitted) {
     p.samples = 2;
     p.faceRes = 8;
     p.imageWidth = 32, p.imageHeight = 24;
-    LevelCookOptions o;
-    o.cook.scene = kBowlRoom;
-    o.cook.out = dir_;
-    o.cook.flavour = p;
-    o.cook.progress = false;
-    ProbeScene scene(kBowlRoom, "");
-    writeShardList(scene, o, nullptr);
+    writeList(p, 0, kBowlRoom);
     FakeSlurm slurm(dir_);
     slurm.failuresLeft[3] = 100;
     const SlurmBakeResult r = bakeOnSlurm(dir_, options(1), slurm, nullptr);
