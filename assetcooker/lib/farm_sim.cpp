@@ -20,26 +20,55 @@ using nlohmann::json;
 
 namespace {
 
-// The "seconds" of a specula-shard-time file; throws Error naming the file and the field.
-// `by`: who recorded it ("bake-shard" when not said, "merge").
-double recordedSeconds(const std::string& file, std::string* by = nullptr) {
+// A specula-shard-time file's fields; throws Error naming the file and the field.
+struct RecordedTime {
+    double seconds = 0;
+    std::string by = "bake-shard"; // who recorded it: "bake-shard" (when not said), "merge"
+    // merge.time.json: the part spent computing dependents; -1 in files older than the field
+    double assemblySeconds = -1;
+};
+
+double nonNegative(const json& doc, const std::string& file, const char* field) {
+    if (!doc[field].is_number() || !std::isfinite(doc[field].get<double>()) ||
+        doc[field].get<double>() < 0)
+        throw Error(file, field, "expected a number of seconds >= 0");
+    return doc[field].get<double>();
+}
+
+RecordedTime recordedTime(const std::string& file) {
     const json doc = parseManifestJson(readManifestText(file), file);
-    if (by && doc.is_object()) *by = doc.value("by", "bake-shard");
     if (!doc.is_object() || doc.value("format", "") != "specula-shard-time")
         throw Error(file, "format", "expected a specula-shard-time file");
-    if (!doc.contains("seconds") || !doc["seconds"].is_number() ||
-        !std::isfinite(doc["seconds"].get<double>()) || doc["seconds"].get<double>() < 0)
-        throw Error(file, "seconds", "expected a number of seconds >= 0");
-    return doc["seconds"].get<double>();
+    if (!doc.contains("seconds")) throw Error(file, "seconds", "expected a number of seconds >= 0");
+    RecordedTime t;
+    t.seconds = nonNegative(doc, file, "seconds");
+    if (doc.contains("by")) {
+        if (!doc["by"].is_string()) throw Error(file, "by", "expected \"bake-shard\" or \"merge\"");
+        t.by = doc["by"].get<std::string>();
+    }
+    if (doc.contains("assembly_seconds"))
+        t.assemblySeconds = nonNegative(doc, file, "assembly_seconds");
+    return t;
+}
+
+double sumSeconds(const std::vector<FarmShardTime>& shards) {
+    double t = 0;
+    for (const FarmShardTime& s : shards)
+        t += s.seconds;
+    return t;
+}
+
+std::vector<double> secondsOf(const std::vector<FarmShardTime>& shards) {
+    std::vector<double> seconds;
+    for (const FarmShardTime& s : shards)
+        seconds.push_back(s.seconds);
+    return seconds;
 }
 
 } // namespace
 
 double FarmTimes::total() const {
-    double t = 0;
-    for (const FarmShardTime& s : shards)
-        t += s.seconds;
-    return t;
+    return sumSeconds(shards) + sumSeconds(dependents);
 }
 
 FarmTimes readFarmTimes(const std::string& dir) {
@@ -47,53 +76,48 @@ FarmTimes readFarmTimes(const std::string& dir) {
     FarmTimes times;
     times.dir = dir;
     std::string missing;
-    std::size_t missingCount = 0, leafCount = 0;
-    for (std::size_t i = 0; i < list.shards.size(); ++i)
-        leafCount += shardDependencies(list, int(i)).empty() ? 1 : 0;
+    std::size_t missingCount = 0;
+    bool dependentMissing = false;
+    double assembledByMerge = 0; // dependents' seconds recorded by the merge that computed them
     std::error_code ec;
-    // A light-field probe shard is assembled by the merge job: its time is merge.time.json's
-    // when merge did it, else (bake-shard by hand) added to it.
-    double assembledOutside = 0;
     for (std::size_t i = 0; i < list.shards.size(); ++i) {
-        const Shard& s = list.shards[i];
-        const std::string file = shardTimePath(dir, s);
-        if (shardDependencies(list, int(i)).empty()) continue;
-        std::string by;
-        if (fs::is_regular_file(file, ec)) {
-            const double t = recordedSeconds(file, &by);
-            if (by != "merge") assembledOutside += t;
-        }
-    }
-    for (std::size_t i = 0; i < list.shards.size(); ++i) {
-        const Shard& s = list.shards[i];
-        if (!shardDependencies(list, int(i)).empty()) continue; // not the array's
-        const std::string probe =
-            list.level.probes[std::size_t(s.probe)].volume.name +
-            (s.kind == kLightFieldRowsShard ? " part " + std::to_string(s.part) : "");
-        const std::string file = shardTimePath(dir, s);
+        const bool leaf = shardDependencies(list, int(i)).empty();
+        const std::string file = shardTimePath(dir, list.shards[i]);
         if (!fs::is_regular_file(file, ec)) {
-            missing += (missing.empty() ? "" : ", ") + std::to_string(i) + " (probe " + probe +
-                       ", " + file + ")";
+            missing += (missing.empty() ? "" : ", ") + std::to_string(i) + " (" +
+                       shardLabel(list, int(i)) + ", " + file + ")";
             ++missingCount;
+            dependentMissing = dependentMissing || !leaf;
             continue;
         }
-        times.shards.push_back({int(i), probe, recordedSeconds(file)});
+        const RecordedTime t = recordedTime(file);
+        const FarmShardTime shard{int(i), shardLabel(list, int(i)), t.seconds};
+        (leaf ? times.shards : times.dependents).push_back(shard);
+        if (!leaf && t.by == "merge") assembledByMerge += t.seconds;
     }
     if (missingCount > 0)
         throw Error(shardListPath(dir), "shards",
-                    std::to_string(missingCount) + " of " + std::to_string(leafCount) +
+                    std::to_string(missingCount) + " of " + std::to_string(list.shards.size()) +
                         " shards have no recorded time: " + missing +
-                        "; run specula-cook bake-shard for each (a shard baked before times were "
-                        "recorded: delete its folder in the store and bake it again)");
+                        "; run specula-cook bake-shard for each" +
+                        (dependentMissing ? " (or merge, which computes and records the "
+                                            "dependent shards it lacks)"
+                                          : "") +
+                        " (a shard baked before times were recorded: delete its files in the "
+                        "store and bake it again)");
     if (fs::is_regular_file(mergeTimePath(dir), ec)) {
-        times.mergeSeconds = recordedSeconds(mergeTimePath(dir));
+        const RecordedTime merge = recordedTime(mergeTimePath(dir));
+        // Files written before merge recorded its assembly: the dependents it computed (their
+        // sum bounds the parallel assembly's wall from above).
+        const double assembly =
+            merge.assemblySeconds >= 0 ? merge.assemblySeconds : assembledByMerge;
+        times.mergeSeconds = std::max(0.0, merge.seconds - assembly);
         times.mergeRecorded = true;
     }
-    times.mergeSeconds += assembledOutside;
     return times;
 }
 
-double farmWall(std::vector<double> seconds, int nodes, double overhead, double mergeSeconds) {
+double arrayWall(std::vector<double> seconds, int nodes, double overhead) {
     std::sort(seconds.begin(), seconds.end(), std::greater<>());
     // Each node's finish time; the shard goes to the node that is free first.
     std::priority_queue<double, std::vector<double>, std::greater<>> free;
@@ -106,19 +130,23 @@ double farmWall(std::vector<double> seconds, int nodes, double overhead, double 
         free.push(finish);
         last = std::max(last, finish);
     }
-    return last + overhead + mergeSeconds;
+    return last;
+}
+
+double farmWall(std::vector<double> leaves, int nodes, double overhead, double mergeSeconds,
+                std::vector<double> dependents) {
+    return arrayWall(std::move(leaves), nodes, overhead) +
+           arrayWall(std::move(dependents), nodes, overhead) + overhead + mergeSeconds;
 }
 
 std::vector<FarmRow> simulateFarm(const FarmTimes& times, const std::vector<int>& nodes,
                                   double overhead) {
-    std::vector<double> seconds;
-    for (const FarmShardTime& s : times.shards)
-        seconds.push_back(s.seconds);
     std::vector<FarmRow> rows;
     for (int n : nodes) {
         FarmRow r;
         r.nodes = n;
-        r.wall = farmWall(seconds, n, overhead, times.mergeSeconds);
+        r.wall = farmWall(secondsOf(times.shards), n, overhead, times.mergeSeconds,
+                          secondsOf(times.dependents));
         r.ideal = times.total() / n;
         r.ratio = r.ideal > 0 ? r.wall / r.ideal : 0.0;
         rows.push_back(r);
@@ -129,12 +157,12 @@ std::vector<FarmRow> simulateFarm(const FarmTimes& times, const std::vector<int>
 void writeFarmCsv(const std::string& file, const std::vector<FarmLevel>& levels) {
     std::ofstream out(file);
     if (!out) throw Error(file, "", "cannot be written");
-    out << "level,shards,total_s,merge_s,nodes,wall_s,ideal_s,ratio\n";
+    out << "level,shards,dependents,total_s,merge_s,nodes,wall_s,ideal_s,ratio\n";
     for (const FarmLevel& l : levels)
         for (const FarmRow& r : l.rows)
-            out << l.label << ',' << l.times.shards.size() << ',' << l.times.total() << ','
-                << l.times.mergeSeconds << ',' << r.nodes << ',' << r.wall << ',' << r.ideal << ','
-                << r.ratio << '\n';
+            out << l.label << ',' << l.times.shards.size() << ',' << l.times.dependents.size()
+                << ',' << l.times.total() << ',' << l.times.mergeSeconds << ',' << r.nodes << ','
+                << r.wall << ',' << r.ideal << ',' << r.ratio << '\n';
     if (!out) throw Error(file, "", "cannot be written");
 }
 

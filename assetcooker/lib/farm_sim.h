@@ -2,14 +2,17 @@
 // A simulated render farm for a sharded level bake (shard_bake.h): what the bake's wall time
 // would be on N identical nodes, from the shard times bake-shard recorded in the store
 // (DIR/.shards/<hash>.time.json) and a scheduler's overhead per shard. The shards simulated
-// are the leaves a job array runs (distance probes, light-field parts); the assembly of the
-// light-field probes is the merge job's (in merge.time.json when merge did it, else the probe
-// shards' recorded times are added to the merge's).
+// are the two job arrays a Slurm bake submits (slurm_bake.h): the leaves (distance probes,
+// light-field parts, PEM traces), then, once every leaf is done, the dependents (light-field
+// probes assembling their parts, PEM samples inferring their maps). A dependent's time is
+// the one recorded for it, by bake-shard or by the merge that computed it; the merge job's
+// own time is merge.time.json's less what it spent computing dependents.
 //
-// The model: list scheduling, longest shard first (LPT), each shard onto the node that is
-// free first; every shard costs the scheduling overhead plus its recorded seconds on its node;
-// the merge runs once all shards are done, as one more job (overhead + the recorded merge
-// seconds). The ideal is the shards' total seconds / N: no overhead, no merge, perfect split.
+// The model: each array by list scheduling, longest shard first (LPT), each shard onto the
+// node that is free first; every shard costs the scheduling overhead plus its recorded
+// seconds on its node; the dependents' array starts when the leaves' ends (afterok on the
+// whole array), and the merge runs after both, as one more job (overhead + its seconds). The
+// ideal is all shards' total seconds / N: no overhead, no barrier, no merge, perfect split.
 #include "engine/image/image.h"
 
 #include <string>
@@ -19,24 +22,31 @@ namespace specula {
 
 struct FarmShardTime {
     int index = 0;     // in the shard list
-    std::string probe; // the probe's name (and "part P" for a light-field part)
+    std::string label; // shardLabel: "probe NAME", ", part P: ..." or "PEM sample K: ..."
     double seconds = 0;
 };
 
 struct FarmTimes {
     std::string dir;
-    std::vector<FarmShardTime> shards;
-    double mergeSeconds = 0;
-    bool mergeRecorded = false; // DIR/.shards/merge.time.json was there (else 0 s)
-    double total() const;       // sum of the shards' seconds
+    std::vector<FarmShardTime> shards;     // the leaves: the first array
+    std::vector<FarmShardTime> dependents; // the second array, after every leaf
+    double mergeSeconds = 0;               // the merge job's own (without computing dependents)
+    bool mergeRecorded = false;            // DIR/.shards/merge.time.json was there (else 0 s)
+    double total() const;                  // sum of every shard's seconds, leaves and dependents
 };
 
-// DIR's shard list and the recorded times. Throws Error naming the list and every leaf shard with
-// no time (index, probe, expected file), or the time file and field that is malformed.
+// DIR's shard list and the recorded times. Throws Error naming the list and every shard with
+// no time (index, label, expected file), or the time file and field that is malformed.
 FarmTimes readFarmTimes(const std::string& dir);
 
-// The predicted wall time of the model above. `seconds` in any order; nodes >= 1.
-double farmWall(std::vector<double> seconds, int nodes, double overhead, double mergeSeconds);
+// One job array's wall time on `nodes` nodes (>= 1): LPT list scheduling, `overhead` paid
+// before each shard on its node; 0 for no shards. `seconds` in any order.
+double arrayWall(std::vector<double> seconds, int nodes, double overhead);
+
+// The predicted wall time of the model above: the leaves' array, then the dependents' array,
+// then the merge job (overhead + mergeSeconds).
+double farmWall(std::vector<double> leaves, int nodes, double overhead, double mergeSeconds,
+                std::vector<double> dependents = {});
 
 struct FarmRow {
     int nodes = 1;
@@ -48,8 +58,8 @@ struct FarmRow {
 std::vector<FarmRow> simulateFarm(const FarmTimes& times, const std::vector<int>& nodes,
                                   double overhead);
 
-// The table as CSV: level,shards,total_s,nodes,wall_s,ideal_s,ratio (one row per level and
-// node count). Throws Error naming the file when it cannot be written.
+// The table as CSV: level,shards,dependents,total_s,merge_s,nodes,wall_s,ideal_s,ratio (one
+// row per level and node count). Throws Error naming the file when it cannot be written.
 struct FarmLevel {
     std::string label; // the level's name in the table and the plot
     FarmTimes times;

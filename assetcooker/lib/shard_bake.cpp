@@ -43,15 +43,17 @@ std::string shardHash(const Shard& s, const LevelProbeEntry& e, const json& sett
 }
 
 // {"format": "specula-shard-time", "version": 1, "what": ..., "seconds": ..., "by": ...},
-// atomically; by: "bake-shard" or "merge" (a probe shard assembled by mergeShards, whose time
-// is in merge.time.json too).
+// atomically; by: "bake-shard" or "merge" (a dependent shard computed by mergeShards, whose
+// time is in merge.time.json's too). merge.time.json adds "assembly_seconds": the part of its
+// seconds spent computing dependents (farm_sim.h counts them as the second array's).
 void writeTime(const std::string& file, const std::string& what, double seconds,
-               const std::string& by = "bake-shard") {
-    const json doc = {{"format", "specula-shard-time"},
-                      {"version", 1},
-                      {"what", what},
-                      {"seconds", seconds},
-                      {"by", by}};
+               const std::string& by = "bake-shard", double assemblySeconds = -1) {
+    json doc = {{"format", "specula-shard-time"},
+                {"version", 1},
+                {"what", what},
+                {"seconds", seconds},
+                {"by", by}};
+    if (assemblySeconds >= 0) doc["assembly_seconds"] = assemblySeconds;
     writeFileAtomically(file, doc.dump(2) + "\n");
 }
 
@@ -358,6 +360,7 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
             checkSceneUnchanged(dir, list, i, *scene, environment);
         if (isPemList(list)) checkSceneUnchanged(dir, list, 0, *scene, environment);
     }
+    const auto assemblyStart = std::chrono::steady_clock::now();
     if (!assemble.empty()) {
         if (log) *log << "computing " << assemble.size() << " shards from their dependencies\n";
         std::vector<std::exception_ptr> errors(assemble.size());
@@ -384,6 +387,8 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
         for (const std::exception_ptr& e : errors)
             if (e) std::rethrow_exception(e);
     }
+    const double assemblySeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - assemblyStart).count();
     LevelCookResult result;
     if (isPemList(list)) {
         installPemShards(dir, list, *scene);
@@ -394,7 +399,7 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
     }
     result.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writeTime(mergeTimePath(dir), "merge", result.seconds);
+    writeTime(mergeTimePath(dir), "merge", result.seconds, "merge", assemblySeconds);
     return result;
 }
 

@@ -58,15 +58,16 @@ constexpr const char* kMergeDescription =
 
 constexpr const char* kFarmDescription =
     "Predicts a sharded bake's wall time on a farm of N identical nodes, from the seconds\n"
-    "bake-shard recorded for each leaf shard (DIR/.shards/<hash>.time.json: a distance probe,\n"
-    "a light-field part; the shards a job array runs) and merge's own\n"
-    "(DIR/.shards/merge.time.json, with the light-field probes it assembled; 0 when not\n"
-    "recorded; a probe assembled by bake-shard adds its time to the merge's). The model: the\n"
-    "leaf shards longest first, each onto the node free first (list scheduling), each paying\n"
-    "the scheduling overhead S on its node; then the merge job (S + the merge's seconds). The\n"
-    "ideal is the leaves' total / N. Prints nodes, predicted wall, ideal and their ratio for\n"
-    "each DIR; writes them as CSV (--csv) and as a plot (--plot). Every leaf shard needs a\n"
-    "recorded time: the missing ones are named.\n";
+    "recorded for each shard (DIR/.shards/<hash>.time.json, by bake-shard or by the merge that\n"
+    "computed it) and the merge's own (DIR/.shards/merge.time.json less the dependent shards\n"
+    "it computed; 0 when not recorded). The model is the Slurm bake's: the leaf shards (a\n"
+    "distance probe, a light-field part, a PEM trace) as one job array, longest first, each\n"
+    "onto the node free first (list scheduling), each paying the scheduling overhead S on its\n"
+    "node; once every leaf is done the dependent shards (a light-field probe, a PEM sample's\n"
+    "maps) as a second array the same way; then the merge job (S + the merge's seconds). The\n"
+    "ideal is all shards' total / N. Prints nodes, predicted wall, ideal and their ratio for\n"
+    "each DIR; writes them as CSV (--csv) and as a plot (--plot). Every shard needs a recorded\n"
+    "time: the missing ones are named.\n";
 
 constexpr const char* kFooter =
     "exit status: 0 ok, 1 the input could not be processed, 2 bad command line\n";
@@ -104,19 +105,19 @@ int runFarm(FarmArgs a, std::ostream& out) {
         l.rows = simulateFarm(l.times, a.nodes, a.overhead);
         levels.push_back(std::move(l));
     }
-    char line[160];
+    char line[200];
     for (const FarmLevel& l : levels) {
-        std::snprintf(line, sizeof line,
-                      "%s: %zu shards, %.3f s in all (longest %.3f s), merge %.3f s%s, "
-                      "overhead %.3g s a shard\n",
-                      l.label.c_str(), l.times.shards.size(), l.times.total(),
-                      l.times.shards.empty()
-                          ? 0.0
-                          : std::max_element(l.times.shards.begin(), l.times.shards.end(),
-                                             [](auto& x, auto& y) { return x.seconds < y.seconds; })
-                                ->seconds,
-                      l.times.mergeSeconds, l.times.mergeRecorded ? "" : " (not recorded)",
-                      a.overhead);
+        std::snprintf(
+            line, sizeof line,
+            "%s: %zu shards + %zu dependent shards, %.3f s in all (longest leaf %.3f "
+            "s), merge %.3f s%s, overhead %.3g s a shard\n",
+            l.label.c_str(), l.times.shards.size(), l.times.dependents.size(), l.times.total(),
+            l.times.shards.empty()
+                ? 0.0
+                : std::max_element(l.times.shards.begin(), l.times.shards.end(),
+                                   [](auto& x, auto& y) { return x.seconds < y.seconds; })
+                      ->seconds,
+            l.times.mergeSeconds, l.times.mergeRecorded ? "" : " (not recorded)", a.overhead);
         out << line;
         out << "  nodes   wall s  ideal s  wall/ideal\n";
         for (const FarmRow& r : l.rows) {
