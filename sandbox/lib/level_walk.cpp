@@ -3,6 +3,7 @@
 #include "assetcooker/lib/level_bake.h"
 #include "components/reflection_probe/distance/distance_level.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
+#include "components/reflection_probe/distance/distance_textures.h"
 #include "components/reflection_probe/probe_setup.h"
 #include "components/reflection_probe/reflector_pixels.h"
 #include "engine/core/error.h"
@@ -11,8 +12,9 @@
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"
 #include "engine/image/contact_sheet.h"
+#include "engine/image/ggx_albedo.h"
 #include "engine/image/image_io.h"
-#include "sandbox/lib/frame_renderer.h"
+#include "sandbox/lib/level_timing.h"
 #include "sandbox/lib/reflection_scene.h"
 
 #include <algorithm>
@@ -102,74 +104,6 @@ std::string weightsText(const CpuDistanceLevel& level, const LevelSample& s) {
     return t.str();
 }
 
-// The level shader's reflector pass for every blend and K = 1, 2, 4 against one probe's
-// envmap pass (the probe nearest to the reflector), all from `camera` with the reflector
-// where it is now. Both probes stay loaded and the reflectors are pointed at one or the
-// other, so a switch uploads nothing but the level's parameter block; the configurations
-// are timed in interleaved rounds (one frame each a round), so a change of load on the
-// machine while timing falls on all of them alike.
-std::vector<LevelPassTime> timeLevelPasses(ReflectionScene& rs, const std::string& levelDir,
-                                           const DistanceProbe& lookup, const CameraView& camera,
-                                           glm::vec3 reflector, std::string& timer) {
-    const std::string index = (fs::path(levelDir) / "level.json").string();
-    const LevelIndex level = readLevelIndex(index);
-    const auto nearest = std::min_element(level.probes.begin(), level.probes.end(),
-                                          [&](const auto& a, const auto& b) {
-                                              return glm::distance(a.volume.position, reflector) <
-                                                     glm::distance(b.volume.position, reflector);
-                                          });
-    ecs::Registry& reg = rs.registry();
-    const ecs::Entity levelProbe = rs.attachProbe(index, DistanceLevel{lookup});
-    DistanceProbe envmap = lookup;
-    envmap.method = DistanceMethod::Envmap;
-    const ecs::Entity envmapProbe = reg.create();
-    reg.emplace<ReflectionProbe>(
-        envmapProbe,
-        ReflectionProbe{(fs::path(levelDir) / nearest->folder / "manifest.json").string()});
-    reg.emplace<DistanceProbe>(envmapProbe, envmap);
-
-    struct Config {
-        LevelPassTime time;
-        std::optional<DistanceLevel> level; // none: the envmap probe
-        std::vector<double> samples;
-    };
-    std::vector<Config> configs{{{"envmap (one probe)", 1, 0, 0, 0}, std::nullopt, {}}};
-    for (const LevelBlend blend : kBlends)
-        for (const int k : {1, 2, 4})
-            if (blend != LevelBlend::Nearest || k == 1) // K does not change the nearest
-                configs.push_back(
-                    {{toString(blend), k, 0, 0, 0}, DistanceLevel{lookup, blend, k}, {}});
-    FrameRenderer fr(rs, camera.width, camera.height);
-    timer = fr.timerSource();
-    const auto use = [&](const Config& c) {
-        const ecs::Entity target = c.level ? levelProbe : envmapProbe;
-        if (c.level) reg.get<DistanceLevel>(levelProbe) = *c.level;
-        reg.view<Reflector>().each([&](ecs::Entity, Reflector& r) { r.probe = target; });
-    };
-    for (const Config& c : configs) { // warm-up: compile every variant, upload every probe
-        use(c);
-        fr.draw(camera);
-    }
-    constexpr int kRounds = 9;
-    for (int round = 0; round < kRounds; ++round)
-        for (Config& c : configs) {
-            use(c);
-            fr.draw(camera); // the parameter upload of a switch lands outside the timed frame
-            fr.draw(camera);
-            c.samples.push_back(fr.passMs());
-        }
-    std::vector<LevelPassTime> times;
-    for (Config& c : configs) {
-        c.time.ms = gpu::medianMs(c.samples);
-        c.time.frames = int(c.samples.size());
-        c.time.ratioToEnvmap =
-            configs.front().time.ms > 0 ? c.time.ms / configs.front().time.ms : 0.0;
-        times.push_back(c.time);
-    }
-    reg.destroy(envmapProbe);
-    return times;
-}
-
 struct FrameImages {
     Image truth, mask;
     std::array<Image, 3> blends;
@@ -208,7 +142,28 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
     DistanceProbe settings;
     settings.method = method->method;
     settings.errorTolerance = o.tolerance;
-    const CpuDistanceLevel level((fs::path(levelDir) / "level.json").string(), settings);
+    // A rough reflector reads every probe's chain (made here as the store makes it).
+    const bool rough = o.roughness > 0.f;
+    const CpuDistanceLevel level((fs::path(levelDir) / "level.json").string(), settings, rough);
+    {
+        // What the level store holds on the GPU: the composites and the sky, plus a rough
+        // reflector's chains (DistanceLevelStore::gpuBytesOf).
+        const DistanceProbeAsset first = readDistanceProbe(
+            (fs::path(levelDir) /
+             readLevelIndex((fs::path(levelDir) / "level.json").string()).probes.front().folder /
+             "manifest.json")
+                .string());
+        const int n = int(level.volumes().size());
+        result.mirrorBytes =
+            cubeArrayBytes(first.faceRes, n) + (first.sky.empty() ? 0 : skyTextureBytes(first.sky));
+        result.chainBytes = rough ? std::size_t(n) * chainArrayBytes(*level.glossyChain(0)) : 0;
+        log << "level textures: " << double(result.mirrorBytes) / (1024.0 * 1024.0)
+            << " MiB (composites and sky)";
+        if (rough)
+            log << " + " << double(result.chainBytes) / (1024.0 * 1024.0) << " MiB of chains (" << n
+                << " probes) at roughness " << o.roughness;
+        log << '\n';
+    }
 
     std::vector<glm::vec3> points = o.path;
     if (points.empty())
@@ -237,7 +192,8 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
     // Both tables are written once, complete and checked (writeFileAtomically), at the end.
     std::ostringstream csv;
     csv << "frame,x,y,z,psnr_nearest,psnr_engine,psnr_visibility,probes_engine,"
-           "hidden_share,fallback_pixels,mirror_pixels\n";
+           "hidden_share,fallback_pixels,mirror_pixels,psnr_visibility_mirror_lookup\n";
+    std::vector<double> mirrorLookupPsnr; // the visibility blend's mirror lookup vs the truth
     std::array<std::vector<double>, 3> psnr, overlapPsnr;
     std::array<double, 3> pop{}, popTruth{}, popExcess{};
     std::array<int, 3> popFrame{};
@@ -258,21 +214,34 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
         const auto [centre, tangent] = path.at(float(f) / float(frames - 1));
         roots.setOffset(scene.registry, centre - anchor);
         const CameraView camera = chaseCamera(centre, tangent, side, o.width, o.height);
-        const GroundTruthTracer tracer(scene.registry, groundTruthOptions(scene, true));
+        TraceOptions traceOptions = groundTruthOptions(scene, true);
+        if (rough) {
+            traceOptions.mirrorRoughness = [r = o.roughness](ecs::Entity) { return r; };
+            traceOptions.glossySamples = o.glossySamples;
+        }
+        const GroundTruthTracer tracer(scene.registry, traceOptions);
         FrameImages img;
         const GroundTruthImage truth = tracer.render(camera);
         img.truth = truth.color;
         img.mask = erodedMask(truth.mirrorMask);
         for (Image& b : img.blends)
             b = truth.color;
+        Image mirrorLookup = truth.color;
         long evaluated = 0, hidden = 0, fallback = 0;
         const std::vector<ReflectorPixel> pixels =
             reflectorPixels(tracer, camera, truth.mirrorMask);
         const long mirrorPixels = long(pixels.size());
-        for (const ReflectorPixel& px : pixels)
+        for (const ReflectorPixel& px : pixels) {
+            // The shader's GGX albedo (1 for a mirror).
+            const float albedo = rough ? ggxAlbedo(std::min(px.cosView(), 1.f), o.roughness) : 1.f;
+            const glm::vec3 m =
+                level.radiance(px.position, px.lhat, LevelBlend::Visibility, o.k, 0.f).radiance;
+            std::copy(&m[0], &m[0] + 3, mirrorLookup.at(px.x, px.y));
             for (std::size_t b = 0; b < kBlends.size(); ++b) {
-                const LevelSample s = level.radiance(px.position, px.lhat, kBlends[b], o.k);
-                std::copy(&s.radiance[0], &s.radiance[0] + 3, img.blends[b].at(px.x, px.y));
+                const LevelSample s =
+                    level.radiance(px.position, px.lhat, kBlends[b], o.k, o.roughness);
+                const glm::vec3 c = albedo * s.radiance;
+                std::copy(&c[0], &c[0] + 3, img.blends[b].at(px.x, px.y));
                 if (kBlends[b] == LevelBlend::Visibility) {
                     evaluated += long(s.weights.size()) + s.hidden;
                     hidden += s.hidden;
@@ -284,8 +253,10 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
                     fetchSum[b][k] +=
                         kKs[k] == o.k
                             ? s.fetches
-                            : level.radiance(px.position, px.lhat, kBlends[b], kKs[k]).fetches;
+                            : level.radiance(px.position, px.lhat, kBlends[b], kKs[k], o.roughness)
+                                  .fetches;
             }
+        }
         pixelSum += double(mirrorPixels);
         lookupSum += double(evaluated);
         hiddenSum += double(hidden);
@@ -310,7 +281,12 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
         }
         csv << ",\"" << weightsText(level, atCentre) << "\","
             << (evaluated ? double(hidden) / double(evaluated) : 0.0) << ',' << fallback << ','
-            << mirrorPixels << '\n';
+            << mirrorPixels;
+        {
+            const ImageStats st = compareImages(mirrorLookup, img.truth, &img.mask);
+            mirrorLookupPsnr.push_back(st.hasPsnr ? std::min(st.psnr, 99.0) : 0.0);
+            csv << ',' << formatPsnr(mirrorLookupPsnr.back()) << '\n';
+        }
         if (previous) {
             const double truthChange =
                 rmsChange(img.truth, previous->truth, img.mask, previous->mask);
@@ -347,7 +323,7 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
         const auto context = gpu::GlContext::createHeadless();
         result.passTimes = timeLevelPasses(reflectionScene, levelDir, settings,
                                            chaseCamera(centre, tangent, side, o.width, o.height),
-                                           centre, result.timer);
+                                           centre, o.roughness, result.timer);
         result.timedFrame = f;
     }
     roots.setOffset(scene.registry, glm::vec3(0.f));
@@ -384,6 +360,14 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
             << "), worst excess over truth " << s.popExcess << '\n';
         result.blends.push_back(s);
     }
+    result.mirrorLookupMeanPsnr = mean(mirrorLookupPsnr);
+    result.mirrorLookupWorstPsnr = worst(mirrorLookupPsnr);
+    summary << "visibility (mirror lookup)," << result.mirrorLookupMeanPsnr << ','
+            << result.mirrorLookupWorstPsnr << ",,,,,,\n";
+    if (rough)
+        log << "visibility with the mirror lookup (what a rough reflector drew before): PSNR mean "
+            << formatPsnr(result.mirrorLookupMeanPsnr) << " worst "
+            << formatPsnr(result.mirrorLookupWorstPsnr) << '\n';
     summary << "\nfetches_per_pixel,k=1,k=2,k=4\n";
     for (std::size_t b = 0; b < kBlends.size(); ++b) {
         summary << toString(kBlends[b]);

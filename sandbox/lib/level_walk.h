@@ -37,6 +37,10 @@ struct LevelWalkOptions {
     float tolerance = 0.01f;       // d_e
     bool progress = true;
     bool timing = true; // the GPU reflector pass per blend and K, against envmap
+    // Every reflector's perceptual roughness (issue 14); > 0: the truth is Embree's GGX
+    // reflection (glossySamples a pixel) and the level reads every probe's chain.
+    float roughness = 0.f;
+    int glossySamples = 256;
 };
 
 struct LevelWalkBlendSummary {
@@ -70,6 +74,11 @@ struct LevelWalkResult {
     std::vector<LevelPassTime> passTimes; // empty without --timing
     int timedFrame = -1;                  // the walk frame they were taken at
     std::string timer;                    // what clock measured them
+    // The visibility blend with the mirror lookup against the same truth (at roughness > 0:
+    // what a rough reflector drew before the level read chains).
+    double mirrorLookupMeanPsnr = 0, mirrorLookupWorstPsnr = 0;
+    // The level store's textures: composites and sky, and the chains a rough reflector adds.
+    std::size_t mirrorBytes = 0, chainBytes = 0;
 };
 
 LevelWalkResult runLevelWalk(const LevelWalkOptions& options, std::ostream& log);

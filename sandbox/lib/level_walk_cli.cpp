@@ -40,7 +40,17 @@ constexpr const char* kLevelDescription =
     "and K = 1, 2, 4 at the frame where probes overlap with the most reflector pixels, and\n"
     "its reflector pass is timed against\n"
     "one probe's envmap pass: DIR/timing.csv (ms and ratio_to_envmap; on a software\n"
-    "rasteriser only the ratios mean something).\n";
+    "rasteriser only the ratios mean something).\n"
+    "\n"
+    "--roughness R gives every reflector that perceptual roughness (issue 14): the truth is\n"
+    "Embree's GGX reflection (--samples a pixel), each probe's share is its own glossy sample\n"
+    "(its GGX chain read at its own hit, the footprint level there) blended with the mirror's\n"
+    "weights, times the GGX albedo; psnr_visibility_mirror_lookup (frames.csv, and the\n"
+    "summary's \"visibility (mirror lookup)\" row) is the visibility blend's mirror lookup\n"
+    "against the same truth, which is what a rough reflector drew before. The log gives the\n"
+    "level's texture memory with and without the chains; the timed level passes draw the\n"
+    "glossy shader, and timing.csv gains the mirror level's visibility K = 4 pass\n"
+    "(\"visibility (mirror)\"), timed in the same rounds.\n";
 
 struct LevelArgs {
     LevelWalkOptions o;
@@ -125,6 +135,12 @@ void addLevelCommand(cli::ToolCli& tool) {
         ->check(CLI::ExistingFile);
     addReflectorOption(sub, a->addedReflectors);
     sub->add_flag("!--no-timing", o.timing, "skip the GPU pass timing (timing.csv)");
+    sub->add_option("--roughness", o.roughness,
+                    "every reflector's perceptual roughness, 0 .. 1 (default 0: mirrors)")
+        ->check(cli::finiteRange(0.0, 1.0));
+    sub->add_option("--samples", o.glossySamples,
+                    "GGX truth samples per pixel at roughness > 0 (default 256)")
+        ->check(CLI::Range(1, 65536));
 }
 
 } // namespace specula::sandbox

@@ -14,6 +14,7 @@
 #include "support/probe_room.h"
 #include "support/scratch_dir_test.h"
 #include "twin_agreement.h"
+#include "two_room_level_gpu_fixture.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -23,32 +24,13 @@
 namespace specula {
 namespace {
 
-const std::string kTwoRooms = std::string(SPECULA_SOURCE_DIR) + "/assets/two_rooms/two_rooms.gltf";
+const std::string& kTwoRooms = test::kTwoRoomsScene;
 constexpr int kWidth = 160, kHeight = 120;
 
-class DistanceLevelGpuTest : public test::ScratchDirTest {
+class DistanceLevelGpuTest : public test::TwoRoomLevelGpuTest {
 protected:
-    DistanceLevelGpuTest() : ScratchDirTest("specula-level-gpu") {}
-
-    static void SetUpTestSuite() { context_ = gpu::GlContext::createHeadless().release(); }
-    static void TearDownTestSuite() { delete context_; }
-
-    std::string bake(test::ProbeRoom& room) {
-        LevelCookOptions o;
-        o.cook.scene = kTwoRooms;
-        o.cook.out = (root_ / "level").string();
-        DistanceCookSettings d;
-        d.faceRes = 64;
-        d.planned = false;
-        o.cook.flavour = d;
-        o.cook.progress = false;
-        return cookLevel(room.probeScene(), o, nullptr).index;
-    }
-
-    static gpu::GlContext* context_;
+    DistanceLevelGpuTest() : TwoRoomLevelGpuTest("specula-level-gpu") {}
 };
-
-gpu::GlContext* DistanceLevelGpuTest::context_ = nullptr;
 
 TEST_F(DistanceLevelGpuTest, ShaderMatchesCpuTwinPerPixelForEveryBlend) {
     test::ProbeRoom room(kTwoRooms, "");

@@ -1,5 +1,7 @@
 #include "distance_level_cpu.h"
 
+#include "components/reflection_probe/distance/distance_glossy_chain.h"
+
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 
@@ -19,6 +21,9 @@ struct LevelTwinHooks {
     const std::vector<ProbeVolume>& volumes;
     const std::vector<int>& order; // blend order
     const std::vector<std::unique_ptr<CpuDistanceProbe>>& twins;
+    // The probes' chains are there: every lookup is the glossy one at `roughness`.
+    bool glossy = false;
+    float roughness = 0.f;
 
     int levelCandidateCount() const { return int(order.size()); }
     int levelCandidate(int i) const { return order[std::size_t(i)]; }
@@ -41,10 +46,16 @@ struct LevelTwinHooks {
     const CpuDistanceProbe& twin(int probe) const { return *twins[std::size_t(probe)]; }
     vec3 local(int probe, vec3 p) const { return p - twin(probe).config().params.centre; }
     vec3 levelRadiance(int probe, vec3 p, vec3 lhat, int& fetches) const {
-        return twin(probe).radiance(local(probe, p), lhat, fetches);
+        if (!glossy) return twin(probe).radiance(local(probe, p), lhat, fetches);
+        const CpuDistanceProbe::GlossySample g =
+            twin(probe).glossySample(local(probe, p), lhat, roughness);
+        fetches += g.fetches;
+        return g.radiance;
     }
     SeenSample levelSeen(int probe, vec3 p, vec3 lhat) const {
-        const CpuDistanceProbe::Seen s = twin(probe).seenRadiance(local(probe, p), lhat);
+        const CpuDistanceProbe::Seen s =
+            glossy ? twin(probe).glossySeen(local(probe, p), lhat, roughness)
+                   : twin(probe).seenRadiance(local(probe, p), lhat);
         SeenSample q;
         q.radiance = s.radiance;
         q.visibility = s.visibility;
@@ -60,7 +71,9 @@ struct LevelTwinHooks {
 };
 } // namespace glsl
 
-CpuDistanceLevel::CpuDistanceLevel(const std::string& path, const DistanceProbe& settings) {
+CpuDistanceLevel::CpuDistanceLevel(const std::string& path, const DistanceProbe& settings,
+                                   bool glossy)
+    : path_(path), glossy_(glossy) {
     DistanceLevel level;
     level.lookup = settings;
     validateDistanceLevel(level, path);
@@ -73,7 +86,8 @@ CpuDistanceLevel::CpuDistanceLevel(const std::string& path, const DistanceProbe&
         assets_.push_back(std::make_unique<DistanceProbeAsset>(
             readDistanceProbe((dir / e.folder / "manifest.json").string())));
         twins_.push_back(std::make_unique<CpuDistanceProbe>(
-            *assets_.back(), makeLookupConfig(settings, *assets_.back())));
+            *assets_.back(), makeLookupConfig(settings, *assets_.back()),
+            glossy ? std::make_shared<const CubeChain>(glossyChainOf(*assets_.back())) : nullptr));
     }
     order_.resize(volumes_.size());
     std::iota(order_.begin(), order_.end(), 0);
@@ -85,19 +99,23 @@ CpuDistanceLevel::CpuDistanceLevel(const std::string& path, const DistanceProbe&
 CpuDistanceLevel::~CpuDistanceLevel() = default;
 
 int CpuDistanceLevel::nearest(glm::vec3 p) const {
-    return glsl::LevelTwinHooks{volumes_, order_, twins_}.levelNearest(p);
+    return glsl::LevelTwinHooks{volumes_, order_, twins_, false, 0.f}.levelNearest(p);
 }
 
 CpuDistanceProbe::Seen CpuDistanceLevel::seen(int i, glm::vec3 p, glm::vec3 lhat) const {
-    const glsl::LevelTwinHooks hooks{volumes_, order_, twins_};
+    const glsl::LevelTwinHooks hooks{volumes_, order_, twins_, false, 0.f};
     return hooks.twin(i).seenRadiance(hooks.local(i, p), lhat);
 }
 
-LevelSample CpuDistanceLevel::radiance(glm::vec3 p, glm::vec3 lhat, LevelBlend blend, int k) const {
+LevelSample CpuDistanceLevel::radiance(glm::vec3 p, glm::vec3 lhat, LevelBlend blend, int k,
+                                       float roughness) const {
+    if (roughness > 0.f && !glossy_)
+        throw Error(path_, "glossy chain",
+                    "a rough lookup needs the level made with its probes' chains (glossy)");
     LevelSample out;
     if (volumes_.empty()) return out;
     // The shared blend's functions are the struct's (non-const) members, as in every twin.
-    glsl::LevelTwinHooks hooks{volumes_, order_, twins_};
+    glsl::LevelTwinHooks hooks{volumes_, order_, twins_, glossy_, roughness};
     const glsl::LevelTwinHooks::LevelBlendSample s =
         hooks.blendLevel(p, lhat, int(blend), std::clamp(k, 1, glsl::kMaxLevelK));
     out.radiance = s.radiance;

@@ -1,10 +1,12 @@
 #include "distance_level_store.h"
 
+#include "components/reflection_probe/distance/distance_glossy_chain.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "components/reflection_probe/distance/distance_textures.h"
 #include "components/reflection_probe/level_index.h"
 #include "engine/core/error.h"
 #include "engine/core/log.h"
+#include "engine/gpu/ggx_albedo_texture.h"
 #include "engine/gpu/shader.h"
 #include "engine/scene/mesh_bounds.h"
 
@@ -47,6 +49,8 @@ int maxLevelProbes() {
 DistanceLevelVariant DistanceLevelVariant::filter() const {
     DistanceLevelVariant v = *this;
     if (v.output != 0) v.features &= ~kFeatureFresnel;
+    // OUTPUT 1 and 2 write no colour; 3 (|n.v|) is the glossy twin's input.
+    if (v.output == 1 || v.output == 2) v.features &= ~kFeatureGlossy;
     return v;
 }
 
@@ -61,6 +65,7 @@ gpu::Program DistanceLevelVariant::build() const {
     for (const DistanceMethodInfo& row : kDistanceMethods)
         if (row.define) defines.push_back(std::string(row.define) + "=" + bit(row.feature));
     defines.push_back("HAS_LAYERS=0");
+    defines.push_back(std::string("HAS_GLOSSY=") + bit(kFeatureGlossy));
     defines.push_back(std::string("HAS_FRESNEL=") + bit(kFeatureFresnel));
     defines.push_back("LEVEL_K=" + std::to_string(k));
     defines.push_back("LEVEL_BLEND=" + std::to_string(blend));
@@ -132,7 +137,44 @@ void DistanceLevelStore::applySettings(DistanceLevelGpu& g, const DistanceLevel&
 std::size_t DistanceLevelStore::gpuBytesOf(const DistanceLevelGpu& g) const {
     const DistanceProbeAsset& a = *g.assets.front();
     return cubeArrayBytes(a.faceRes, int(g.assets.size())) +
-           (a.sky.empty() ? 0 : skyTextureBytes(a.sky));
+           (a.sky.empty() ? 0 : skyTextureBytes(a.sky)) +
+           (g.chains.empty() ? 0 : g.chains.size() * chainArrayBytes(*g.chains.front()));
+}
+
+void DistanceLevelStore::syncReflectors(ecs::Registry& registry, ProbeFrameStats& stats) {
+    registry.view<Reflector>().each([&](ecs::Entity, Reflector& r) {
+        if (!(r.roughness > 0.f)) return;
+        if (const DistanceLevelGpu* g = probe(r.probe)) prepareGlossy(*g, stats);
+    });
+}
+
+void DistanceLevelStore::prepareGlossy(const DistanceLevelGpu& g, ProbeFrameStats& stats) {
+    if (!g.chains.empty()) return;
+    // Every chain made and checked before any is kept (throws before any change).
+    std::vector<std::shared_ptr<const CubeChain>> chains;
+    std::vector<const CubeChain*> all;
+    for (const std::shared_ptr<const DistanceProbeAsset>& a : g.assets) {
+        chains.push_back(std::make_shared<const CubeChain>(glossyChainOf(*a)));
+        all.push_back(chains.back().get());
+        if (chains.back()->levels.size() != chains.front()->levels.size())
+            throw Error(g.indexPath, "probes",
+                        "probe '" + g.volumes[chains.size() - 1].name + "' has a glossy chain of " +
+                            std::to_string(chains.back()->levels.size()) + " levels, probe '" +
+                            g.volumes.front().name + "' one of " +
+                            std::to_string(chains.front()->levels.size()) +
+                            " (one texture array holds every probe's): re-bake the level");
+    }
+    g.chainTexture = uploadChainArrays(all);
+    g.chains = std::move(chains);
+    // The albedo table every rough reflector reads, made with the first chains (one upload).
+    if (!ggxAlbedo_) ggxAlbedo_ = gpu::createGgxAlbedoTexture();
+    ++stats.textureUploads;
+}
+
+const std::vector<std::shared_ptr<const CubeChain>>*
+DistanceLevelStore::glossyChains(ecs::Entity e) const {
+    const DistanceLevelGpu* g = probe(e);
+    return g ? &g->chains : nullptr;
 }
 
 void DistanceLevelStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector,
@@ -152,6 +194,9 @@ void DistanceLevelStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity 
 
     DistanceLevelVariant v{g.methodFeature, settings.k, int(settings.blend), ctx.output};
     if (r.fresnelF0 >= 0.f) v.features |= kFeatureFresnel;
+    if (r.roughness > 0.f) v.features |= kFeatureGlossy; // NaN: a mirror
+    const bool glossy = (v.filter().features & kFeatureGlossy) != 0;
+    if (glossy) prepareGlossy(g, ctx.stats); // made in sync, unless it turned rough since
     gpu::Program& prog = variants_.get(v);
     ctx.stats.drew(v.filter().name());
     prog.use();
@@ -168,6 +213,15 @@ void DistanceLevelStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity 
                             GLsizei(candidates.size()), candidates.data());
     g.params.bind(glsl::kLevelParamsBinding);
     prog.setUniform("uF0", r.fresnelF0);
+    if (glossy) {
+        glBindTextureUnit(3, g.chainTexture.id());
+        prog.setUniform("uLevelChain", 3);
+        prog.setUniform("uChainSlots", chainArraySlots(*g.chains.front()));
+        prog.setUniform("uRoughness", r.roughness);
+        prog.setUniform("uChainLevels", int(g.chains.front()->levels.size()));
+        glBindTextureUnit(4, ggxAlbedo_.id());
+        prog.setUniform("uGgxAlbedo", 4);
+    }
     ctx.scene.drawEntity(reflector, prog);
 }
 

@@ -3,7 +3,8 @@
 // in one texture array, their lookups and volumes in one uniform block, one shader variant
 // per method, K, blend and output. Each reflector draw passes the probes whose influence
 // volume meets the reflector's bounds; each pixel blends up to K of them
-// (shaders/distance_level_reflector.frag).
+// (shaders/distance_level_reflector.frag). A rough reflector (issue 14) also reads every
+// probe's GGX chain: made and uploaded by the first sync that finds one, never otherwise.
 #include "components/reflection_probe/distance/distance_level.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/flavour_store_base.h"
@@ -11,6 +12,7 @@
 #include "components/reflection_probe/shader_variants.h"
 #include "engine/core/glsl_host.h"
 #include "engine/gpu/gl_objects.h"
+#include "engine/image/ggx_prefilter.h"
 
 #include <memory>
 #include <string>
@@ -30,10 +32,16 @@ struct DistanceLevelGpu {
     gpu::Texture sky;
     gpu::UniformBuffer<glsl::LevelParamsBlock> params;
     std::uint32_t methodFeature = 0; // the permutation bit of the settings' method
+    // Every probe's composite GGX chain (glossyChainOf; blend order) and their levels 1.. in
+    // one array (uploadChainArrays): made by the first sync that finds a rough reflector of
+    // the level, since only rough reflectors read them (mutable: the store's hooks get the
+    // level const). Empty while every reflector is a mirror.
+    mutable std::vector<std::shared_ptr<const CubeChain>> chains;
+    mutable gpu::Texture chainTexture;
 };
 
 struct DistanceLevelVariant {
-    std::uint32_t features = 0; // the method's bit and kFeatureFresnel
+    std::uint32_t features = 0; // the method's bit, kFeatureGlossy and kFeatureFresnel
     int k = 4;
     int blend = 2;
     int output = 0;
@@ -53,6 +61,12 @@ public:
     std::string_view flavour() const override { return "distance-level"; }
     std::string_view settingsName() const override { return "DistanceLevel"; }
 
+    // Makes the glossy chains of every level a rough reflector reads.
+    void syncReflectors(ecs::Registry& registry, ProbeFrameStats& stats) override;
+    // The chains a synced level's rough reflectors read (empty before one did; blend order,
+    // as DistanceLevelGpu::volumes): what the CPU twin reads too.
+    const std::vector<std::shared_ptr<const CubeChain>>* glossyChains(ecs::Entity level) const;
+
 private:
     DistanceLevelGpu loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) override;
     void applySettings(DistanceLevelGpu& level, const DistanceLevel& settings,
@@ -61,7 +75,11 @@ private:
     void drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector, const Reflector& r,
                        const DistanceLevelGpu& level, const DistanceLevel& settings) override;
 
+    // The level's chains and their texture, unless it has them.
+    void prepareGlossy(const DistanceLevelGpu& level, ProbeFrameStats& stats);
+
     SharedAssets<DistanceProbeAsset> assets_;
+    gpu::Texture ggxAlbedo_; // E(n.v, roughness) for rough reflectors, made with a chain
     ShaderVariants<DistanceLevelVariant> variants_;
     std::unordered_set<ecs::Entity> warnedOutside_;
 };

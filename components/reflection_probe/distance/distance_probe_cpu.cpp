@@ -118,8 +118,9 @@ struct TwinSingle : TwinFetches {
 #include "components/reflection_probe/distance/shaders/distance_seen.glsl.h"
 // The glossy path (HAS_GLOSSY): the seam-free chain sampler,
 #include "engine/math/cube_chain_sample.glsl.h"
-// then the lookup that reads the chain at the hit.
+// then the lookup that reads the chain at the hit, and with its verdict (levels).
 #include "components/reflection_probe/distance/shaders/distance_glossy_lookup.glsl.h"
+#include "components/reflection_probe/distance/shaders/distance_glossy_seen.glsl.h"
 };
 #undef HAS_LAYERS
 #undef SPECULA_DISTANCE_LOOKUP_GLSL_H
@@ -255,6 +256,16 @@ CpuDistanceProbe::GlossySample CpuDistanceProbe::glossySample(glm::vec3 x, glm::
 
 CpuDistanceProbe::Seen CpuDistanceProbe::seenRadiance(glm::vec3 x, glm::vec3 lhat) const {
     const auto s = twin_->single.probeSampleSeen(x, lhat, config_.params);
+    return {s.radiance, s.visibility, s.seen, s.fetches, s.t};
+}
+
+CpuDistanceProbe::Seen CpuDistanceProbe::glossySeen(glm::vec3 x, glm::vec3 lhat,
+                                                    float roughness) const {
+    if (!glossy_)
+        throw Error(twin_->single.asset->manifestPath, "glossy chain",
+                    "a glossy lookup needs the composite's prefiltered chain (glossyChainOf)");
+    const auto s = twin_->single.probeGlossySeen(x, lhat, roughness, config_.params,
+                                                 int(glossy_->levels.size()));
     return {s.radiance, s.visibility, s.seen, s.fetches, s.t};
 }
 

@@ -34,6 +34,11 @@ public:
         float t = 0.f; // along the ray to the hit it proposes (d_inf: the sky)
     };
     Seen seenRadiance(glm::vec3 x, glm::vec3 lhat) const;
+    // seenRadiance with the radiance of glossySample's chain read at the same hit (the
+    // verdict is the mirror ray's; shaders/distance_glossy_seen.glsl.h): what a level blends
+    // for a rough reflector. Roughness <= 0 is seenRadiance exactly. Throws Error when the
+    // probe was made without a chain.
+    Seen glossySeen(glm::vec3 x, glm::vec3 lhat, float roughness) const;
 
     // The composite's (layer 0) lookup by params.method alone, as radiance() runs it without
     // layers, with the distance t along the ray to what it found (the glossy lookup reads

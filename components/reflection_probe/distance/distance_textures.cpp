@@ -85,40 +85,60 @@ int chainMips(const CubeChain& chain) {
 } // namespace
 
 gpu::Texture uploadChainArray(const CubeChain& chain) {
-    if (chain.levels.size() < 2) return {};
+    return uploadChainArrays({&chain});
+}
+
+gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains) {
+    if (chains.empty() || chains.front()->levels.size() < 2) return {};
+    const CubeChain& first = *chains.front();
     // The shader computes level i's size from the composite's (chainFaceRes).
-    const int n = chain.levels[0][0].width;
-    for (std::size_t i = 1; i < chain.levels.size(); ++i) {
-        const int want = std::max(1, n >> std::min(int(i), 30));
-        for (int f = 0; f < 6; ++f) {
-            const Image& face = chain.levels[i][std::size_t(f)];
-            if (face.width != want || face.height != want || face.channels != 4)
-                throw Error("", "glossy level " + std::to_string(i) + " face " + std::to_string(f),
-                            "expected " + std::to_string(want) + "x" + std::to_string(want) +
-                                " RGBA, got " + std::to_string(face.width) + "x" +
-                                std::to_string(face.height) + " with " +
-                                std::to_string(face.channels) + " channels");
+    const int n = first.levels[0][0].width;
+    for (std::size_t c = 0; c < chains.size(); ++c) {
+        const std::string chain = chains.size() > 1 ? "chain " + std::to_string(c) + " " : "";
+        if (chains[c]->levels.size() != first.levels.size() || chains[c]->levels[0][0].width != n)
+            throw Error("", chain + "levels",
+                        "every chain of one array has chain 0's " +
+                            std::to_string(first.levels.size()) + " levels of " +
+                            std::to_string(n) + "^2 faces");
+        for (std::size_t i = 1; i < first.levels.size(); ++i) {
+            const int want = std::max(1, n >> std::min(int(i), 30));
+            for (int f = 0; f < 6; ++f) {
+                const Image& face = chains[c]->levels[i][std::size_t(f)];
+                if (face.width != want || face.height != want || face.channels != 4)
+                    throw Error("",
+                                chain + "glossy level " + std::to_string(i) + " face " +
+                                    std::to_string(f),
+                                "expected " + std::to_string(want) + "x" + std::to_string(want) +
+                                    " RGBA, got " + std::to_string(face.width) + "x" +
+                                    std::to_string(face.height) + " with " +
+                                    std::to_string(face.channels) + " channels");
+            }
         }
     }
-    const int base = chain.levels[1][0].width, mips = chainMips(chain);
-    const int slots = int(chain.levels.size()) - mips; // level i at slot i - 1 - mip
+    const int base = first.levels[1][0].width, mips = chainMips(first);
+    const int slots = int(first.levels.size()) - mips; // level i at slot i - 1 - mip
     gpu::Texture array = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
     const GLuint tex = array.id();
-    glTextureStorage3D(tex, mips, GL_RGBA32F, base, base, 6 * slots);
-    for (std::size_t i = 1; i < chain.levels.size(); ++i) {
-        const int mip = std::min(int(i) - 1, mips - 1), slot = int(i) - 1 - mip;
-        for (int f = 0; f < 6; ++f) {
-            const Image& face = chain.levels[i][std::size_t(f)];
-            glTextureSubImage3D(tex, mip, 0, 0, 6 * slot + f, face.width, face.height, 1, GL_RGBA,
-                                GL_FLOAT, face.pixels.data());
+    glTextureStorage3D(tex, mips, GL_RGBA32F, base, base, 6 * slots * int(chains.size()));
+    for (std::size_t c = 0; c < chains.size(); ++c)
+        for (std::size_t i = 1; i < first.levels.size(); ++i) {
+            const int mip = std::min(int(i) - 1, mips - 1), slot = int(i) - 1 - mip;
+            for (int f = 0; f < 6; ++f) {
+                const Image& face = chains[c]->levels[i][std::size_t(f)];
+                glTextureSubImage3D(tex, mip, 0, 0, 6 * (int(c) * slots + slot) + f, face.width,
+                                    face.height, 1, GL_RGBA, GL_FLOAT, face.pixels.data());
+            }
         }
-    }
     // Read by texelFetch only; nearest filters keep the texture complete at every mip.
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return array;
+}
+
+int chainArraySlots(const CubeChain& chain) {
+    return chain.levels.size() < 2 ? 0 : int(chain.levels.size()) - chainMips(chain);
 }
 
 std::size_t chainArrayBytes(const CubeChain& chain) {

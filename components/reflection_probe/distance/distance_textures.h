@@ -9,6 +9,7 @@
 #include "engine/image/ggx_prefilter.h"
 
 #include <cstddef>
+#include <vector>
 
 namespace specula {
 
@@ -35,6 +36,13 @@ std::size_t layerTileBytes(const LayerTiles& tiles);
 // mip pyramid (1 x 1 faces) in the last mip, six more layers each. Null for a chain of one
 // level. Throws Error when level i's faces are not max(1, n >> i) square RGBA (n: level 0's).
 gpu::Texture uploadChainArray(const CubeChain& chain);
+// Several chains of the same shape (a level's probes) in one such array: chain c's level i at
+// array layers 6 (c slots + s) + face, where slots = chainArraySlots (array layers of one
+// chain / 6) and s the level's slot in its mip as above; chain 0 is laid out exactly as
+// uploadChainArray lays out a single chain. Throws Error naming the chain when one differs in
+// levels or face size from chain 0. Its bytes: chainArrayBytes(chain 0) x chains.
+gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains);
+int chainArraySlots(const CubeChain& chain);
 std::size_t chainArrayBytes(const CubeChain& chain);
 
 // The equirectangular sky, bilinear, repeating around the horizon.

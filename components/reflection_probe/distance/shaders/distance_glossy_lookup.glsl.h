@@ -29,11 +29,13 @@ SHARED_CONST int kGlossyChainFetches = 8;
 
 // The prefiltered radiance of a GGX lobe about the unit mirror direction lhat leaving the
 // probe-local point x, for perceptual roughness `roughness` (alpha = roughness^2, clamped to
-// [0, 1]), over a chain of `levels` levels. Roughness <= 0 (or NaN) is the mirror lookup,
-// exactly probeRadiance: no chain read.
-GlossySample probeGlossySample(vec3 x, vec3 lhat, float roughness, DistanceParams p,
-                               int levels) {
-    LayerHit h = probeHit(x, lhat, p);
+// [0, 1]), over a chain of `levels` levels, where the mirror search of x along lhat by
+// `method` found h (probeHit; layered mode passes a searching method: its nearest hit is a
+// search's). Roughness <= 0 (or NaN) is the mirror lookup, exactly probeRadiance: no chain
+// read. Apart from probeGlossySample so that a level (distance_glossy_seen.glsl.h) reads the
+// chain at the hit its visibility verdict was taken on, with no second search.
+GlossySample glossyAtHit(vec3 x, vec3 lhat, float roughness, int method, int levels,
+                         LayerHit h) {
     GlossySample s;
     s.radiance = h.radiance;
     s.level = 0.0f;
@@ -47,19 +49,25 @@ GlossySample probeGlossySample(vec3 x, vec3 lhat, float roughness, DistanceParam
         }
         return s;
     }
-#if HAS_LAYERS
-    bool byDirection = !h.hit;
-    bool footprint = true;
-#else
-    bool byDirection = !h.hit || p.method == kMethodEnvmap;
-    bool footprint = p.method != kMethodBoxProj;
-#endif
+    bool byDirection = !h.hit || method == kMethodEnvmap;
+    bool footprint = method != kMethodBoxProj;
     s.level = footprint && !byDirection ? glossyFootprintLevel(roughness, x, lhat, h.t, levels)
                                         : glossyRoughnessLevel(roughness, levels);
     s.radiance = sampleCubeChain(byDirection ? lhat : x + h.t * lhat, s.level, levels);
     // The hit's own radiance fetch is not spent: the chain read replaces it.
     s.fetches += kGlossyChainFetches - (h.hit ? 1 : 0);
     return s;
+}
+
+// glossyAtHit at the probe's own mirror search.
+GlossySample probeGlossySample(vec3 x, vec3 lhat, float roughness, DistanceParams p,
+                               int levels) {
+#if HAS_LAYERS
+    int method = kMethodSecant; // the nearest object layer's hit: the footprint level there
+#else
+    int method = p.method;
+#endif
+    return glossyAtHit(x, lhat, roughness, method, levels, probeHit(x, lhat, p));
 }
 
 #endif

@@ -13,7 +13,9 @@
 //   int   levelNearest(vec3 p)                  the probe nearest to p (of the whole level)
 //   vec3  levelRadiance(int probe, vec3 p, vec3 lhat, INOUT(int) fetches)   its plain lookup
 //   SeenSample levelSeen(int probe, vec3 p, vec3 lhat)   its lookup with its verdict
-// All points are in world space; the hooks make them probe-local.
+// All points are in world space; the hooks make them probe-local. For a rough reflector
+// (issue 14) the two lookup hooks return each probe's glossy sample with the mirror ray's
+// verdict (distance_glossy_seen.glsl.h): the weights here are the mirror's either way.
 #ifndef SPECULA_DISTANCE_LEVEL_BLEND_GLSL_H
 #define SPECULA_DISTANCE_LEVEL_BLEND_GLSL_H
 

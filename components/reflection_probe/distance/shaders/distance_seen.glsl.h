@@ -36,16 +36,19 @@ float surfaceAgreement(vec3 q, DistanceParams p) {
     return clamp(2.0f - min(min(e.x, e.y), min(e.z, e.w)) / band, 0.0f, 1.0f);
 }
 
-// The probe's composite lookup of the ray x + t lhat (probe-local) with its verdict: the
-// reflector point's visibility, times, for a rectifying method, the agreement of the stored
-// distance at the hit the search ended on with the hit's own distance (a search that found
-// no crossing ends where they disagree).
-SeenSample probeSampleSeen(vec3 x, vec3 lhat, DistanceParams p) {
+// The composite's lookup of the ray x + t lhat (probe-local) that seenAtHit judges.
+LayerHit seenLookup(vec3 x, vec3 lhat, DistanceParams p) {
+    return lookupLayer(p.method, 0, x, lhat, p, makeSpan(0.0f, 2.0f * p.range, p.maxSteps));
+}
+
+// The verdict on h, the composite's lookup of the ray x + t lhat (probe-local, seenLookup):
+// the reflector point's visibility, times, for a rectifying method, the agreement of the
+// stored distance at the hit the search ended on with the hit's own distance (a search that
+// found no crossing ends where they disagree).
+SeenSample seenAtHit(vec3 x, vec3 lhat, DistanceParams p, LayerHit h) {
     SeenSample s;
     s.visibility = pointVisibility(x, p);
-    s.fetches = 1;
-    LayerHit h = lookupLayer(p.method, 0, x, lhat, p, makeSpan(0.0f, 2.0f * p.range, p.maxSteps));
-    s.fetches += h.fetches;
+    s.fetches = 1 + h.fetches;
     s.t = h.t;
     if (!h.hit) {
         s.radiance = fetchSky(lhat);
@@ -60,6 +63,11 @@ SeenSample probeSampleSeen(vec3 x, vec3 lhat, DistanceParams p) {
     }
     s.seen = s.visibility >= 0.5f;
     return s;
+}
+
+// The probe's composite lookup of the ray x + t lhat (probe-local) with its verdict.
+SeenSample probeSampleSeen(vec3 x, vec3 lhat, DistanceParams p) {
+    return seenAtHit(x, lhat, p, seenLookup(x, lhat, p));
 }
 
 #endif
