@@ -202,7 +202,9 @@ Image farmPlot(const std::vector<FarmLevel>& levels, double overhead, int w, int
     for (double l = ly0; l <= ly1 + 1e-9; l += 1) {
         const int y = Y(std::exp2(l));
         cv.line(left, y, right, y, grid);
-        cv.text(left - 8, y + 5, plotNumber("%.3g", std::exp2(l)), 13, axis, TextAlignX::Right);
+        // Whole seconds from 1 s up (%.3g would print 1024 as 1.02e+03).
+        cv.text(left - 8, y + 5, plotNumber(l >= 0 ? "%.0f" : "%.3g", std::exp2(l)), 13, axis,
+                TextAlignX::Right);
     }
     cv.box(left, top, right, bottom, axis, false);
     cv.text((left + right) / 2, h - 14, "nodes (log scale)", 14, axis, TextAlignX::Center);
