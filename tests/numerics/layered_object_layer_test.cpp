@@ -8,6 +8,7 @@
 //   - a torus lying flat below the view: along a ray through its near tube, the hole and its
 //     far tube, f = stored distance - |l| crosses zero more than once inside the layer's box.
 #include "numerics_common.h"
+#include "support/lookup_config.h"
 
 #include <random>
 
@@ -39,11 +40,7 @@ glm::vec3 randomInBall(float r) {
 
 // Layered mode with the object layer's cooked method (the manifest's "method").
 DistanceLookupConfig cookedLayered(const DistanceProbeAsset& a, float de = 0.01f) {
-    DistanceProbe p;
-    p.method = DistanceMethod::Layered;
-    p.layerMethod = DistanceMethod::Envmap; // not a per-layer method: the cooked one
-    p.errorTolerance = de;
-    return makeLookupConfig(p, a);
+    return test::lookupConfigOf(a, DistanceMethod::Layered, de); // the layers' cooked methods
 }
 
 // The shader against the twin on the same rays: hit or sky alike and the radiance within

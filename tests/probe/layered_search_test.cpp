@@ -13,6 +13,7 @@
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
 #include "engine/raytrace/ground_truth.h"
+#include "support/lookup_config.h"
 #include "support/mirror_rays.h"
 #include "support/probe_room.h"
 
@@ -70,11 +71,7 @@ Scene cookAndTrace(const std::string& name, const std::string& gltf) {
 
 DistanceLookupConfig layeredConfig(const DistanceProbeAsset& a, DistanceMethod layerMethod,
                                    float de) {
-    DistanceProbe p;
-    p.method = DistanceMethod::Layered;
-    p.layerMethod = layerMethod; // Envmap: the cooked methods
-    p.errorTolerance = de;
-    return makeLookupConfig(p, a);
+    return test::lookupConfigOf(a, DistanceMethod::Layered, de, layerMethod);
 }
 
 // Sign changes of f over [t0, t1] (d_inf counts as f > 0, as the searches read it).
