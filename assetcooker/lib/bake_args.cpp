@@ -37,6 +37,7 @@ CookOptions cookOptions(const BakeArgs& a) {
         s.regularisation = a.smoothness;
         s.localLayer = a.localLayer;
         s.mipLevels = a.mipLevels;
+        s.rows = a.rows;
         o.flavour = s;
     } else {
         DistanceCookSettings s;
@@ -282,6 +283,14 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
                          "footprint): 1 (default) .. log2(face res) + 1"),
          "pem")
         ->check(CLI::Range(1, 16));
+    only(sub->add_option("--rows", a.rows,
+                         "the rendering matrix's rows against the antialiased image (each "
+                         "pixel's mean radiance over its --supersample sub-rays): pixel (the "
+                         "mean of the sub-rays' lookups), centre (the lookup of the pixel's "
+                         "centre ray, as the rasteriser draws it; odd --supersample), or subray "
+                         "(one row per traced ray against its own radiance; default)"),
+         "pem")
+        ->check(CLI::IsMember({"pixel", "centre", "subray"}));
     only(sub->add_option("--parameter", a.parameter,
                          "what the maps vary with: viewpoint (the camera moves, default) or "
                          "reflector (the reflectors move before the scene camera)"),
@@ -307,6 +316,7 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
     tool.mapField("path", "--path");
     tool.mapField("local_layer", "--local-layer");
     tool.mapField("mip_levels", "--mip-levels");
+    tool.mapField("rows", "--rows");
     tool.mapField("geometry", "--geometry");
     tool.mapField("prior_weight", "--prior");
     tool.mapField("regularisation", "--smoothness");

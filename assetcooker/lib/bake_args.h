@@ -36,6 +36,7 @@ struct BakeArgs {
     float prior = 0.05f, smoothness = 0.02f;
     std::string parameter = "viewpoint", path = "orbit";
     std::string localLayer = "auto";
+    std::string rows = "subray";
     // The options that belong to some flavours only, with their names ("distance|pem").
     std::vector<std::pair<const CLI::Option*, std::string>> flavourOnly;
 };

@@ -33,9 +33,10 @@ void measureOffManifold(const PemAsset& asset, const PemCookSettings& s, const P
         block.layerB = 6 * w.b;
         block.wb = w.wb;
         const PemProbeCpu twin(asset, block);
-        (*hooks.fits)[std::size_t(k)].psnrOff = pemSamplesPsnr(trace(t), [&](const PemSample& p) {
-            return twin.radiance(p.x, p.l, p.onHull, p.footprint());
-        });
+        (*hooks.fits)[std::size_t(k)].psnrOff = pemSamplesPsnr(
+            trace(t),
+            [&](const PemSample& p) { return twin.radiance(p.x, p.l, p.onHull, p.footprint()); },
+            pemRows(s));
         if (hooks.progress) hooks.progress(0.5 + 0.5 * double(k + 1) / double(s.samples));
     }
 }
@@ -88,7 +89,8 @@ PemAsset cookPemAsset(ProbeScene& scene, const PemCookSettings& s, const PemCook
             fit.localLayer = decision.local;
             fit.selfHitFraction = pemCoverage(samples).fraction();
             fit.psnrOn = pemSamplesPsnr(
-                samples, [&](const PemSample& p) { return sampleRadiance(m, decision.local, p); });
+                samples, [&](const PemSample& p) { return sampleRadiance(m, decision.local, p); },
+                pemRows(s));
             hooks.fits->push_back(fit);
         }
         maps.push_back(std::move(m));

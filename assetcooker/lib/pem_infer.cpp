@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 namespace specula {
@@ -97,6 +98,83 @@ int appendLevelRows(int faceRes, int levels, double lambda, int row,
 
 } // namespace
 
+double pemRowsRms(const PemSamples& samples, const std::vector<std::vector<int>>& dataRows,
+                  PemRows rows, const std::function<glm::vec3(const PemSample&)>& radiance) {
+    double sum = 0;
+    for (const std::vector<int>& members : dataRows) {
+        glm::dvec3 shown(0.0), target(0.0);
+        const std::size_t used = rows == PemRows::Centre ? 1 : members.size();
+        for (std::size_t m = 0; m < members.size(); ++m) {
+            const PemSample& p = samples[std::size_t(members[m])];
+            if (m < used) shown += glm::dvec3(radiance(p));
+            target += glm::dvec3(p.target);
+        }
+        const glm::dvec3 d = shown / double(used) - target / double(members.size());
+        sum += glm::dot(d, d);
+    }
+    return dataRows.empty() ? 0.0 : std::sqrt(sum / (3.0 * double(dataRows.size())));
+}
+
+std::vector<std::vector<int>> pemDataRows(const PemSamples& samples, PemRows rows) {
+    std::vector<int> order(samples.size());
+    std::iota(order.begin(), order.end(), 0);
+    if (rows != PemRows::SubRay)
+        std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+            return samples[std::size_t(a)].pixel < samples[std::size_t(b)].pixel;
+        });
+    std::vector<std::vector<int>> out;
+    int previous = -1;
+    for (const int s : order) {
+        const int pixel = samples[std::size_t(s)].pixel;
+        if (rows == PemRows::SubRay || pixel < 0 || out.empty() || pixel != previous)
+            out.emplace_back();
+        out.back().push_back(s);
+        previous = pixel;
+    }
+    if (rows != PemRows::Centre) return out;
+    // The centre ray first; a pixel without one is not drawn as reflector. A sample of
+    // pixel -1 is its own centre.
+    std::vector<std::vector<int>> kept;
+    kept.reserve(out.size());
+    for (std::vector<int>& members : out) {
+        const auto c = std::find_if(members.begin(), members.end(), [&](int s) {
+            return samples[std::size_t(s)].centre || samples[std::size_t(s)].pixel < 0;
+        });
+        if (c == members.end()) continue;
+        std::rotate(members.begin(), c, c + 1);
+        kept.push_back(std::move(members));
+    }
+    return kept;
+}
+
+void pemRowWeights(const PemLookupCpu& lookup, const PemSamples& samples,
+                   const std::vector<int>& members, PemRows rows,
+                   std::vector<std::pair<int, double>>& out) {
+    out.clear();
+    PemWeights w;
+    const std::size_t used = rows == PemRows::Centre ? 1 : members.size();
+    for (std::size_t m = 0; m < used; ++m) {
+        const int s = members[m];
+        const PemSample& p = samples[std::size_t(s)];
+        lookup.weights(p.x, p.l, w, p.footprint());
+        for (const auto& [t, weight] : w)
+            out.emplace_back(t, double(weight));
+    }
+    // By texel, sub-rays in sample order within one (a fixed summation order).
+    std::stable_sort(out.begin(), out.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        if (kept > 0 && out[kept - 1].first == out[i].first)
+            out[kept - 1].second += out[i].second;
+        else
+            out[kept++] = out[i];
+    }
+    out.resize(kept);
+    for (auto& [t, weight] : out)
+        weight /= double(used);
+}
+
 std::vector<std::pair<int, int>> pemNeighbourPairs(int faceRes) {
     const int n = faceRes;
     auto index = [n](int face, int i, int j) { return (face * n + j) * n + i; };
@@ -145,20 +223,29 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     const int texels = PemMap::texelCount(o.faceRes, o.mipLevels);
     const PemLookupCpu lookup(map); // weights need the geometry only
 
-    // Rows 0 .. S-1: one per sample, the lookup's weights. Then one row per neighbour pair.
+    // Data rows first (pemDataRows): a row's mean weights (pemRowWeights) times sqrt(count),
+    // weighed as the count rows it stands for; then one row per neighbour pair.
     using Triplet = Eigen::Triplet<double>;
     std::vector<Triplet> entries;
     std::vector<char> seen(std::size_t(texels), 0);
-    PemWeights w;
-    const int sampleRows = int(samples.size());
-    for (int s = 0; s < sampleRows; ++s) {
-        const PemSample& p = samples[std::size_t(s)];
-        lookup.weights(p.x, p.l, w, p.footprint());
+    std::vector<std::pair<int, double>> w;
+    const std::vector<std::vector<int>> dataRows = pemDataRows(samples, o.rows);
+    const int sampleRows = int(dataRows.size());
+    if (sampleRows == 0)
+        throw Error("", "samples", "expected a pixel's centre ray among the samples (centre rows)");
+    // A row's right-hand side is sqrt(count) * mean target = (sum of targets) * sumScale.
+    std::vector<double> sumScale(dataRows.size());
+    for (int row = 0; row < sampleRows; ++row) {
+        const std::vector<int>& members = dataRows[std::size_t(row)];
+        sumScale[std::size_t(row)] = 1.0 / std::sqrt(double(members.size()));
+        pemRowWeights(lookup, samples, members, o.rows, w);
+        const double scale = std::sqrt(double(members.size()));
         for (const auto& [t, weight] : w) {
-            entries.emplace_back(s, t, double(weight));
+            entries.emplace_back(row, t, weight * scale);
             seen[std::size_t(t)] = 1;
         }
     }
+    r.dataRows = sampleRows;
     r.unseenTexels = int(std::count(seen.begin(), seen.end(), char(0)));
     int rows = sampleRows;
     if (o.regularisation > 0.f) {
@@ -199,8 +286,13 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     // texel, so the residual below can look it up; the caller keeps its own.
     if (o.alphaTargets || o.local) map.alpha.assign(std::size_t(texels), 0.f);
     for (int c = 0; c < channels; ++c) {
-        for (int s = 0; s < sampleRows; ++s)
-            b[s] = c < 3 ? samples[std::size_t(s)].target[c] : (*o.alphaTargets)[std::size_t(s)];
+        for (int row = 0; row < sampleRows; ++row) {
+            double sum = 0;
+            for (const int s : dataRows[std::size_t(row)])
+                sum += c < 3 ? double(samples[std::size_t(s)].target[c])
+                             : double((*o.alphaTargets)[std::size_t(s)]);
+            b[row] = sum * sumScale[std::size_t(row)];
+        }
         if (usePrior)
             for (int t = 0; t < texels; ++t)
                 b[priorRow + t] = c < 3 ? double(o.priorWeight) * prior[std::size_t(t)][c] : 0.0;
@@ -220,13 +312,10 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     }
 
     // The residual of what will be displayed: the clamped map through the lookup itself.
-    double sum = 0;
-    for (const PemSample& p : samples) {
-        const glm::dvec3 d =
-            glm::dvec3(lookup.radiance(p.x, p.l, p.footprint())) - glm::dvec3(p.target);
-        sum += glm::dot(d, d);
-    }
-    r.residualRms = std::sqrt(sum / (3.0 * double(samples.size())));
+    // A row's residual as it was fitted (pemRowsRms).
+    r.residualRms = pemRowsRms(samples, dataRows, o.rows, [&](const PemSample& p) {
+        return lookup.radiance(p.x, p.l, p.footprint());
+    });
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return r;
 }

@@ -9,6 +9,7 @@
 #include "components/reflection_probe/pem/pem_lookup_cpu.h"
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -35,10 +36,31 @@ struct PemSample {
     // of x and l along the window's x and y, per displayed pixel), which picks the MIP level
     // of multi-level maps. Zero: level 0.
     glm::vec3 dxdX{0.f}, dxdY{0.f}, dldX{0.f}, dldY{0.f};
+    // The displayed pixel the ray is a sub-ray of (tracePemSamples: row-major in the camera
+    // image, from its top row), which PemRows::Pixel and Centre average over; -1: a row of
+    // its own. centre: the ray through the pixel's centre (every ray at supersample 1, the
+    // middle sub-ray at an odd supersample), the one the rasteriser shades.
+    int pixel = -1;
+    bool centre = false;
 
     PemFootprint footprint() const { return {dxdX, dxdY, dldX, dldY}; }
 };
 using PemSamples = std::vector<PemSample>;
+
+// What one data row of the rendering matrix is. SubRay: each traced ray, its own lookup
+// weights against its own radiance. Pixel and Centre (Hakura §4: the target is the
+// antialiased image): the sub-rays of one displayed pixel (PemSample::pixel) make one row
+// whose target is the mean of their radiances (and coverage); its weights are, for Pixel,
+// the mean of the sub-rays' lookup weights (a renderer that supersamples), for Centre, the
+// lookup weights of the pixel's centre ray alone (PemSample::centre: what the rasteriser
+// draws, one lookup a pixel at its footprint; a pixel whose centre misses the reflector is
+// not drawn as reflector and has no row). A row is scaled by sqrt(count) so that it weighs
+// in the least squares as the count rows it replaces (the smoothness and prior weights keep
+// their meaning at any supersampling; a pixel only partly on the reflector counts for its
+// covered part). A pixel's rays that miss every reflector are not traced, so the mean is
+// over the sub-rays that land on one (every reflector reads the same maps). Supersample 1
+// gives the SubRay rows exactly, whichever kind.
+enum class PemRows { SubRay, Pixel, Centre };
 
 struct PemInferOptions {
     int faceRes = 32;                    // 1 .. 1024
@@ -74,22 +96,45 @@ struct PemInferOptions {
     // the level above, so a level no footprint reaches becomes the filtered one. 1 for a local
     // layer. warmStart then holds every level.
     int mipLevels = 1;
+    PemRows rows = PemRows::SubRay;
 };
 
 struct PemInference {
-    PemMap map;                      // clamped to [0, kMaxRadiance]
-    double residualRms = 0;          // over the samples and RGB, of the clamped map as looked up
+    PemMap map; // clamped to [0, kMaxRadiance]
+    // Over the data rows and RGB (pemRowsRms: a pixel row shows its sub-rays' mean lookup, a
+    // centre row its centre ray's, against their mean target), of the clamped map.
+    double residualRms = 0;
+    int dataRows = 0;                // rows of the rendering matrix from the samples (PemRows)
     std::array<int, 3> iterations{}; // conjugate-gradient iterations per channel
     double solverError = 0;          // largest relative error estimate the solver reported
     double seconds = 0;              // building A, solving, measuring the residual
     int unseenTexels = 0;            // texels no sample reads with a weight above zero
 };
 
-// Throws Error naming the field: "samples" (none; a non-finite x, l or target; l not unit),
-// "face_res", "box", "regularisation", "tolerance", "max_iterations", "warm_start", "prior",
-// "prior_weight", "distance.*" (checkPemDistanceGeometry), "local" (a radius not > 0, or
-// alpha targets without a sphere or not one per finite sample in [0, 1]), "mip_levels".
+// Throws Error naming the field: "samples" (none; a non-finite x, l or target; l not unit;
+// Centre rows without a centre ray), "face_res", "box", "regularisation", "tolerance",
+// "max_iterations", "warm_start", "prior", "prior_weight", "distance.*"
+// (checkPemDistanceGeometry), "local" (a radius not > 0, or alpha targets without a sphere
+// or not one per finite sample in [0, 1]), "mip_levels".
 PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o);
+
+// The data rows `rows` makes of `samples`: the samples' indices of each row, rows in order of
+// their pixel (rows of pixel -1 first, one sample each, in sample order), each row's samples
+// in sample order except that a Centre row starts with its centre ray (a pixel without one
+// makes no Centre row). SubRay: one row per sample, in order.
+std::vector<std::vector<int>> pemDataRows(const PemSamples& samples, PemRows rows);
+
+// One data row's weights before inferPemMap's sqrt(count) scale, as (texel, weight) pairs by
+// ascending texel, each texel once: lookup.weights at each sample's x, l and footprint,
+// averaged over `members` (a row of pemDataRows), or for Centre those of members.front().
+void pemRowWeights(const PemLookupCpu& lookup, const PemSamples& samples,
+                   const std::vector<int>& members, PemRows rows,
+                   std::vector<std::pair<int, double>>& out);
+
+// RMS over RGB and `dataRows` (pemDataRows(samples, rows)) of what each row shows (`radiance`
+// averaged over its samples, or for Centre its centre ray's) against its mean target.
+double pemRowsRms(const PemSamples& samples, const std::vector<std::vector<int>>& dataRows,
+                  PemRows rows, const std::function<glm::vec3(const PemSample&)>& radiance);
 
 // Every unordered pair of texels that share a texel edge, within a face or across a cube
 // edge (texel indices as PemMap), each pair once with first < second: 12 N^2 pairs, every

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 
 namespace specula {
 
@@ -88,14 +89,28 @@ PemLayers inferPemLayers(const PemSamples& samples, const PemInferOptions& dista
     out.distant = inferPemMap(d, distant);
     out.seconds = out.distant.seconds;
 
+    // The local rows' rays: those off the hull; with centre rows, every sub-ray of a pixel
+    // whose centre ray leaves off the hull (the pixel draws the composite, its antialiased
+    // coverage counting the hull sub-rays as 0). `full`: each one's full radiance (a ray that
+    // does not meet its reflector again has distant == target).
+    const bool centreRows = local.rows == PemRows::Centre;
+    std::unordered_set<int> offHullCentres;
+    if (centreRows)
+        for (const PemSample& s : samples)
+            if (s.centre && !s.onHull && s.pixel >= 0) offHullCentres.insert(s.pixel);
     PemSamples l;
     std::vector<float> alpha;
+    std::vector<glm::vec3> full;
     for (const PemSample& s : samples) {
-        if (s.onHull) continue;
+        const bool drawn =
+            centreRows && s.pixel >= 0 ? offHullCentres.contains(s.pixel) : !s.onHull;
+        if (!drawn) continue;
+        const bool self = !s.onHull && s.selfHit;
         PemSample row = s;
-        row.target = s.selfHit ? s.target : glm::vec3(0.f);
+        row.target = self ? s.target : glm::vec3(0.f);
         l.push_back(row);
-        alpha.push_back(s.selfHit ? 1.f : 0.f);
+        alpha.push_back(self ? 1.f : 0.f);
+        full.push_back(s.target);
     }
     PemInferOptions o = local;
     o.local = sphere;
@@ -120,14 +135,19 @@ PemLayers inferPemLayers(const PemSamples& samples, const PemInferOptions& dista
     // The solves are apart, but a pixel shows the composite: where the coverage the lookup
     // reads is not the ray's own 0 or 1 (smoothing, bilinear across an alpha edge), the
     // distant layer leaks in. Refit the premultiplied RGB to what the composite still lacks,
-    // full - (1 - alpha) distant, given the two maps just inferred (alpha is kept).
+    // full - (1 - alpha) distant, given the two maps just inferred (alpha is kept), both
+    // looked up where the row's pixel shows them: at each ray, or with centre rows at the
+    // pixel's centre ray for all its sub-rays (their mean is then the pixel's target).
     const PemLookupCpu localLookup(out.local.map), distantLookup(out.distant.map);
-    for (std::size_t r = 0; r < l.size(); ++r) {
-        const glm::vec4 over = localLookup.localRadiance(l[r].x, l[r].l);
-        const glm::vec3 full = alpha[r] > 0.f ? l[r].target : l[r].distant;
-        l[r].target =
-            full - (1.f - over.a) * distantLookup.radiance(l[r].x, l[r].l, l[r].footprint());
-    }
+    const std::vector<std::vector<int>> rows = pemDataRows(l, o.rows);
+    for (const std::vector<int>& members : rows)
+        for (const int r : members) {
+            const PemSample& at = l[std::size_t(centreRows ? members.front() : r)];
+            const glm::vec4 over = localLookup.localRadiance(at.x, at.l);
+            l[std::size_t(r)].target =
+                full[std::size_t(r)] -
+                (1.f - over.a) * distantLookup.radiance(at.x, at.l, at.footprint());
+        }
     const std::vector<float> keptAlpha = out.local.map.alpha;
     const std::vector<glm::vec3> first = out.local.map.texels;
     o.alphaTargets = nullptr;

@@ -8,7 +8,12 @@
 // reflector again, 0 elsewhere (the supersampled fraction then comes out of the least
 // squares). Composite: local.rgb + (1 - local.a) distant. Every map is linear in its texels,
 // so each is one least-squares solve (inferPemMap); rays leaving a hull triangle
-// (PemSample::onHull) never read the local layer and are left out of its rows.
+// (PemSample::onHull) never read the local layer and are left out of its rows. With pixel
+// rows (PemInferOptions::rows) a pixel's local row is the mean over its off-hull sub-rays
+// (its coverage target their fraction that meets the reflector again: antialiased alpha);
+// with centre rows a pixel draws the local layer where its centre ray is off the hull, and
+// its local row averages all its sub-rays (hull ones count as coverage 0), looked up at the
+// centre ray as the rasteriser does.
 #include "assetcooker/lib/pem_infer.h"
 #include "components/reflection_probe/pem/pem_asset.h"
 

@@ -126,14 +126,21 @@ PemSamples tracePemSamples(const GroundTruthTracer& tracer, const CameraView& ca
                                              ? -hit->geometricNormal
                                              : hit->geometricNormal;
                     PemSample s;
+                    const int ss = o.supersample;
+                    s.pixel = (y / ss) * camera.width + x / ss;
+                    s.centre = ss % 2 == 1 && x % ss == ss / 2 && y % ss == ss / 2;
                     s.x = hit->position - probeCentre;
                     s.l = glm::normalize(glm::reflect(dir, n));
                     const glm::vec3 origin2 = offsetAlong(hit->position, ng);
                     s.target = tracer.radiance(origin2, s.l, 1);
                     if (o.layers) traceLayers(tracer, *hit, origin2, o, s);
-                    if (o.registry)
-                        fillFootprint(*o.registry, fine, x, y, *hit, probeCentre,
-                                      float(o.supersample), s);
+                    // The centre ray is the displayed pixel's own: its quad is the
+                    // rasteriser's, one displayed pixel apart.
+                    if (o.registry && s.centre)
+                        fillFootprint(*o.registry, camera, x / ss, y / ss, *hit, probeCentre, 1.f,
+                                      s);
+                    else if (o.registry)
+                        fillFootprint(*o.registry, fine, x, y, *hit, probeCentre, float(ss), s);
                     rows[std::size_t(y)].push_back(s);
                 }
         });
@@ -180,6 +187,13 @@ void validatePemCookSettings(const PemCookSettings& s, const std::string& file) 
     requireRange(file, "mip_levels", s.mipLevels, 1, PemMap::maxLevels(s.faceRes));
     if (s.localSphere != "bound" && s.localSphere != "fit")
         throw Error(file, "local_sphere", "expected bound or fit, got '" + s.localSphere + "'");
+    if (s.rows != "pixel" && s.rows != "centre" && s.rows != "subray")
+        throw Error(file, "rows", "expected pixel, centre or subray, got '" + s.rows + "'");
+    if (s.rows == "centre" && s.supersample % 2 == 0)
+        throw Error(file, "rows",
+                    "'centre' needs a sub-ray through each pixel's centre: an odd supersample, "
+                    "got " +
+                        std::to_string(s.supersample));
     if (s.parameter != "viewpoint" && s.parameter != "reflector")
         throw Error(file, "parameter",
                     "expected viewpoint or reflector, got '" + s.parameter + "'");
@@ -197,14 +211,15 @@ void validatePemCookSettings(const PemCookSettings& s, const std::string& file) 
 }
 
 double pemSamplesPsnr(const PemSamples& samples,
-                      const std::function<glm::vec3(const PemSample&)>& radiance) {
-    double sum = 0;
-    for (const PemSample& p : samples) {
-        const glm::dvec3 d = glm::dvec3(radiance(p)) - glm::dvec3(p.target);
-        sum += glm::dot(d, d);
-    }
-    const double mse = samples.empty() ? 0.0 : sum / (3.0 * double(samples.size()));
-    return 10.0 * std::log10(1.0 / std::max(mse, 1e-12));
+                      const std::function<glm::vec3(const PemSample&)>& radiance, PemRows rows) {
+    const double rms = pemRowsRms(samples, pemDataRows(samples, rows), rows, radiance);
+    return 10.0 * std::log10(1.0 / std::max(rms * rms, 1e-12));
+}
+
+PemRows pemRows(const PemCookSettings& s) {
+    return s.rows == "subray"   ? PemRows::SubRay
+           : s.rows == "centre" ? PemRows::Centre
+                                : PemRows::Pixel;
 }
 
 } // namespace specula

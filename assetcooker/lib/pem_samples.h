@@ -41,7 +41,10 @@ struct PemSampleOptions {
 
 // One PemSample per (sub-pixel) primary ray that hits a reflector of the markup: x = hit -
 // probeCentre, l = the mirror direction about the shading normal (turned to the viewer, as
-// the tracer does), target = the tracer's radiance along l from just off the surface.
+// the tracer does), target = the tracer's radiance along l from just off the surface,
+// pixel = the camera pixel it is a sub-ray of, centre = whether it is that pixel's middle
+// sub-ray (PemSample::pixel, centre; at an odd supersample the pixel's own centre ray, whose
+// footprint is then the displayed pixel's quad as at supersample 1).
 // Traced in parallel rows, concatenated in row order: the same samples every run. Throws
 // Error naming the scene and "specula_reflector" (the markup has no reflector), "camera"
 // (the camera sees no reflector pixel) or "supersample".
@@ -94,6 +97,14 @@ struct PemCookSettings {
     // MIP levels of the distant maps, all inferred together (PemInferOptions::mipLevels), 1 ..
     // PemMap::maxLevels(faceRes); 1: level 0 alone, as before MIP levels existed.
     int mipLevels = 1;
+    // The rendering matrix's data rows (PemRows), against the antialiased image (each
+    // displayed pixel's mean radiance over its sub-rays, Hakura §4): "pixel", the mean of
+    // the sub-rays' lookups; "centre" (an odd supersample), the lookup of the pixel's centre
+    // ray, as the rasteriser draws it; or "subray", one row per traced ray against its own
+    // radiance (the default: the bench's truth is one ray a pixel, against which centre rows
+    // lose on level 0 while they win against the antialiased image, pem_pixel_rows_test).
+    // All the same with supersample 1.
+    std::string rows = "subray";
 };
 
 // How well one sample's map fits, measured by the cooker against the ray tracer on the
@@ -115,7 +126,7 @@ struct PemSampleFit {
 
 // Throws Error naming the field ("samples", "face_res", "supersample", "regularisation",
 // "image_size", "geometry", "prior_weight" (needs the distance geometry), "parameter", "path",
-// "local_layer", "local_face_res", "local_sphere", "mip_levels").
+// "local_layer", "local_face_res", "local_sphere", "mip_levels", "rows").
 void validatePemCookSettings(const PemCookSettings& s, const std::string& file);
 
 // What the cooking API gives every baker: the probe centre, a progress callback (fraction of
@@ -145,9 +156,14 @@ Aabb pemMapBox(const ProbeScene& scene, glm::vec3 centre);
 // scene and "cancelled".
 PemAsset cookPemAsset(ProbeScene& scene, const PemCookSettings& s, const PemCookHooks& hooks);
 
-// PSNR (peak 1, over RGB) of `radiance(sample)` against the samples' targets; 120 dB when
-// they agree exactly.
+// PSNR (peak 1, over RGB) of `radiance(sample)` against the samples' targets, over the data
+// rows `rows` makes of them (pemRowsRms: Pixel and Centre compare against each pixel's mean
+// over its sub-rays, the antialiased image); 120 dB when they agree exactly.
 double pemSamplesPsnr(const PemSamples& samples,
-                      const std::function<glm::vec3(const PemSample&)>& radiance);
+                      const std::function<glm::vec3(const PemSample&)>& radiance,
+                      PemRows rows = PemRows::SubRay);
+
+// The settings' rows as the inference takes them.
+PemRows pemRows(const PemCookSettings& s);
 
 } // namespace specula

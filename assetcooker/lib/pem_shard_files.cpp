@@ -14,15 +14,17 @@ namespace {
 
 constexpr char kTraceMagic[8] = {'S', 'P', 'P', 'E', 'M', 'T', 'R', 'C'};
 constexpr char kMapMagic[8] = {'S', 'P', 'P', 'E', 'M', 'M', 'A', 'P'};
-constexpr std::uint32_t kVersion = 1;
+// 2: PemSample::pixel and centre.
+constexpr std::uint32_t kVersion = 2;
 
 // Every member of a PemSample, in file order. The structured binding names them all: a
 // member added to PemSample stops this from compiling until it is listed here.
 template <class S, class F> void pemSampleFields(S& s, F&& f) {
-    auto& [x, l, target, distant, selfHit, onHull, dxdX, dxdY, dldX, dldY] = s;
+    auto& [x, l, target, distant, selfHit, onHull, dxdX, dxdY, dldX, dldY, pixel, centre] = s;
     f("x", x), f("l", l), f("target", target), f("distant", distant);
     f("self_hit", selfHit), f("on_hull", onHull);
-    f("dxdX", dxdX), f("dxdY", dxdY), f("dldX", dldX), f("dldY", dldY);
+    f("dxdX", dxdX), f("dxdY", dxdY), f("dldX", dldX), f("dldY", dldY), f("pixel", pixel);
+    f("centre", centre);
 }
 
 // Every member of a PemMap, in file order (the distance cube as a flag: it is the asset's).

@@ -348,7 +348,11 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
             !opt.quick && (scenePath == defaultScenePath() || scenePath == bowlRoomPath());
         const PemBenchSweep pemSweep{sampleSweep ? std::vector<int>{4, 8, 16, 32}
                                                  : std::vector<int>{8},
-                                     std::min(report.faceRes, 256), report.width, report.height};
+                                     std::min(report.faceRes, 256),
+                                     report.width,
+                                     report.height,
+                                     opt.pemSupersample,
+                                     opt.pemRows};
         appendErrorBudgets(scene, cam, truth, name, probeDir, report.faceRes, opt.progress,
                            variants, report.rows, budgets, log);
         sceneNames.push_back(name);

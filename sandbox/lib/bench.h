@@ -22,6 +22,10 @@ struct BenchOptions {
     bool progress = true;
     // Test mirrors added to every benched scene (--add-reflector).
     std::vector<AddedReflector> addedReflectors;
+    // The PEM bakes' rays per pixel side and rendering-matrix rows (PemCookSettings
+    // supersample, rows): --pem-supersample, --pem-rows.
+    int pemSupersample = 1;
+    std::string pemRows = "subray";
 };
 
 struct BenchRow {

@@ -45,6 +45,8 @@ struct PemBenchSweep {
     std::vector<int> samples; // e.g. {4, 8, 16, 32}
     int faceRes = 128;
     int width = 0, height = 0;
+    int supersample = 1;         // PemCookSettings::supersample
+    std::string rows = "subray"; // PemCookSettings::rows
 };
 
 // The PEM rows of one scene, appended to report.rows and the scene's plot panel: per sample

@@ -102,6 +102,8 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
         PemCookSettings settings =
             sandboxPemSettings({sweep.faceRes, sweep.width, sweep.height}, samples);
         if (bakes[b].single) settings.localLayer = "off";
+        settings.supersample = sweep.supersample;
+        settings.rows = sweep.rows;
         log << sceneName << ": baking the PEM (" << samples << " viewpoints, " << settings.faceRes
             << "^2 faces, inferred for " << sweep.width << "x" << sweep.height << ")\n"
             << std::flush;

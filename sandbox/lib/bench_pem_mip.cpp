@@ -59,6 +59,8 @@ void appendPemMipRows(ReflectionScene& scene, FrameRenderer& fr, const std::stri
         sandboxPemSettings({sweep.faceRes, sweep.width, sweep.height}, samples);
     settings.localLayer = baked.localLayer ? "on" : "off"; // as the level-0 bake decided
     settings.mipLevels = levels;
+    settings.supersample = sweep.supersample;
+    settings.rows = sweep.rows;
     const PemAsset filtered = filteredMipAsset(baked, levels);
     CookResult mip;
     try {

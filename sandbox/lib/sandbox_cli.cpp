@@ -177,6 +177,13 @@ void addBenchCommand(cli::ToolCli& tool) {
                     "timed frames per row at most (default 64, quick 12)")
         ->check(CLI::Range(4, 1000));
     sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
+    sub->add_option("--pem-supersample", o.pemSupersample,
+                    "rays per pixel side of the PEM bakes (default 1)")
+        ->check(CLI::Range(1, 16));
+    sub->add_option("--pem-rows", o.pemRows,
+                    "the PEM rendering matrix's rows (specula-cook bake --rows): pixel, centre "
+                    "or subray (default)")
+        ->check(CLI::IsMember({"pixel", "centre", "subray"}));
     addReflectorOption(sub, a->addedReflectors, " (added to every benched scene)");
 }
 
