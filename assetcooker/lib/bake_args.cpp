@@ -38,6 +38,7 @@ CookOptions cookOptions(const BakeArgs& a) {
         s.localLayer = a.localLayer;
         s.mipLevels = a.mipLevels;
         s.rows = a.rows;
+        s.nonNegative = a.nonNegative == "on";
         o.flavour = s;
     } else {
         DistanceCookSettings s;
@@ -291,6 +292,12 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
                          "(one row per traced ray against its own radiance; default)"),
          "pem")
         ->check(CLI::IsMember({"pixel", "centre", "subray"}));
+    only(sub->add_option("--non-negative", a.nonNegative,
+                         "keep the inferred texels >= 0 (and the local layer's coverage in "
+                         "[0, 1]) by re-solving with the crossing texels pinned at the bound, "
+                         "instead of clamping afterwards: on or off (default)"),
+         "pem")
+        ->check(CLI::IsMember({"on", "off"}));
     only(sub->add_option("--parameter", a.parameter,
                          "what the maps vary with: viewpoint (the camera moves, default) or "
                          "reflector (the reflectors move before the scene camera)"),
@@ -317,6 +324,7 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
     tool.mapField("local_layer", "--local-layer");
     tool.mapField("mip_levels", "--mip-levels");
     tool.mapField("rows", "--rows");
+    tool.mapField("non_negative", "--non-negative");
     tool.mapField("geometry", "--geometry");
     tool.mapField("prior_weight", "--prior");
     tool.mapField("regularisation", "--smoothness");

@@ -128,6 +128,7 @@ PemBake::PemBake(ProbeScene& scene, const PemCookSettings& s, std::optional<glm:
     infer_.boxMax = box.max;
     infer_.regularisation = s.regularisation;
     infer_.rows = pemRows(s);
+    infer_.nonNegative = s.nonNegative;
     if ((needs & Infer) && s.geometry == "distance") {
         // The environment does not move with either parameter: one distance cube serves every
         // sample. d_inf past any real distance: every environment point lies in the box.

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -94,6 +95,76 @@ int appendLevelRows(int faceRes, int levels, double lambda, int row,
         ++row;
     });
     return row;
+}
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+using Solver = Eigen::LeastSquaresConjugateGradient<SparseMatrix>;
+
+struct ChannelSolve {
+    Eigen::VectorXd x;
+    int iterations = 0;
+    double error = 0;
+    int pinned = 0; // texels pinned at a bound
+    int passes = 0; // re-solves run
+};
+
+// The least-squares solution of A x = b from `guess` (`full`: the solver computed on A); with
+// `bounded`, the active-set passes of PemInferOptions::nonNegative keeping x in [0, upper].
+// A pinned texel's column times its bound moves to the right-hand side, its column leaves
+// the matrix (A S, S selecting the free columns), and the rest are solved again from where
+// the previous pass left them.
+ChannelSolve solveChannel(const SparseMatrix& A, Solver& full, const Eigen::VectorXd& b,
+                          const Eigen::VectorXd& guess, bool bounded, double upper,
+                          const PemInferOptions& o) {
+    ChannelSolve out;
+    out.x = full.solveWithGuess(b, guess);
+    out.iterations = int(full.iterations());
+    out.error = double(full.error());
+    if (!bounded) return out;
+    const Eigen::Index n = A.cols();
+    std::vector<signed char> pinned(std::size_t(n), 0); // 0 free, -1 at 0, +1 at upper
+    for (int pass = 0; pass < kPemBoundPasses; ++pass) {
+        bool crossed = false;
+        for (Eigen::Index t = 0; t < n; ++t) {
+            signed char& p = pinned[std::size_t(t)];
+            if (p != 0 || !(out.x[t] < 0.0 || out.x[t] > upper)) continue;
+            p = out.x[t] < 0.0 ? -1 : 1;
+            crossed = true;
+            ++out.pinned;
+        }
+        if (!crossed) break;
+        std::vector<Eigen::Triplet<double>> select;
+        Eigen::VectorXd fixed = Eigen::VectorXd::Zero(n), start;
+        for (Eigen::Index t = 0; t < n; ++t) {
+            const signed char p = pinned[std::size_t(t)];
+            if (p == 0)
+                select.emplace_back(int(t), int(select.size()), 1.0);
+            else if (p > 0)
+                fixed[t] = upper;
+        }
+        if (select.empty()) {
+            out.x = fixed;
+            break;
+        }
+        SparseMatrix S(n, Eigen::Index(select.size()));
+        S.setFromTriplets(select.begin(), select.end());
+        const SparseMatrix free = A * S;
+        start.resize(S.cols());
+        for (std::size_t i = 0; i < select.size(); ++i)
+            start[Eigen::Index(i)] = out.x[select[i].row()];
+        Solver solver;
+        solver.setTolerance(o.tolerance);
+        solver.setMaxIterations(o.maxIterations);
+        solver.compute(free);
+        const Eigen::VectorXd y = solver.solveWithGuess(b - A * fixed, start);
+        out.x = fixed;
+        for (std::size_t i = 0; i < select.size(); ++i)
+            out.x[select[i].row()] = y[Eigen::Index(i)];
+        out.iterations += int(solver.iterations());
+        out.error = std::max(out.error, double(solver.error()));
+        ++out.passes;
+    }
+    return out;
 }
 
 } // namespace
@@ -274,7 +345,7 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     A.setFromTriplets(entries.begin(), entries.end());
 
     // The matrix is the same for R, G and B: one preconditioner, three right-hand sides.
-    Eigen::LeastSquaresConjugateGradient<Eigen::SparseMatrix<double>> solver;
+    Solver solver;
     solver.setTolerance(o.tolerance);
     solver.setMaxIterations(o.maxIterations);
     solver.compute(A);
@@ -300,9 +371,15 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
         if (o.warmStart && c < 3)
             for (int t = 0; t < texels; ++t)
                 guess[t] = (*o.warmStart)[std::size_t(t)][c];
-        const Eigen::VectorXd x = solver.solveWithGuess(b, guess);
-        if (c < 3) r.iterations[std::size_t(c)] = int(solver.iterations());
-        r.solverError = std::max(r.solverError, double(solver.error()));
+        // Radiance has no upper bound before the clamp; coverage is at most 1.
+        const ChannelSolve solved =
+            solveChannel(A, solver, b, guess, o.nonNegative,
+                         c < 3 ? std::numeric_limits<double>::infinity() : 1.0, o);
+        const Eigen::VectorXd& x = solved.x;
+        if (c < 3) r.iterations[std::size_t(c)] = solved.iterations;
+        r.solverError = std::max(r.solverError, solved.error);
+        r.pinnedTexels[std::size_t(c)] = solved.pinned;
+        r.boundPasses += solved.passes;
         for (int t = 0; t < texels; ++t) {
             if (c < 3)
                 map.texels[std::size_t(t)][c] = toRange(x[t]);

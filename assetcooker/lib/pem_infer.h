@@ -97,7 +97,19 @@ struct PemInferOptions {
     // layer. warmStart then holds every level.
     int mipLevels = 1;
     PemRows rows = PemRows::SubRay;
+    // Active-set bounds (issue 12): the unconstrained solve drives texels far below zero
+    // (-4 to -10 on the room) to buy residual elsewhere, and clamping them afterwards throws
+    // that fit away. When set, after each solve every free texel below its bound (RGB < 0;
+    // the local layer's alpha < 0 or > 1) is pinned there, removed as an unknown, and the
+    // rest solved again warm-started from the previous solution, for at most
+    // kPemBoundPasses re-solves per channel or until no new texel crosses. Pinned texels stay
+    // pinned (no release step: deterministic and bounded); what still crosses after the last
+    // pass is clamped as before.
+    bool nonNegative = false;
 };
+
+// Re-solves of the active-set bounds (PemInferOptions::nonNegative) per channel at most.
+constexpr int kPemBoundPasses = 3;
 
 struct PemInference {
     PemMap map; // clamped to [0, kMaxRadiance]
@@ -109,6 +121,10 @@ struct PemInference {
     double solverError = 0;          // largest relative error estimate the solver reported
     double seconds = 0;              // building A, solving, measuring the residual
     int unseenTexels = 0;            // texels no sample reads with a weight above zero
+    // nonNegative: the texels pinned at a bound per channel (R, G, B, alpha), and the
+    // re-solves run (all channels together).
+    std::array<int, 4> pinnedTexels{};
+    int boundPasses = 0;
 };
 
 // Throws Error naming the field: "samples" (none; a non-finite x, l or target; l not unit;

@@ -105,6 +105,9 @@ struct PemCookSettings {
     // lose on level 0 while they win against the antialiased image, pem_pixel_rows_test).
     // All the same with supersample 1.
     std::string rows = "subray";
+    // Keep the inferred texels >= 0 by active-set re-solves (PemInferOptions::nonNegative)
+    // instead of clamping the unconstrained solution afterwards.
+    bool nonNegative = false;
 };
 
 // How well one sample's map fits, measured by the cooker against the ray tracer on the

@@ -352,7 +352,8 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
                                      report.width,
                                      report.height,
                                      opt.pemSupersample,
-                                     opt.pemRows};
+                                     opt.pemRows,
+                                     opt.pemNonNegative};
         appendErrorBudgets(scene, cam, truth, name, probeDir, report.faceRes, opt.progress,
                            variants, report.rows, budgets, log);
         sceneNames.push_back(name);

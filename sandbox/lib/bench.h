@@ -23,9 +23,10 @@ struct BenchOptions {
     // Test mirrors added to every benched scene (--add-reflector).
     std::vector<AddedReflector> addedReflectors;
     // The PEM bakes' rays per pixel side and rendering-matrix rows (PemCookSettings
-    // supersample, rows): --pem-supersample, --pem-rows.
+    // supersample, rows, nonNegative): --pem-supersample, --pem-rows, --pem-non-negative.
     int pemSupersample = 1;
     std::string pemRows = "subray";
+    bool pemNonNegative = false;
 };
 
 struct BenchRow {

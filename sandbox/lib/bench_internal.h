@@ -47,6 +47,7 @@ struct PemBenchSweep {
     int width = 0, height = 0;
     int supersample = 1;         // PemCookSettings::supersample
     std::string rows = "subray"; // PemCookSettings::rows
+    bool nonNegative = false;    // PemCookSettings::nonNegative
 };
 
 // The PEM rows of one scene, appended to report.rows and the scene's plot panel: per sample

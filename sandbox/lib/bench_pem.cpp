@@ -104,6 +104,7 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
         if (bakes[b].single) settings.localLayer = "off";
         settings.supersample = sweep.supersample;
         settings.rows = sweep.rows;
+        settings.nonNegative = sweep.nonNegative;
         log << sceneName << ": baking the PEM (" << samples << " viewpoints, " << settings.faceRes
             << "^2 faces, inferred for " << sweep.width << "x" << sweep.height << ")\n"
             << std::flush;

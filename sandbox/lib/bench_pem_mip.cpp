@@ -61,6 +61,7 @@ void appendPemMipRows(ReflectionScene& scene, FrameRenderer& fr, const std::stri
     settings.mipLevels = levels;
     settings.supersample = sweep.supersample;
     settings.rows = sweep.rows;
+    settings.nonNegative = sweep.nonNegative;
     const PemAsset filtered = filteredMipAsset(baked, levels);
     CookResult mip;
     try {

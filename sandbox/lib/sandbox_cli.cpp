@@ -138,6 +138,7 @@ struct BenchArgs {
     std::string size;
     std::optional<int> faceRes, maxFrames;
     std::vector<std::string> addedReflectors;
+    std::string pemNonNegative = "off";
 };
 
 int runBenchCommand(BenchArgs& a, std::ostream& out) {
@@ -146,6 +147,7 @@ int runBenchCommand(BenchArgs& a, std::ostream& out) {
     if (!a.size.empty()) cli::parseSize(a.size, o.width, o.height);
     o.faceRes = a.faceRes.value_or(0);
     o.maxFrames = a.maxFrames.value_or(0);
+    o.pemNonNegative = a.pemNonNegative == "on";
     CreatedOutputFolder created(o.outDir);
     const BenchReport r = runBench(o, out);
     created.keep();
@@ -184,6 +186,10 @@ void addBenchCommand(cli::ToolCli& tool) {
                     "the PEM rendering matrix's rows (specula-cook bake --rows): pixel, centre "
                     "or subray (default)")
         ->check(CLI::IsMember({"pixel", "centre", "subray"}));
+    sub->add_option("--pem-non-negative", a->pemNonNegative,
+                    "the PEM bakes keep their texels >= 0 by re-solving (specula-cook bake "
+                    "--non-negative): on or off (default)")
+        ->check(CLI::IsMember({"on", "off"}));
     addReflectorOption(sub, a->addedReflectors, " (added to every benched scene)");
 }
 
