@@ -19,6 +19,7 @@
 #include "engine/math/cube_face.h"
 #include "engine/raytrace/ground_truth.h"
 #include "engine/scene/shading.h"
+#include "support/composite_probe.h"
 #include "support/lookup_config.h"
 #include "support/mirror_rays.h"
 #include "support/probe_room.h"
@@ -94,19 +95,8 @@ TEST(DistanceBracketDiagnosis, ErrorByBracketOutcome) {
 
     test::ProbeRoom scene(std::string(SPECULA_SOURCE_DIR) + "/assets/" + sceneName + "/" +
                           sceneName + ".gltf");
-    const std::string dir = (std::filesystem::temp_directory_path() /
-                             ("specula-bracket-diag-" + std::to_string(::getpid())))
-                                .string();
-    DistanceCookSettings s;
-    s.faceRes = faces;
-    s.planned = s.recordPlan = false;
-    CookOptions o;
-    o.out = dir;
-    o.flavour = s;
-    o.progress = false;
-    cookProbe(scene.probeScene(), o, nullptr);
-    const DistanceProbeAsset asset = readDistanceProbe(dir + "/manifest.json");
-    std::filesystem::remove_all(dir);
+    const DistanceProbeAsset asset =
+        test::cookedCompositeProbe(scene, faces, "specula-bracket-diag");
 
     const TraceOptions opts = groundTruthOptions(scene.probeScene(), true);
     const GroundTruthTracer tracer(scene.registry(), opts);

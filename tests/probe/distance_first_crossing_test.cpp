@@ -12,6 +12,7 @@
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
 #include "engine/raytrace/ground_truth.h"
+#include "support/composite_probe.h"
 #include "support/lookup_config.h"
 #include "support/mirror_rays.h"
 #include "support/probe_room.h"
@@ -42,23 +43,11 @@ struct Ray {
 
 struct Fixture {
     ProbeRoom scene;
-    std::string dir;
     DistanceProbeAsset asset;
     std::vector<Ray> rays;
 
     Fixture() {
-        dir = (std::filesystem::temp_directory_path() /
-               ("specula-first-crossing-" + std::to_string(::getpid())))
-                  .string();
-        DistanceCookSettings s;
-        s.faceRes = kFaceRes;
-        s.planned = s.recordPlan = false;
-        CookOptions o;
-        o.out = dir;
-        o.flavour = s;
-        o.progress = false;
-        cookProbe(scene.probeScene(), o, nullptr);
-        asset = readDistanceProbe(dir + "/manifest.json");
+        asset = cookedCompositeProbe(scene, kFaceRes, "specula-first-crossing");
 
         const TraceOptions opts = groundTruthOptions(scene.probeScene(), true);
         const GroundTruthTracer tracer(scene.registry(), opts);
@@ -67,7 +56,6 @@ struct Fixture {
             rays.push_back(
                 {m.position - asset.centre, m.dir, m.env.distance, m.env.radiance, m.env.hit});
     }
-    ~Fixture() { std::filesystem::remove_all(dir); }
 
     // The twin's distance fetch: the composite's nearest texel.
     float stored(glm::vec3 l) const {

@@ -36,10 +36,6 @@ protected:
     static void setRoughness(test::ProbeRoom& room, float r) {
         room.registry().view<Reflector>().each([&](ecs::Entity, Reflector& c) { c.roughness = r; });
     }
-    static CameraView doorwayCamera() {
-        return CameraView::lookAt(glm::vec3(-1.4f, 1.5f, 1.0f), glm::vec3(0.2f, 1.2f, 0.f),
-                                  glm::vec3(0, 1, 0), glm::radians(40.f), kWidth, kHeight);
-    }
     static bool anyGlossy(const std::vector<std::string>& names) {
         return std::any_of(names.begin(), names.end(), [](const std::string& n) {
             return n.find("glossy") != std::string::npos;
@@ -58,7 +54,7 @@ TEST_F(LevelGlossyGpuTest, ShaderMatchesCpuTwinPerPixelForEveryBlend) {
     test::ProbeRoom room(kTwoRooms, "");
     const std::string index = bake(room);
     room.setReflectorOffset(glm::vec3(1.2f, 0.f, 0.f));
-    const CameraView cam = doorwayCamera();
+    const CameraView cam = doorwayCamera(kWidth, kHeight);
     const Image mask = erodedMask(room.groundTruth(cam, true).mirrorMask);
     test::RoomRenderer renderer(room, kWidth, kHeight);
     std::unique_ptr<CpuDistanceLevel> twin;
@@ -135,7 +131,7 @@ TEST_F(LevelGlossyGpuTest, MirrorsDrawTheMirrorShaderAndUploadNoChain) {
     DistanceLevel settings;
     settings.lookup.method = DistanceMethod::Secant;
     room.setProbe(index, settings);
-    const CameraView cam = doorwayCamera();
+    const CameraView cam = doorwayCamera(kWidth, kHeight);
     test::RoomRenderer renderer(room, kWidth, kHeight);
     setRoughness(room, 0.f);
     const Image before = renderer.render(cam);

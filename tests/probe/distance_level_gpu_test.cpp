@@ -38,9 +38,7 @@ TEST_F(DistanceLevelGpuTest, ShaderMatchesCpuTwinPerPixelForEveryBlend) {
     // The mirror sphere (authored at x = -1 in room A) moved into the doorway (the wall at
     // x = 0), where both probes' influence volumes rise over their blend distances.
     room.setReflectorOffset(glm::vec3(1.2f, 0.f, 0.f));
-    const CameraView cam =
-        CameraView::lookAt(glm::vec3(-1.4f, 1.5f, 1.0f), glm::vec3(0.2f, 1.2f, 0.f),
-                           glm::vec3(0, 1, 0), glm::radians(40.f), kWidth, kHeight);
+    const CameraView cam = doorwayCamera(kWidth, kHeight);
     const Image mask = erodedMask(room.groundTruth(cam, true).mirrorMask);
     test::RoomRenderer renderer(room, kWidth, kHeight);
     for (const LevelBlend blend : {LevelBlend::Nearest, LevelBlend::Engine, LevelBlend::Visibility})

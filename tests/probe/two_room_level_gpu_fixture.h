@@ -37,6 +37,13 @@ protected:
         return cookLevel(room.probeScene(), o, nullptr).index;
     }
 
+    // Looking from room A at the doorway (the wall at x = 0), where the mirror moved 1.2 m
+    // along x sits in both probes' influence.
+    static CameraView doorwayCamera(int width, int height) {
+        return CameraView::lookAt(glm::vec3(-1.4f, 1.5f, 1.0f), glm::vec3(0.2f, 1.2f, 0.f),
+                                  glm::vec3(0, 1, 0), glm::radians(40.f), width, height);
+    }
+
     static inline gpu::GlContext* context_ = nullptr;
 };
 
