@@ -82,14 +82,18 @@ CpuGlossyDistanceProbe::Sample CpuGlossyDistanceProbe::sample(glm::vec3 x, glm::
         return {g.radiance, g.level, g.t, g.hit};
     }
     // The same search, the level from roughness alone: the lobe's centre is the rectified
-    // hit, or the direction when the search found nothing (the composite holds the sky
-    // there, so its chain has the sky's blur).
+    // hit, or the direction when the search found nothing.
     const CpuDistanceProbe::CompositeHit h = rectified_.compositeHit(x, lhat);
     Sample s{h.radiance, 0.f, h.t, h.hit};
     if (!(roughness > 0.f)) return s; // a mirror: level 0 is the input, read as the mirror does
     const int levels = int(chain_->levels.size());
-    s.level = glsl::glossyRoughnessLevel(std::min(roughness, 1.f), levels);
-    s.radiance = sampleChain(*chain_, h.hit ? x + h.t * lhat : lhat, s.level);
+    s.level =
+        glsl::glossyRoughnessLevel(std::min(roughness, 1.f), levels, chain_->levels[0][0].width);
+    // Below level 1, the mirror's answer blended with level 1, as the shader reads.
+    const glm::vec3 at = h.hit ? h.at : lhat;
+    const float share = glsl::glossyMirrorShare(s.level);
+    s.radiance = share > 0.f ? glm::mix(sampleChain(*chain_, at, 1.f), h.radiance, share)
+                             : sampleChain(*chain_, at, s.level);
     return s;
 }
 

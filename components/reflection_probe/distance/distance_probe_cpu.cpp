@@ -218,8 +218,8 @@ CpuDistanceProbe::CompositeHit CpuDistanceProbe::compositeHit(glm::vec3 x, glm::
     const glsl::DistanceParams& p = config_.params;
     const glsl::LayerHit h = twin_->single.lookupLayer(
         p.method, 0, x, lhat, p, twin_->single.makeSpan(0.f, 2.f * p.range, p.maxSteps));
-    if (!h.hit) return {twin_->single.fetchSky(lhat), p.dInf, false, h.fetches + 1};
-    return {h.radiance, h.t, true, h.fetches};
+    if (!h.hit) return {twin_->single.fetchSky(lhat), p.dInf, false, h.fetches + 1, lhat};
+    return {h.radiance, h.t, true, h.fetches, h.at};
 }
 
 CpuDistanceProbe::CompositeHit CpuDistanceProbe::lookupHit(glm::vec3 x, glm::vec3 lhat) const {
@@ -227,8 +227,8 @@ CpuDistanceProbe::CompositeHit CpuDistanceProbe::lookupHit(glm::vec3 x, glm::vec
     const glsl::LayerHit h = (config_.features & kFeatureLayers)
                                  ? twin_->layered.probeHit(x, lhat, p)
                                  : twin_->single.probeHit(x, lhat, p);
-    if (!h.hit) return {twin_->single.fetchSky(lhat), p.dInf, false, h.fetches + 1};
-    return {h.radiance, h.t, true, h.fetches};
+    if (!h.hit) return {twin_->single.fetchSky(lhat), p.dInf, false, h.fetches + 1, lhat};
+    return {h.radiance, h.t, true, h.fetches, h.at};
 }
 
 CpuDistanceProbe::CompositeHit CpuDistanceProbe::objectLayerHit(int layer, glm::vec3 x,
@@ -238,7 +238,7 @@ CpuDistanceProbe::CompositeHit CpuDistanceProbe::objectLayerHit(int layer, glm::
         throw Error(twin_->single.asset->manifestPath, "layers",
                     "object layer " + std::to_string(layer) + " is not in the layered lookup");
     const glsl::LayerHit h = twin_->layered.lookupObjectLayer(layer, x, lhat, p, p.dInf);
-    return {h.radiance, h.t, h.hit, h.fetches};
+    return {h.radiance, h.t, h.hit, h.fetches, h.at};
 }
 
 CpuDistanceProbe::GlossySample CpuDistanceProbe::glossySample(glm::vec3 x, glm::vec3 lhat,

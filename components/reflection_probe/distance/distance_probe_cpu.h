@@ -49,6 +49,7 @@ public:
         float t = 0.f;
         bool hit = false;
         int fetches = 0;
+        glm::vec3 at{0.f}; // probe-local point whose texel gave the radiance (LayerHit::at)
     };
     CompositeHit compositeHit(glm::vec3 x, glm::vec3 lhat) const;
     // The configured lookup's hit, as radiance() finds it (layered: the nearest over the

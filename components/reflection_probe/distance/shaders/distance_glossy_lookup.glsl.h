@@ -8,14 +8,19 @@
 // level 0 is the composite (layer 0) itself, levels 1 .. levels - 1 its prefiltered levels.
 //
 // Where the chain is read, and at which level:
-//   envmap        the direction lhat, level by roughness alone (what engines do);
-//   boxproj       the box-projected point x + t lhat (t: the box exit), level by roughness;
+//   envmap        the direction lhat, level by roughness alone as engines map it
+//                 (glossyEngineLevel: these two methods stand for what engines do);
+//   boxproj       the box-projected point x + t lhat (t: the box exit), the same level;
 //   bisection, secant, avgdist, and the nearest hit of layered mode
-//                 the hit q = x + t lhat the search found, level from the lobe's footprint
-//                 at t (distance_glossy.glsl.h: sharper near contact);
+//                 the hit the search found, read where the mirror reads it (LayerHit::at:
+//                 the search's last point), level from the lobe's footprint at its ray
+//                 distance t (distance_glossy.glsl.h: sharper near contact);
 //   no hit        (the search ended on d_inf) the direction lhat, level by roughness: the
 //                 composite holds the sky where it sees nothing, so its chain has the sky's
 //                 blur there.
+// Below level 1, level 0 is the mirror lookup's own answer (glossyMirrorShare): the sky
+// panorama where nothing was hit, the object layer's texel in layered mode, the composite's
+// texel otherwise (which is the chain's level 0 there).
 // Layered mode searches the object layers for the nearest hit, then reads the composite's
 // chain at it: the composite holds, in the direction of q, the nearest surface from the
 // centre, which is the hit unless something nearer the centre hides it.
@@ -51,11 +56,31 @@ GlossySample glossyAtHit(vec3 x, vec3 lhat, float roughness, int method, int lev
     }
     bool byDirection = !h.hit || method == kMethodEnvmap;
     bool footprint = method != kMethodBoxProj;
-    s.level = footprint && !byDirection ? glossyFootprintLevel(roughness, x, lhat, h.t, levels)
-                                        : glossyRoughnessLevel(roughness, levels);
-    s.radiance = sampleCubeChain(byDirection ? lhat : x + h.t * lhat, s.level, levels);
-    // The hit's own radiance fetch is not spent: the chain read replaces it.
-    s.fetches += kGlossyChainFetches - (h.hit ? 1 : 0);
+    int n = chainFaceRes(0);
+    bool engine = method == kMethodEnvmap || method == kMethodBoxProj;
+    if (engine) {
+        s.level = glossyEngineLevel(roughness, levels);
+    } else {
+        s.level = footprint && !byDirection
+                      ? glossyFootprintLevel(roughness, x, lhat, h.t, levels, n)
+                      : glossyRoughnessLevel(roughness, levels, n);
+    }
+    vec3 at = h.hit ? h.at : lhat;
+    float share = glossyMirrorShare(s.level);
+    if (!(share > 0.0f)) {
+        s.radiance = sampleCubeChain(at, s.level, levels);
+        // The hit's own radiance fetch is not spent: the chain read replaces it.
+        s.fetches += kGlossyChainFetches - (h.hit ? 1 : 0);
+        return s;
+    }
+    // Below level 1: the mirror's own answer blended with level 1 (glossyMirrorShare).
+    vec3 mirror = h.radiance;
+    if (!h.hit) {
+        mirror = fetchSky(lhat);
+        s.fetches += 1;
+    }
+    s.radiance = mix(sampleCubeChain(at, 1.0f, levels), mirror, share);
+    s.fetches += kGlossyChainFetches / 2;
     return s;
 }
 

@@ -25,9 +25,10 @@ bool isInfiniteDistance(float d, float dInf) {
     return d >= 0.5f * dInf;
 }
 
-LayerHit makeHit(vec3 radiance, bool hit, int fetches, float t) {
+LayerHit makeHit(vec3 radiance, bool hit, int fetches, float t, vec3 at) {
     LayerHit h;
     h.radiance = radiance;
+    h.at = at;
     h.hit = hit;
     h.fetches = fetches;
     h.t = t;
@@ -39,9 +40,9 @@ LayerHit makeHit(vec3 radiance, bool hit, int fetches, float t) {
 // this layer, which is what keeps silhouettes from smearing. The hit's ray distance is
 // that of the stored surface point d l/|l| projected onto the ray x + t lhat.
 LayerHit finishRectified(int layer, vec3 x, vec3 lhat, vec3 l, float d, int fetches, float dInf) {
-    if (isInfiniteDistance(d, dInf)) return makeHit(vec3(0.0f), false, fetches, dInf);
+    if (isInfiniteDistance(d, dInf)) return makeHit(vec3(0.0f), false, fetches, dInf, l);
     float t = dot(d * normalize(l) - x, lhat);
-    return makeHit(fetchRadiance(layer, l), true, fetches + 1, t);
+    return makeHit(fetchRadiance(layer, l), true, fetches + 1, t, l);
 }
 
 #if HAS_BOXPROJ
@@ -259,7 +260,7 @@ LayerHit lookupFirstCrossing(int method, vec3 x, vec3 lhat, DistanceParams p, Ra
     h.fetches += b.fetches;
     return h;
 #else
-    return makeHit(vec3(0.0f), false, b.fetches, p.dInf);
+    return makeHit(vec3(0.0f), false, b.fetches, p.dInf, lhat);
 #endif
 }
 #endif
@@ -316,17 +317,18 @@ LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, DistanceParams p,
 #if HAS_BOXPROJ
     if (method == kMethodBoxProj) {
         float t = boxExitDistance(x, lhat, p.boxMin, p.boxMax);
-        return makeHit(fetchRadiance(layer, x + t * lhat), true, 1, t);
+        vec3 at = x + t * lhat;
+        return makeHit(fetchRadiance(layer, at), true, 1, t, at);
     }
 #endif
 #if HAS_ENVMAP
     // Classic environment map: direction only. The composite (layer 0) holds the sky where
     // it sees nothing, so it always answers; an object layer of distant things (layered
     // mode) answers only where it has something, else the layers behind it and the sky do.
-    if (layer == 0) return makeHit(fetchRadiance(layer, lhat), true, 1, p.dInf);
+    if (layer == 0) return makeHit(fetchRadiance(layer, lhat), true, 1, p.dInf, lhat);
     return finishRectified(layer, x, lhat, lhat, fetchDistance(layer, lhat), 1, p.dInf);
 #else
-    return makeHit(vec3(0.0f), false, 0, p.dInf); // no method of this permutation applies
+    return makeHit(vec3(0.0f), false, 0, p.dInf, lhat); // no method of this permutation applies
 #endif
 }
 
@@ -337,7 +339,7 @@ LayerHit lookupLayer(int method, int layer, vec3 x, vec3 lhat, DistanceParams p,
 LayerHit lookupObjectLayer(int i, vec3 x, vec3 lhat, DistanceParams p, float tMax) {
     vec2 span = layerSpan(i, x, lhat);
     float t1 = min(span.y, 2.0f * p.range);
-    if (span.x > t1 || span.x >= tMax) return makeHit(vec3(0.0f), false, 0, p.dInf);
+    if (span.x > t1 || span.x >= tMax) return makeHit(vec3(0.0f), false, 0, p.dInf, lhat);
     return lookupLayer(layerMethod(i), i, x, lhat, p,
                        makeSpan(span.x, t1, spanSteps(t1 - span.x, p)));
 }
@@ -355,7 +357,7 @@ LayerHit probeHit(vec3 x, vec3 lhat, DistanceParams p) {
     // layer usually answers first; the box test skips a layer entered only behind the best
     // hit, and the loop ends once no later layer can come nearer: a point of those layers
     // lies at least layerReach from the centre, so at least layerReach - |x| along the ray.
-    LayerHit best = makeHit(vec3(0.0f), false, 0, p.dInf); // t stays d_inf until a hit
+    LayerHit best = makeHit(vec3(0.0f), false, 0, p.dInf, lhat); // t stays d_inf until a hit
     float fromCentre = length(x);
     for (int i = 1; i <= p.layerCount; ++i) {
         if (layerReach(i) - fromCentre >= best.t) break;
@@ -364,6 +366,7 @@ LayerHit probeHit(vec3 x, vec3 lhat, DistanceParams p) {
         if (h.hit && h.t < best.t) {
             best.t = h.t;
             best.radiance = h.radiance;
+            best.at = h.at;
             best.hit = true;
         }
     }

@@ -17,6 +17,11 @@ struct LayerHit {
     bool hit;    // false: this layer has nothing in that direction (d_inf)
     int fetches; // texture fetches spent (distance and radiance)
     float t;     // distance along the ray to the surface found (layers compete on it)
+    // The probe-local point whose texel gave the radiance: the search's last point, on the
+    // stored surface's direction, where x + t lhat (that surface point projected onto the
+    // ray) is not while the search stops short of exact. A glossy read takes the chain here,
+    // so the chain and the mirror read the same texel (distance_glossy_lookup.glsl.h).
+    vec3 at;
 };
 
 // A probe's lookup with its verdict on whether it sees what it proposes
