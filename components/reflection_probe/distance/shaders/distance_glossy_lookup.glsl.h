@@ -54,17 +54,15 @@ GlossySample glossyAtHit(vec3 x, vec3 lhat, float roughness, int method, int lev
         }
         return s;
     }
-    bool byDirection = !h.hit || method == kMethodEnvmap;
-    bool footprint = method != kMethodBoxProj;
+    // envmap and boxproj stand for engines: their level; a search's hit: the footprint
+    // level there; no hit: the level of the roughness alone.
     int n = chainFaceRes(0);
-    bool engine = method == kMethodEnvmap || method == kMethodBoxProj;
-    if (engine) {
+    if (method == kMethodEnvmap || method == kMethodBoxProj)
         s.level = glossyEngineLevel(roughness, levels);
-    } else {
-        s.level = footprint && !byDirection
-                      ? glossyFootprintLevel(roughness, x, lhat, h.t, levels, n)
-                      : glossyRoughnessLevel(roughness, levels, n);
-    }
+    else if (h.hit)
+        s.level = glossyFootprintLevel(roughness, x, lhat, h.t, levels, n);
+    else
+        s.level = glossyRoughnessLevel(roughness, levels, n);
     vec3 at = h.hit ? h.at : lhat;
     float share = glossyMirrorShare(s.level);
     if (!(share > 0.0f)) {
