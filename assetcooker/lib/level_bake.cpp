@@ -48,6 +48,7 @@ std::string meshKey(const ecs::Registry& reg, ecs::Entity e) {
                 m->doubleSided ? 1.f : 0.f};
             key << ' ' << bytesChecksum(factors, sizeof factors);
             if (m->baseColorTexture) key << checksumOf(m->baseColorTexture->pixels);
+            if (m->metallicRoughnessTexture) key << checksumOf(m->metallicRoughnessTexture->pixels);
         }
     }
     return key.str();
@@ -137,7 +138,9 @@ LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& env,
     // chain under --glossy auto), whatever their materials say.
     for (const ReflectorMarkup& r : scene.markup.reflectors) {
         const float figures[] = {r.f0, r.roughness};
-        geometry += r.node + ' ' + bytesChecksum(figures, sizeof figures) + '\n';
+        geometry += r.node + ' ' + bytesChecksum(figures, sizeof figures);
+        if (r.roughnessMap) geometry += ' ' + checksumOf(r.roughnessMap->pixels);
+        geometry += '\n';
     }
     const std::string opts = options + '\n' + toJson(probe).dump();
     return {bytesChecksum(geometry.data(), geometry.size()),

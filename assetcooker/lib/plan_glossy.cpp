@@ -1,6 +1,7 @@
 #include "plan_glossy.h"
 
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
+#include "components/reflection_probe/reflector_roughness.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +19,9 @@ SharpestLobe planReflectors(const SceneMarkup& markup, std::vector<PlannedReflec
     out.clear();
     SharpestLobe sharpest;
     for (const ReflectorMarkup& r : markup.reflectors) {
-        const float roughness = r.roughness > 0.f ? std::min(r.roughness, 1.f) : 0.f;
+        // A roughness map: its smoothest texel is the sharpest lobe the reflector shows.
+        const float sharpestTexel = r.roughness * roughnessMapMin(r.roughnessMap.get());
+        const float roughness = sharpestTexel > 0.f ? std::min(sharpestTexel, 1.f) : 0.f;
         out.push_back({r.node, roughness, ggxLobeHalfWidthDeg(roughness)});
         if (out.size() == 1 || out.back().lobeDeg < sharpest.deg)
             sharpest = {out.back().lobeDeg, r.node, roughness, {}};

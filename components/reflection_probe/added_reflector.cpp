@@ -207,7 +207,7 @@ ecs::Entity addReflector(ProbeScene& scene, const AddedReflector& r) {
     scene.loaded.roots.push_back(e);
     scene.loaded.boundsMin = glm::min(scene.loaded.boundsMin, lo);
     scene.loaded.boundsMax = glm::max(scene.loaded.boundsMax, hi);
-    scene.markup.reflectors.push_back(ReflectorMarkup{name, {e}, -1.f});
+    scene.markup.reflectors.push_back(ReflectorMarkup{name, {e}, -1.f, 0.f, nullptr});
     scene.markup.mirrorEntities.insert(e);
     scene.defaultView.forget();
     updateWorldTransforms(reg);

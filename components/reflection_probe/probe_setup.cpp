@@ -58,7 +58,7 @@ ecs::Entity attachProbeComponents(ecs::Registry& registry, const SceneMarkup& ma
     registry.emplace<ReflectionProbe>(e, probe);
     for (const ReflectorMarkup& r : markup.reflectors)
         for (ecs::Entity mesh : r.meshes)
-            registry.emplace<Reflector>(mesh, Reflector{e, r.f0, r.roughness});
+            registry.emplace<Reflector>(mesh, Reflector{e, r.f0, r.roughness, r.roughnessMap});
     return e;
 }
 

@@ -5,7 +5,9 @@
 // when absent); the asset's manifest names the flavour. ReflectionProbeSystem owns the GPU
 // side and (re)builds it when a component appears or changes.
 #include "engine/ecs/entity.h"
+#include "engine/image/image.h"
 
+#include <memory>
 #include <string>
 
 namespace specula {
@@ -20,6 +22,9 @@ struct Reflector {
     ecs::Entity probe;      // which probe it reflects
     float fresnelF0 = -1.f; // < 0: perfect mirror; otherwise Schlick with this F0
     float roughness = 0.f;  // GGX (alpha = roughness^2); 0 = a mirror
+    // Multiplies `roughness` per pixel where set (its G channel at the mesh's TEXCOORD_0, the
+    // glTF metallic-roughness texture; reflector_roughness.h); null: uniform roughness.
+    std::shared_ptr<const Image> roughnessMap;
 
     bool operator==(const Reflector&) const = default;
 };

@@ -28,6 +28,8 @@ ReflectorPixel pixelOf(int x, int y, const Hit& hit, glm::vec3 dir) {
     p.x = x;
     p.y = y;
     p.position = hit.position;
+    p.entity = hit.entity;
+    p.uv = hit.uv;
     p.view = glm::normalize(dir);
     p.normal = glsl::safeNormal(hit.normal, hit.geometricNormal);
     p.lhat = glm::normalize(glsl::mirrorDirection(p.view, p.normal));

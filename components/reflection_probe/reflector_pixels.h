@@ -20,6 +20,8 @@ struct ReflectorPixel {
     glm::vec3 normal{0.f};   // unit shading normal (safeNormal)
     glm::vec3 view{0.f};     // unit, eye to surface
     glm::vec3 lhat{0.f};     // unit mirror direction (mirrorDirection)
+    ecs::Entity entity;      // the reflector mesh the primary ray met
+    glm::vec2 uv{0.f};       // its TEXCOORD_0 there (zero without one), for a roughness map
     float cosView() const;   // |n . v|, at least 1e-4
 };
 

@@ -2,6 +2,7 @@
 
 #include "engine/core/error.h"
 #include "engine/scene/components.h"
+#include "reflector_roughness.h"
 
 #include <algorithm>
 #include <cmath>
@@ -96,12 +97,20 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const 
                     refl.f0 = r["f0"].get<float>();
                 }
                 if (r.contains("roughness")) {
-                    if (!r["roughness"].is_number() || r["roughness"].get<double>() < 0.0 ||
-                        r["roughness"].get<double>() > 1.0)
+                    const json& rough = r["roughness"];
+                    if (rough.is_string() && rough.get<std::string>() == "material") {
+                        const MaterialRoughness mr = materialRoughness(reg, subtreeMeshes(e));
+                        refl.roughness = mr.factor;
+                        refl.roughnessMap = mr.map;
+                    } else if (!rough.is_number() || rough.get<double>() < 0.0 ||
+                               rough.get<double>() > 1.0) {
                         throw Error(file, where + "specula_reflector.roughness",
-                                    "expected a number in [0, 1] (GGX, alpha = roughness^2), got " +
-                                        r["roughness"].dump());
-                    refl.roughness = r["roughness"].get<float>();
+                                    "expected a number in [0, 1] (GGX, alpha = roughness^2) or "
+                                    "\"material\", got " +
+                                        rough.dump());
+                    } else {
+                        refl.roughness = rough.get<float>();
+                    }
                 }
             } else {
                 throw Error(file, where + "specula_reflector", "expected true, false or an object");
@@ -130,17 +139,18 @@ SceneMarkup readSceneMarkup(ecs::Registry& reg, const LoadedScene& scene, const 
         if (!mesh || mesh->primitives.empty() || m.mirrorEntities.count(e) || excluded.count(e))
             continue;
         if (!std::all_of(mesh->primitives.begin(), mesh->primitives.end(), qualifies)) continue;
-        float luminance = 0.f, roughness = 0.f;
+        float luminance = 0.f;
         for (const Primitive& p : mesh->primitives) {
             const glm::vec4& c = p.material->baseColorFactor;
             luminance += 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
-            roughness += p.material->roughness();
         }
         ReflectorMarkup refl;
         refl.node = nameOf(reg, e);
         refl.meshes = {e};
         refl.f0 = std::clamp(luminance / float(mesh->primitives.size()), 0.f, 1.f);
-        refl.roughness = std::clamp(roughness / float(mesh->primitives.size()), 0.f, 1.f);
+        const MaterialRoughness mr = materialRoughness(reg, refl.meshes);
+        refl.roughness = mr.factor;
+        refl.roughnessMap = mr.map;
         m.mirrorEntities.insert(e);
         m.reflectors.push_back(std::move(refl));
     }

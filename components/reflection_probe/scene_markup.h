@@ -10,7 +10,8 @@
 // channel in the metallic-roughness texture where there is one, MaterialData::metallic()
 // and roughness()) is a reflector of its own, named after the node, with f0 = the Rec. 709
 // luminance of the base colour factor (0.2126 R + 0.7152 G + 0.0722 B, clamped to [0, 1];
-// of the primitives' mean when they differ) and that roughness (the primitives' mean). The markup
+// of the primitives' mean when they differ) and its material's roughness, texel by texel
+// where the material has a metallic-roughness texture (materialRoughness). The markup
 // takes precedence: meshes claimed by a `true`/{f0} node stay in that node's reflector, and a
 // `false` node's subtree gets no material reflector (an explicit `true` inside or above it still
 // counts). Every other mesh is environment. Environment objects are the root nodes' subtrees (a
@@ -40,9 +41,12 @@ struct ReflectorMarkup {
     std::string node;
     std::vector<ecs::Entity> meshes; // mesh entities of the node's subtree
     float f0 = -1.f;                 // < 0: perfect mirror
-    // GGX roughness (alpha = roughness^2): the markup's "roughness", else the material's
-    // metallic-roughness factor (averaged over the mesh's primitives); 0 = a mirror.
+    // GGX roughness (alpha = roughness^2); 0 = a mirror. The markup's "roughness" (a number,
+    // or "material": the material's, as for a reflector by material), else 0; a reflector by
+    // material takes its material's (materialRoughness in reflector_roughness.h): the factor
+    // and, per pixel, the metallic-roughness texture (`roughnessMap`, null when uniform).
     float roughness = 0.f;
+    std::shared_ptr<const Image> roughnessMap;
 };
 
 struct EnvironmentObject {

@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include <glm/common.hpp>
+
 namespace specula {
 
 enum class Wrap { Repeat, Clamp };

@@ -160,7 +160,7 @@ glm::vec3 GroundTruthTracer::resolve(const std::optional<Hit>& hit, glm::vec3 di
 
     const glm::vec3 d = glm::normalize(dir);
     if (options_.mirrorRoughness) {
-        const float roughness = options_.mirrorRoughness(hit->entity);
+        const float roughness = options_.mirrorRoughness(hit->entity, hit->uv);
         if (roughness > 0.f) return glossy(*hit, d, std::min(roughness, 1.f), depth, stream, path);
     }
     // Mirror about the shading normal, as the rasteriser does, turned towards the viewer so

@@ -53,9 +53,10 @@ struct TraceOptions {
     // Multiplies what a mirror reflects (e.g. a tint or constant Fresnel). Called from many
     // threads at once. Empty: white.
     std::function<glm::vec3(ecs::Entity)> mirrorTint;
-    // GGX roughness of a mirror (alpha = roughness^2), at most 1; <= 0 (and NaN) is a
-    // perfect mirror. Called from many threads at once. Empty: every mirror has roughness 0.
-    std::function<float(ecs::Entity)> mirrorRoughness;
+    // GGX roughness of a mirror at a hit (alpha = roughness^2; the hit's entity and its
+    // TEXCOORD_0, for a roughness map), at most 1; <= 0 (and NaN) is a perfect mirror. Called
+    // from many threads at once. Empty: every mirror has roughness 0.
+    std::function<float(ecs::Entity, glm::vec2 uv)> mirrorRoughness;
     int glossySamples = 256; // samples at the first rough hit of a pixel's path (at least 1)
     std::uint32_t seed = 1;  // the glossy sample sequence; same seed, same image, bit for bit
 };

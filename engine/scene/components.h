@@ -46,12 +46,16 @@ struct MaterialData {
     // pbrMetallicRoughness factors, glTF's defaults when absent.
     float metallicFactor = 1.f;
     float roughnessFactor = 1.f;
-    // The metallicRoughnessTexture's means over its texels (metalness in B, roughness in G,
-    // linear), 1 without one: the texture multiplies the factors texel by texel, and a
-    // reflector takes one roughness, so the mean is what reaches it (readSceneMarkup). Not
-    // weighted by how the mesh's UVs use the texels: a summary, not a per-pixel roughness.
+    // The metallicRoughnessTexture (linear RGBA float: roughness in G, metalness in B), null
+    // without one; it multiplies the factors texel by texel. A reflector that takes its
+    // roughness from the material reads it per pixel (reflector_roughness.h).
+    std::shared_ptr<const Image> metallicRoughnessTexture;
+    // Its channels' means and its smallest roughness texel, 1 without one: the summaries for
+    // whoever takes one figure per material (the material reflector rule, the effect plan's
+    // sharpest lobe). Not weighted by how the mesh's UVs use the texels.
     float metallicTextureMean = 1.f;
     float roughnessTextureMean = 1.f;
+    float roughnessTextureMin = 1.f;
     float metallic() const { return metallicFactor * metallicTextureMean; }
     float roughness() const { return roughnessFactor * roughnessTextureMean; }
     std::string name;

@@ -75,22 +75,27 @@ std::shared_ptr<const MaterialData> MaterialCache::material(int index, const std
         md->baseColorTexture =
             textureImage(bct.index, mf + ".pbrMetallicRoughness.baseColorTexture", true);
     }
-    // The metallic-roughness texture reaches the reflectors as its means (MaterialData); no
-    // renderer here shades with it texel by texel.
     const auto& mrt = mat.pbrMetallicRoughness.metallicRoughnessTexture;
     if (mrt.index >= 0) {
         const std::string where = mf + ".pbrMetallicRoughness.metallicRoughnessTexture";
+        if (mrt.texCoord != 0)
+            ctx_.warn(where, "uses TEXCOORD_" + std::to_string(mrt.texCoord) +
+                                 "; only TEXCOORD_0 is loaded");
         const std::shared_ptr<const Image> mr = textureImage(mrt.index, where, false);
         // decodeTexture8 gives RGBA: roughness in G, metalness in B.
         double metallic = 0.0, roughness = 0.0;
+        float roughnessMin = 1.f;
         const std::size_t texels = mr->pixels.size() / 4;
         if (texels == 0) ctx_.fail(where, "an empty image");
         for (std::size_t i = 0; i < texels; ++i) {
             roughness += double(mr->pixels[4 * i + 1]);
             metallic += double(mr->pixels[4 * i + 2]);
+            roughnessMin = std::min(roughnessMin, mr->pixels[4 * i + 1]);
         }
+        md->metallicRoughnessTexture = mr;
         md->roughnessTextureMean = float(std::clamp(roughness / double(texels), 0.0, 1.0));
         md->metallicTextureMean = float(std::clamp(metallic / double(texels), 0.0, 1.0));
+        md->roughnessTextureMin = std::clamp(roughnessMin, 0.f, 1.f);
     }
     materials_[index] = md;
     return md;

@@ -5,6 +5,7 @@
 #include "components/reflection_probe/distance/distance_store.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "components/reflection_probe/reflector_pixels.h"
+#include "components/reflection_probe/reflector_roughness.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/gpu/context.h"
@@ -56,6 +57,37 @@ void printByRoughness(std::ostream& log, const std::vector<std::string>& methods
 }
 
 } // namespace
+
+ReflectorRoughnessMaps::ReflectorRoughnessMaps(const SceneMarkup& markup) {
+    for (const ReflectorMarkup& r : markup.reflectors) {
+        if (!r.roughnessMap) continue;
+        const Image& map = *r.roughnessMap;
+        double sum = 0.0;
+        const std::size_t step = std::size_t(std::max(map.channels, 1));
+        for (std::size_t i = 1; i < map.pixels.size(); i += step)
+            sum += double(map.pixels[i]);
+        const std::size_t texels = map.pixels.size() / step;
+        const float mean = map.channels >= 2 && texels > 0
+                               ? float(std::clamp(sum / double(texels), 0.0, 1.0))
+                               : 1.f;
+        for (const ecs::Entity mesh : r.meshes)
+            maps_[mesh] = Map{r.roughnessMap, mean};
+    }
+}
+
+const Image* ReflectorRoughnessMaps::of(ecs::Entity mesh) const {
+    const auto it = maps_.find(mesh);
+    return it == maps_.end() ? nullptr : it->second.image.get();
+}
+
+float ReflectorRoughnessMaps::at(float factor, ecs::Entity mesh, glm::vec2 uv) const {
+    return roughnessAt(factor, of(mesh), uv);
+}
+
+float ReflectorRoughnessMaps::mean(float factor, ecs::Entity mesh) const {
+    const auto it = maps_.find(mesh);
+    return it == maps_.end() ? factor : std::clamp(factor * it->second.mean, 0.f, 1.f);
+}
 
 const std::vector<std::string>& glossyBenchMethods() {
     static const std::vector<std::string> methods{"envmap+chain",
@@ -151,10 +183,11 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
     const CameraView camera = reflectionScene.camera(o.width, o.height);
     const std::vector<std::string>& methods = glossyBenchMethods();
     const GlossyTextures textures =
-        glossyTextures(distanceAsset, distance.chain(), lightFieldAsset);
+        glossyTextures(distanceAsset, distance.chain(), lightFieldAsset, scene.markup);
+    const ReflectorRoughnessMaps maps(scene.markup);
     for (const float r : o.roughness) {
         TraceOptions t = groundTruthOptions(scene, true);
-        t.mirrorRoughness = [r](ecs::Entity) { return r; };
+        t.mirrorRoughness = [r, &maps](ecs::Entity e, glm::vec2 uv) { return maps.at(r, e, uv); };
         t.glossySamples = o.samples;
         t.seed = 1;
         const GroundTruthTracer tracer(scene.registry, t);
@@ -167,22 +200,30 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
         const std::vector<ReflectorPixel> pixels =
             reflectorPixels(tracer, camera, truth.mirrorMask);
         result.mirrorPixels = long(pixels.size());
+        // The distance methods: the normalised prefiltered lighting times the directional
+        // albedo, as the shaders do (E = 1 for a mirror), at the pixel's own roughness.
+        const auto footprint = [&](const ReflectorPixel& p, float rp) {
+            const float e = rp > 0.f ? ggxAlbedo(std::min(p.cosView(), 1.f), rp) : 1.f;
+            return e * distance.radiance(p.position - distanceAsset.centre, p.lhat, rp,
+                                         GlossyMode::RectifiedFootprint);
+        };
         for (std::size_t m = 0; m < methods.size(); ++m) {
             Image img = truth.color;
             const GlossyBenchMethod method = GlossyBenchMethod(m);
             for (const ReflectorPixel& p : pixels) {
                 glm::vec3 c;
-                // The distance methods: the normalised prefiltered lighting times the
-                // directional albedo, as the shaders do (E = 1 for a mirror).
-                const float e = r > 0.f ? ggxAlbedo(std::min(p.cosView(), 1.f), r) : 1.f;
+                const float rp = maps.at(r, p.entity, p.uv);
+                const float e = rp > 0.f ? ggxAlbedo(std::min(p.cosView(), 1.f), rp) : 1.f;
                 const glm::vec3 x = p.position - distanceAsset.centre;
-                if (m < kGlossyModes.size()) {
-                    c = e * distance.radiance(x, p.lhat, r, kGlossyModes[m]);
+                if (method == GlossyBenchMethod::RectifiedFootprint) {
+                    c = footprint(p, rp);
+                } else if (m < kGlossyModes.size()) {
+                    c = e * distance.radiance(x, p.lhat, rp, kGlossyModes[m]);
                 } else if (method == GlossyBenchMethod::LayeredFootprint) {
-                    c = e * layered.glossySample(x, p.lhat, r).radiance;
+                    c = e * layered.glossySample(x, p.lhat, rp).radiance;
                 } else {
                     c = lightField.reflectedRadiance(p.position - lightFieldAsset.cellCentre,
-                                                     p.lhat, p.normal, r);
+                                                     p.lhat, p.normal, rp);
                 }
                 std::copy(&c[0], &c[0] + 3, img.at(p.x, p.y));
             }
@@ -196,6 +237,25 @@ GlossyBenchResult runGlossyBench(const GlossyBenchOptions& o, std::ostream& log)
         }
         log << "roughness " << r << ": " << pixels.size() << " reflector pixels, truth noise floor "
             << formatPsnr(noise) << " dB\n";
+        if (!maps.empty()) {
+            // The footprint row again, each mapped reflector at factor x its map's mean.
+            Image img = truth.color;
+            for (const ReflectorPixel& p : pixels) {
+                const glm::vec3 c = footprint(p, maps.mean(r, p.entity));
+                std::copy(&c[0], &c[0] + 3, img.at(p.x, p.y));
+            }
+            GlossyMapVsMean v;
+            v.roughness = r;
+            v.mapPsnr = result
+                            .rows[result.rows.size() - methods.size() +
+                                  std::size_t(GlossyBenchMethod::RectifiedFootprint)]
+                            .psnr;
+            v.meanPsnr = clampedPsnr(compareImages(img, truth.color, &mask));
+            result.mapVsMean.push_back(v);
+            log << "roughness " << r << ": rectified (footprint level) " << formatPsnr(v.mapPsnr)
+                << " dB with the roughness maps, " << formatPsnr(v.meanPsnr)
+                << " dB with each map's mean roughness (uniform)\n";
+        }
     }
 
     if (o.timing) {

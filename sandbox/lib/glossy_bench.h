@@ -10,14 +10,23 @@
 // with each method's cost (glossy_timing.h): its GPU reflector pass as a ratio to the mirror
 // envmap pass of the same run (methods with a shader; unless timing is off) and the texture
 // memory it holds.
+//
+// --roughness is each reflector's roughness factor: a reflector with a roughness map
+// (ReflectorMarkup::roughnessMap) reads factor x the map at each pixel's TEXCOORD_0
+// (roughnessAt), in the truth and in every lookup, its GGX albedo included.
 #include "components/reflection_probe/added_reflector.h"
+#include "components/reflection_probe/scene_markup.h"
 
+#include <memory>
 #include <ostream>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
-    namespace specula::cli {
-    class ToolCli;
+#include <glm/vec2.hpp>
+
+namespace specula::cli {
+class ToolCli;
 }
 
 namespace specula::sandbox {
@@ -43,13 +52,44 @@ struct GlossyBenchRow {
     double memoryMiB = 0.0;      // texture memory the method holds (GlossyTextures)
 };
 
+// Per roughness where a reflector has a map: the footprint row's PSNR, and the same had every
+// mapped reflector taken factor x its map's mean roughness, uniformly (what one roughness
+// per reflector gives), against the same per-texel truth.
+struct GlossyMapVsMean {
+    float roughness = 0.f;
+    double mapPsnr = 0.0, meanPsnr = 0.0;
+};
+
 struct GlossyBenchResult {
     std::vector<GlossyBenchRow> rows;
-    long mirrorPixels = 0; // reflector pixels evaluated per roughness
+    std::vector<GlossyMapVsMean> mapVsMean; // empty when no reflector has a map
+    long mirrorPixels = 0;                  // reflector pixels evaluated per roughness
     double bakeSeconds = 0.0;
     double envmapMs = 0.0; // the mirror envmap pass the ratios divide by (0: not timed)
     std::string timer;     // what clock timed the passes
     std::size_t storeBytes = 0, expectedStoreBytes = 0; // see GlossyTiming
+};
+
+// The reflector meshes' roughness maps (ReflectorMarkup::roughnessMap), for the bench's and the
+// level walk's per-pixel roughness; the truth reads it from many threads at once (const only).
+class ReflectorRoughnessMaps {
+public:
+    explicit ReflectorRoughnessMaps(const SceneMarkup& markup);
+    bool empty() const { return maps_.empty(); }
+    // The mesh's map, null where its reflector's roughness is uniform.
+    const Image* of(ecs::Entity mesh) const;
+    // factor x the mesh's map at uv (roughnessAt); the factor on a uniform reflector.
+    float at(float factor, ecs::Entity mesh, glm::vec2 uv) const;
+    // factor x the mean of the mesh's map (its G channel, as MaterialData::roughnessTextureMean
+    // is taken), clamped to [0, 1]; the factor on a uniform reflector.
+    float mean(float factor, ecs::Entity mesh) const;
+
+private:
+    struct Map {
+        std::shared_ptr<const Image> image;
+        float mean = 1.f;
+    };
+    std::unordered_map<ecs::Entity, Map> maps_;
 };
 
 // The method names, in the order of the rows of each roughness.

@@ -16,9 +16,10 @@ constexpr const char* kGlossyDescription =
     "probe of SCENE (cooked with its GGX prefiltered chain; secant search, d_e 0.01 m) and a\n"
     "small light-field probe (8 x 8 cameras of 64^2 per slab) are baked once into DIR/probes.\n"
     "Then for each --roughness every reflector is given that perceptual roughness (alpha =\n"
-    "roughness^2), Embree traces the environment-only GGX ground truth (--samples samples a\n"
-    "pixel, seed 1) and its noise floor (seed 1 against seed 2: a method's PSNR near it\n"
-    "cannot be trusted), and every reflector pixel is looked up six ways:\n"
+    "roughness^2; its factor where it has a roughness map, see below), Embree traces the\n"
+    "environment-only GGX ground truth (--samples samples a pixel, seed 1) and its noise\n"
+    "floor (seed 1 against seed 2: a method's PSNR near it cannot be trusted), and every\n"
+    "reflector pixel is looked up six ways:\n"
     "\n"
     "  envmap+chain                 the direction alone, chain level from roughness alone\n"
     "                               (what Filament does)\n"
@@ -36,6 +37,14 @@ constexpr const char* kGlossyDescription =
     "the GGX directional albedo E(n.v, roughness), as the shaders do; the light field's lookup\n"
     "includes it. At roughness 0 every lookup is its mirror lookup.\n"
     "\n"
+    "Roughness maps: --roughness is each reflector's roughness FACTOR. A reflector with a\n"
+    "metallic-roughness texture (markup \"roughness\": \"material\", or a reflector found by\n"
+    "its material) reads factor x the texture's G channel (linear) at each pixel's TEXCOORD_0,\n"
+    "sampled bilinearly with repeat as the GPU does, in the truth, in every lookup and in the\n"
+    "albedo. Where a reflector has one, a line per roughness also gives the rectified\n"
+    "(footprint level) PSNR had each such reflector taken factor x its texture's mean\n"
+    "roughness uniformly instead.\n"
+    "\n"
     "Cost: unless --no-timing, the GPU reflector pass of every method with a shader\n"
     "(envmap+chain, boxproj+chain, rectified and layered (footprint level): the distance\n"
     "shader's glossy path with the envmap, boxproj, secant and layered methods; light field\n"
@@ -44,8 +53,9 @@ constexpr const char* kGlossyDescription =
     "ratio_to_envmap (rectified (roughness level) has no shader: none). On a software\n"
     "rasteriser only the ratios mean anything. memory_mib: the textures the method holds (the\n"
     "composite cube and sky, the object layers' tiles for layered, at roughness > 0 the GGX\n"
-    "chain and the albedo table; the light field's atlas, its mips and the table). The mirror\n"
-    "methods' whole-frame figures come from `specula-sandbox bench`.\n"
+    "chain, the albedo table and the reflectors' roughness maps; the light field's atlas, its\n"
+    "mips, the table and the maps). The mirror methods' whole-frame figures come from\n"
+    "`specula-sandbox bench`.\n"
     "\n"
     "Writes DIR/glossy.csv (roughness, method, psnr, noise_floor_psnr, ratio_to_envmap,\n"
     "memory_mib; PSNR in dB on the eroded reflector pixels) and prints the tables.\n";
@@ -78,7 +88,8 @@ void addGlossyCommand(cli::ToolCli& tool) {
     sub->add_option("SCENE", o.scene, "the glTF/GLB scene")->required();
     sub->add_option("--out", o.out, "output folder")->required()->check(cli::nonEmpty("a folder"));
     sub->add_option("--roughness", a->roughness,
-                    "perceptual roughness values in [0, 1], comma-separated (default "
+                    "perceptual roughness values in [0, 1], comma-separated: each reflector's "
+                    "factor, times its roughness map where it has one (default "
                     "0,0.05,0.1,0.2,0.35,0.5)");
     sub->add_option("--size", a->size, "frame size (default 320x240)")->check(cli::sizeText());
     sub->add_option("--face-res", o.faceRes,

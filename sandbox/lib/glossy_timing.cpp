@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <unordered_set>
 
 namespace specula::sandbox {
 
@@ -37,14 +38,19 @@ bool hasGpuPath(GlossyBenchMethod method) {
 
 std::size_t GlossyTextures::bytes(GlossyBenchMethod method, float roughness) const {
     const bool rough = roughness > 0.f;
-    if (method == GlossyBenchMethod::LightField) return atlas + (rough ? mips + albedoTable : 0);
+    const std::size_t perReflector = rough ? albedoTable + roughnessMaps : 0;
+    if (method == GlossyBenchMethod::LightField) return atlas + (rough ? mips : 0) + perReflector;
     return cube + sky + (method == GlossyBenchMethod::LayeredFootprint ? layers : 0) +
-           (rough ? chain + albedoTable : 0);
+           (rough ? chain : 0) + perReflector;
 }
 
 GlossyTextures glossyTextures(const DistanceProbeAsset& distance, const CubeChain& chain,
-                              const LightFieldAsset& lightField) {
+                              const LightFieldAsset& lightField, const SceneMarkup& markup) {
     GlossyTextures t;
+    std::unordered_set<const Image*> maps;
+    for (const ReflectorMarkup& r : markup.reflectors)
+        if (r.roughnessMap && maps.insert(r.roughnessMap.get()).second)
+            t.roughnessMaps += std::size_t(r.roughnessMap->width) * r.roughnessMap->height * 4;
     t.cube = cubeArrayBytes(distance.faceRes, 1);
     t.sky = distance.sky.empty() ? 0 : skyTextureBytes(distance.sky);
     t.chain = chainArrayBytes(chain);
@@ -110,6 +116,9 @@ GlossyTiming timeGlossyPasses(ReflectionScene& rs, const std::string& distanceMa
     {
         FrameRenderer fr(rs, camera.width, camera.height);
         timing.timer = fr.timerSource();
+        // The configuration's roughness is each Reflector's factor: its roughnessMap (from the
+        // markup, attachProbeComponents) stays, so the pass reads factor x map per pixel as
+        // the bench's CPU rows do.
         const auto use = [&](const Config& c) {
             reg.view<Reflector>().each([&](ecs::Entity, Reflector& r) {
                 r.probe = c.probe;
@@ -142,12 +151,14 @@ GlossyTiming timeGlossyPasses(ReflectionScene& rs, const std::string& distanceMa
     }
     // What the stores hold: four distance probes (composite and sky; with the chain once a
     // rough reflector drew), the layered one with the object layers' tiles, and the light
-    // field (with its mips likewise). The albedo tables are the stores' own, outside their
-    // probes' count.
+    // field (with its mips likewise); once a rough reflector drew, the distance store and the
+    // light-field store each hold the roughness maps. The albedo tables are the stores' own,
+    // outside their probes' count.
     const bool rough =
         std::any_of(roughness.begin(), roughness.end(), [](float r) { return r > 0.f; });
     timing.expectedStoreBytes = 4 * (textures.cube + textures.sky + (rough ? textures.chain : 0)) +
-                                textures.layers + textures.atlas + (rough ? textures.mips : 0);
+                                textures.layers + textures.atlas +
+                                (rough ? textures.mips + 2 * textures.roughnessMaps : 0);
     reg.view<Reflector>().each([&](ecs::Entity, Reflector& r) {
         r.probe = envmapProbe;
         r.roughness = 0.f;

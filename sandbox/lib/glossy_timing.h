@@ -10,6 +10,7 @@
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
+#include "components/reflection_probe/scene_markup.h"
 #include "engine/image/ggx_prefilter.h"
 #include "engine/math/camera.h"
 
@@ -46,16 +47,18 @@ DistanceProbe layeredSearch(const DistanceProbe& search);
 // plus at roughness > 0 the GGX chain's levels past the composite (layered mode reads the
 // composite's chain at the nearest layer's hit); the light field's atlas, plus at roughness
 // > 0 its mips. Rough rows add the GGX albedo table (R32F, shared by every rough reflector of
-// a store).
+// a store) and the reflectors' roughness maps (R32F, one texture per distinct map in each
+// store whose rough reflectors read it: flavour_store_base.h's RoughnessMapTextures).
 struct GlossyTextures {
     std::size_t cube = 0, sky = 0, chain = 0, layers = 0; // distance probe
     std::size_t atlas = 0, mips = 0;                      // light field
     std::size_t albedoTable = 0;
+    std::size_t roughnessMaps = 0; // the markup's distinct roughness maps, 4 bytes a texel
 
     std::size_t bytes(GlossyBenchMethod method, float roughness) const;
 };
 GlossyTextures glossyTextures(const DistanceProbeAsset& distance, const CubeChain& chain,
-                              const LightFieldAsset& lightField);
+                              const LightFieldAsset& lightField, const SceneMarkup& markup);
 
 struct GlossyPassTime {
     float roughness = 0.f;

@@ -14,6 +14,7 @@
 #include "engine/image/contact_sheet.h"
 #include "engine/image/ggx_albedo.h"
 #include "engine/image/image_io.h"
+#include "sandbox/lib/glossy_bench.h"
 #include "sandbox/lib/level_timing.h"
 #include "sandbox/lib/reflection_scene.h"
 
@@ -179,6 +180,8 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
         throw Error(scene.path, "specula_reflector", "the scene has no reflector node to walk");
     const glm::vec3 anchor = roots.roots().front().second;
 
+    // --roughness is each reflector's factor; a roughness map multiplies it per pixel.
+    const ReflectorRoughnessMaps maps(scene.markup);
     const int frames = std::max(2, o.frames);
     float side = 1.f;
     {
@@ -216,7 +219,9 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
         const CameraView camera = chaseCamera(centre, tangent, side, o.width, o.height);
         TraceOptions traceOptions = groundTruthOptions(scene, true);
         if (rough) {
-            traceOptions.mirrorRoughness = [r = o.roughness](ecs::Entity) { return r; };
+            traceOptions.mirrorRoughness = [r = o.roughness, &maps](ecs::Entity e, glm::vec2 uv) {
+                return maps.at(r, e, uv);
+            };
             traceOptions.glossySamples = o.glossySamples;
         }
         const GroundTruthTracer tracer(scene.registry, traceOptions);
@@ -232,14 +237,14 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
             reflectorPixels(tracer, camera, truth.mirrorMask);
         const long mirrorPixels = long(pixels.size());
         for (const ReflectorPixel& px : pixels) {
-            // The shader's GGX albedo (1 for a mirror).
-            const float albedo = rough ? ggxAlbedo(std::min(px.cosView(), 1.f), o.roughness) : 1.f;
+            // The pixel's roughness, and the shader's GGX albedo with it (1 for a mirror).
+            const float r = rough ? maps.at(o.roughness, px.entity, px.uv) : 0.f;
+            const float albedo = r > 0.f ? ggxAlbedo(std::min(px.cosView(), 1.f), r) : 1.f;
             const glm::vec3 m =
                 level.radiance(px.position, px.lhat, LevelBlend::Visibility, o.k, 0.f).radiance;
             std::copy(&m[0], &m[0] + 3, mirrorLookup.at(px.x, px.y));
             for (std::size_t b = 0; b < kBlends.size(); ++b) {
-                const LevelSample s =
-                    level.radiance(px.position, px.lhat, kBlends[b], o.k, o.roughness);
+                const LevelSample s = level.radiance(px.position, px.lhat, kBlends[b], o.k, r);
                 const glm::vec3 c = albedo * s.radiance;
                 std::copy(&c[0], &c[0] + 3, img.blends[b].at(px.x, px.y));
                 if (kBlends[b] == LevelBlend::Visibility) {
@@ -253,8 +258,7 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
                     fetchSum[b][k] +=
                         kKs[k] == o.k
                             ? s.fetches
-                            : level.radiance(px.position, px.lhat, kBlends[b], kKs[k], o.roughness)
-                                  .fetches;
+                            : level.radiance(px.position, px.lhat, kBlends[b], kKs[k], r).fetches;
             }
         }
         pixelSum += double(mirrorPixels);

@@ -37,8 +37,10 @@ struct LevelWalkOptions {
     float tolerance = 0.01f;       // d_e
     bool progress = true;
     bool timing = true; // the GPU reflector pass per blend and K, against envmap
-    // Every reflector's perceptual roughness (issue 14); > 0: the truth is Embree's GGX
-    // reflection (glossySamples a pixel) and the level reads every probe's chain.
+    // Every reflector's perceptual roughness (issue 14): its factor, times its roughness map
+    // per pixel where it has one (ReflectorRoughnessMaps, in the truth and the twin); > 0: the
+    // truth is Embree's GGX reflection (glossySamples a pixel) and the level reads every
+    // probe's chain.
     float roughness = 0.f;
     int glossySamples = 256;
 };

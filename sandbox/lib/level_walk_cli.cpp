@@ -42,7 +42,8 @@ constexpr const char* kLevelDescription =
     "one probe's envmap pass: DIR/timing.csv (ms and ratio_to_envmap; on a software\n"
     "rasteriser only the ratios mean something).\n"
     "\n"
-    "--roughness R gives every reflector that perceptual roughness (issue 14): the truth is\n"
+    "--roughness R gives every reflector that perceptual roughness (issue 14; a reflector\n"
+    "with a roughness map reads R times the map's G at each pixel's TEXCOORD_0): the truth is\n"
     "Embree's GGX reflection (--samples a pixel), each probe's share is its own glossy sample\n"
     "(its GGX chain read at its own hit, the footprint level there) blended with the mirror's\n"
     "weights, times the GGX albedo; psnr_visibility_mirror_lookup (frames.csv, and the\n"
@@ -136,7 +137,8 @@ void addLevelCommand(cli::ToolCli& tool) {
     addReflectorOption(sub, a->addedReflectors);
     sub->add_flag("!--no-timing", o.timing, "skip the GPU pass timing (timing.csv)");
     sub->add_option("--roughness", o.roughness,
-                    "every reflector's perceptual roughness, 0 .. 1 (default 0: mirrors)")
+                    "every reflector's perceptual roughness, 0 .. 1 (default 0: mirrors; times its "
+                    "roughness map where it has one)")
         ->check(cli::finiteRange(0.0, 1.0));
     sub->add_option("--samples", o.glossySamples,
                     "GGX truth samples per pixel at roughness > 0 (default 256)")

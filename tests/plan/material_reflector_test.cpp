@@ -1,5 +1,6 @@
 // Reflectors found from the glTF materials (metallic and smooth), not only from the markup:
 // small glTF files written here, loaded by the real loader, read by readSceneMarkup.
+#include "components/reflection_probe/reflector_roughness.h"
 #include "components/reflection_probe/scene_markup.h"
 #include "engine/core/error.h"
 #include "engine/scene/components.h"
@@ -281,7 +282,9 @@ void writePng(const std::filesystem::path& file, int w, int h,
 
 // glTF's metallic-roughness texture multiplies the factors: roughness in G, metalness in B,
 // stored linearly (not sRGB). A rough factor over a smooth texture is a smooth metal.
-TEST_F(MaterialReflector, TheMetallicRoughnessTextureScalesTheFactorsByItsMeans) {
+// The rule reads the texture's means (is the mesh smooth metal?); the reflector it makes
+// reads the texture texel by texel: its factor, and the texture as its roughness map.
+TEST_F(MaterialReflector, TheMetallicRoughnessTextureQualifiesByItsMeansAndIsKeptAsAMap) {
     // Two texels: G codes 10 and 31 (linear mean 20.5/255 = 0.0804, under the rule's 0.1;
     // decoded as sRGB the mean would be 0.0075), B 255 and 229 (metalness 0.949).
     writePng(root_ / "mr.png", 2, 1, {0, 10, 255, 0, 31, 229});
@@ -300,12 +303,52 @@ TEST_F(MaterialReflector, TheMetallicRoughnessTextureScalesTheFactorsByItsMeans)
     EXPECT_NEAR(md.roughnessTextureMean, 20.5f / 255.f, 1e-6f);
     EXPECT_NEAR(md.metallicTextureMean, 242.f / 255.f, 1e-6f);
     EXPECT_FLOAT_EQ(md.roughnessFactor, 1.f); // the factor as stated
-    std::map<std::string, float> roughness;
+    EXPECT_NEAR(md.roughnessTextureMin, 10.f / 255.f, 1e-6f);
+    std::map<std::string, const ReflectorMarkup*> byNode;
     for (const ReflectorMarkup& r : m.reflectors)
-        roughness[r.node] = r.roughness;
-    ASSERT_EQ(roughness.size(), 2u) << "the untextured rough metal is no reflector";
-    EXPECT_NEAR(roughness.at("textured"), 20.5f / 255.f, 1e-6f);
-    EXPECT_NEAR(roughness.at("half"), 0.5f * 20.5f / 255.f, 1e-6f);
+        byNode[r.node] = &r;
+    ASSERT_EQ(byNode.size(), 2u) << "the untextured rough metal is no reflector";
+    EXPECT_FLOAT_EQ(byNode.at("textured")->roughness, 1.f);
+    EXPECT_FLOAT_EQ(byNode.at("half")->roughness, 0.5f);
+    for (const char* node : {"textured", "half"}) {
+        ASSERT_TRUE(byNode.at(node)->roughnessMap) << node;
+        EXPECT_EQ(byNode.at(node)->roughnessMap.get(), md.metallicRoughnessTexture.get());
+    }
+    // Texel by texel: the first texel's centre reads G = 10, the second's 31.
+    const Image* map = byNode.at("half")->roughnessMap.get();
+    EXPECT_NEAR(roughnessAt(0.5f, map, {0.25f, 0.5f}), 0.5f * 10.f / 255.f, 1e-6f);
+    EXPECT_NEAR(roughnessAt(0.5f, map, {0.75f, 0.5f}), 0.5f * 31.f / 255.f, 1e-6f);
+}
+
+// "roughness" is a number in [0, 1] or "material"; "material" takes the node's material,
+// and over a subtree of two materials their mean roughness, uniform (one map cannot stand
+// for both).
+TEST_F(MaterialReflector, MarkupRoughnessMaterialTakesTheMaterials) {
+    GltfScene bad;
+    bad.node("bad", bad.metal("x", 0.0, 0.2),
+             json{{"specula_reflector", {{"roughness", "shiny"}}}});
+    try {
+        read(bad);
+        FAIL() << "\"shiny\" was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("specula_reflector.roughness"), std::string::npos)
+            << e.what();
+    }
+    reg_ = ecs::Registry();
+    GltfScene g;
+    const int pair = g.node("pair", -1, json{{"specula_reflector", {{"roughness", "material"}}}});
+    g.node("a", g.metal("a", 0.0, 0.2), nullptr, pair);
+    g.node("b", g.metal("b", 0.0, 0.6), nullptr, pair);
+    g.node("one", g.metal("c", 0.0, 0.3), json{{"specula_reflector", {{"roughness", "material"}}}});
+    const SceneMarkup m = read(g);
+    std::map<std::string, const ReflectorMarkup*> byNode;
+    for (const ReflectorMarkup& r : m.reflectors)
+        byNode[r.node] = &r;
+    ASSERT_EQ(byNode.size(), 2u);
+    EXPECT_NEAR(byNode.at("pair")->roughness, 0.4f, 1e-6f);
+    EXPECT_FALSE(byNode.at("pair")->roughnessMap);
+    EXPECT_FLOAT_EQ(byNode.at("one")->roughness, 0.3f);
+    EXPECT_FALSE(byNode.at("one")->roughnessMap);
 }
 
 TEST_F(MaterialReflector, AnUnreadableMetallicRoughnessTextureIsAnErrorNamingTheField) {

@@ -126,11 +126,7 @@ TEST_F(LevelGlossyGpuTest, ShaderMatchesCpuTwinPerPixelForEveryBlend) {
 // in sync (one upload, counted in the bytes), outside the drawn frame.
 TEST_F(LevelGlossyGpuTest, MirrorsDrawTheMirrorShaderAndUploadNoChain) {
     test::ProbeRoom room(kTwoRooms, "");
-    const std::string index = bake(room);
-    room.setReflectorOffset(glm::vec3(1.2f, 0.f, 0.f));
-    DistanceLevel settings;
-    settings.lookup.method = DistanceMethod::Secant;
-    room.setProbe(index, settings);
+    setUpSecantDoorway(room);
     const CameraView cam = doorwayCamera(kWidth, kHeight);
     test::RoomRenderer renderer(room, kWidth, kHeight);
     setRoughness(room, 0.f);

@@ -143,7 +143,7 @@ TEST_F(LevelGlossyTest, ARoughReflectorIsCloserToTheGgxTruthThanTheMirrorLevel) 
         for (const Case& c : kCases) {
             const float r = c.roughness;
             TraceOptions t = groundTruthOptions(room.probeScene(), true);
-            t.mirrorRoughness = [r](ecs::Entity) { return r; };
+            t.mirrorRoughness = [r](ecs::Entity, glm::vec2) { return r; };
             t.glossySamples = 256;
             const GroundTruthTracer tracer(room.registry(), t);
             const GroundTruthImage truth = tracer.render(cam, 1);

@@ -333,7 +333,7 @@ TEST_F(GlossyRoom, FootprintLevelIsCloserToTheGgxTruth) {
         scene_->setReflectorOffset(glm::vec3(0.f, -lower, 0.f));
         for (const float r : {0.1f, 0.2f, 0.35f}) {
             TraceOptions o = groundTruthOptions(scene_->probeScene(), true);
-            o.mirrorRoughness = [r](ecs::Entity) { return r; };
+            o.mirrorRoughness = [r](ecs::Entity, glm::vec2) { return r; };
             const GroundTruthTracer tracer(scene_->registry(), o);
             const GroundTruthImage truth = tracer.render(cam);
             const Image mask = erodedMask(truth.mirrorMask);
@@ -388,7 +388,7 @@ TEST_F(GlossyRoom, NearMirrorReadsAsWellAsTheMirror) {
     for (std::size_t i = 0; i < roughness.size(); ++i) {
         const float r = roughness[i];
         TraceOptions o = groundTruthOptions(scene_->probeScene(), true);
-        o.mirrorRoughness = [r](ecs::Entity) { return r; };
+        o.mirrorRoughness = [r](ecs::Entity, glm::vec2) { return r; };
         o.glossySamples = 16; // the lobe is far narrower than a texel
         const GroundTruthTracer tracer(scene_->registry(), o);
         const GroundTruthImage truth = tracer.render(cam);

@@ -532,7 +532,7 @@ TEST_F(LightFieldGlossyRoom, GlossyLookupIsCloserToTheGgxTruthThanTheMirrorLooku
         scene_->setReflectorOffset(offset);
         for (const float r : {0.f, 0.1f, 0.2f, 0.35f}) {
             TraceOptions o = groundTruthOptions(scene_->probeScene(), true);
-            o.mirrorRoughness = [r](ecs::Entity) { return r; };
+            o.mirrorRoughness = [r](ecs::Entity, glm::vec2) { return r; };
             o.glossySamples = 256;
             const GroundTruthTracer tracer(scene_->registry(), o);
             const GroundTruthImage truth = tracer.render(cam, 1);

@@ -8,6 +8,7 @@
 #include "support/scratch_dir_test.h"
 
 #include <string>
+#include <utility>
 
 namespace specula::test {
 
@@ -35,6 +36,18 @@ protected:
         o.cook.flavour = d;
         o.cook.progress = false;
         return cookLevel(room.probeScene(), o, nullptr).index;
+    }
+
+    // The level baked and drawn with the secant search (default blend and K), the mirror
+    // sphere moved 1.2 m along x into the doorway: the setup of the doorway tests.
+    // Returns the level's index file and the settings drawn.
+    std::pair<std::string, DistanceLevel> setUpSecantDoorway(ProbeRoom& room) {
+        const std::string index = bake(room);
+        room.setReflectorOffset(glm::vec3(1.2f, 0.f, 0.f));
+        DistanceLevel settings;
+        settings.lookup.method = DistanceMethod::Secant;
+        room.setProbe(index, settings);
+        return {index, settings};
     }
 
     // Looking from room A at the doorway (the wall at x = 0), where the mirror moved 1.2 m

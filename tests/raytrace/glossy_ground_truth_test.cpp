@@ -81,7 +81,9 @@ struct Room {
     TraceOptions roughSphere(float roughness, int samples) const {
         TraceOptions o = options();
         const ecs::Entity s = sphere;
-        o.mirrorRoughness = [s, roughness](ecs::Entity e) { return e == s ? roughness : 0.f; };
+        o.mirrorRoughness = [s, roughness](ecs::Entity e, glm::vec2) {
+            return e == s ? roughness : 0.f;
+        };
         o.glossySamples = samples;
         return o;
     }
@@ -106,7 +108,7 @@ TEST(GlossyGroundTruth, RoughnessZeroIsTheMirrorPathBitForBit) {
             return e == room.sphere ? glm::vec3(0.9f, 0.8f, 0.7f) : glm::vec3(1.f);
         };
         TraceOptions zero = mirror;
-        zero.mirrorRoughness = [](ecs::Entity) { return 0.f; };
+        zero.mirrorRoughness = [](ecs::Entity, glm::vec2) { return 0.f; };
         zero.glossySamples = 7;
         zero.seed = 12345;
         const GroundTruthImage a = GroundTruthTracer(room.reg, mirror).render(cam);
@@ -119,7 +121,7 @@ TEST(GlossyGroundTruth, RoughnessZeroIsTheMirrorPathBitForBit) {
     // Rays not from a pixel too.
     const GroundTruthTracer plain(room.reg, room.options());
     TraceOptions zero = room.options();
-    zero.mirrorRoughness = [](ecs::Entity) { return 0.f; };
+    zero.mirrorRoughness = [](ecs::Entity, glm::vec2) { return 0.f; };
     const GroundTruthTracer zeroTracer(room.reg, zero);
     const glm::vec3 eye = cam.eye();
     for (const glm::vec3 target : {glm::vec3(-0.42f, 1.2f, 0.f), glm::vec3(0.42f, 1.25f, 0.1f)}) {
@@ -247,7 +249,7 @@ TEST(GlossyGroundTruth, WhiteFurnaceReturnsTheGgxAlbedo) {
         TraceOptions opt;
         opt.mirrors = {plane};
         opt.sky = &white;
-        opt.mirrorRoughness = [roughness](ecs::Entity) { return roughness; };
+        opt.mirrorRoughness = [roughness](ecs::Entity, glm::vec2) { return roughness; };
         opt.glossySamples = kSamples;
         const GroundTruthTracer tracer(reg, opt);
         for (const double viewDeg : {0.0, 45.0, 70.0, 85.0}) {
@@ -323,7 +325,7 @@ TEST(GlossyGroundTruth, GradedSkyMatchesQuadratureOfTheLobe) {
         TraceOptions opt;
         opt.mirrors = {plane};
         opt.sky = &sky;
-        opt.mirrorRoughness = [roughness](ecs::Entity) { return roughness; };
+        opt.mirrorRoughness = [roughness](ecs::Entity, glm::vec2) { return roughness; };
         opt.glossySamples = kSamples;
         const GroundTruthTracer tracer(reg, opt);
         for (const double viewDeg : {30.0, 75.0}) {
@@ -426,7 +428,7 @@ TEST(GlossyGroundTruth, TintAndBounceLimitApplyToRoughMirrors) {
     TraceOptions opt;
     opt.mirrors = {plane};
     opt.sky = &white;
-    opt.mirrorRoughness = [](ecs::Entity) { return 0.5f; };
+    opt.mirrorRoughness = [](ecs::Entity, glm::vec2) { return 0.5f; };
     opt.glossySamples = 32;
     const glm::vec3 o(0.f, 1.f, 1.f), d = glm::normalize(glm::vec3(0.f, -1.f, -1.f));
     const glm::vec3 plain = GroundTruthTracer(reg, opt).radiance(o, d);
@@ -478,7 +480,7 @@ TEST(GlossyGroundTruth, EnvironmentOnlyHoldsForRoughSamples) {
         o.mirrors = std::move(mirrors);
         o.sky = &sky;
         o.environmentOnly = environmentOnly;
-        o.mirrorRoughness = [](ecs::Entity) { return 0.3f; };
+        o.mirrorRoughness = [](ecs::Entity, glm::vec2) { return 0.3f; };
         o.glossySamples = 64;
         return o;
     };

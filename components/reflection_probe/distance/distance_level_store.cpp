@@ -49,14 +49,15 @@ int maxLevelProbes() {
 DistanceLevelVariant DistanceLevelVariant::filter() const {
     DistanceLevelVariant v = *this;
     if (v.output != 0) v.features &= ~kFeatureFresnel;
-    // OUTPUT 1 and 2 write no colour; 3 (|n.v|) is the glossy twin's input.
-    if (v.output == 1 || v.output == 2) v.features &= ~kFeatureGlossy;
+    // OUTPUT 1, 2 and 4 (TEXCOORD_0) write no colour; 3 (|n.v|) is the glossy twin's input.
+    if (v.output == 1 || v.output == 2 || v.output == 4) v.features &= ~kFeatureGlossy;
+    if (!(v.features & kFeatureGlossy)) v.roughnessMap = false;
     return v;
 }
 
 std::string DistanceLevelVariant::name() const {
-    return "level " + distanceFeatureName(features) + " k" + std::to_string(k) + " " +
-           toString(LevelBlend(blend));
+    return "level " + distanceFeatureName(features) + (roughnessMap ? "+roughness-map" : "") +
+           " k" + std::to_string(k) + " " + toString(LevelBlend(blend));
 }
 
 gpu::Program DistanceLevelVariant::build() const {
@@ -66,6 +67,7 @@ gpu::Program DistanceLevelVariant::build() const {
         if (row.define) defines.push_back(std::string(row.define) + "=" + bit(row.feature));
     defines.push_back("HAS_LAYERS=0");
     defines.push_back(std::string("HAS_GLOSSY=") + bit(kFeatureGlossy));
+    defines.push_back(std::string("HAS_ROUGHNESS_MAP=") + (roughnessMap ? "1" : "0"));
     defines.push_back(std::string("HAS_FRESNEL=") + bit(kFeatureFresnel));
     defines.push_back("LEVEL_K=" + std::to_string(k));
     defines.push_back("LEVEL_BLEND=" + std::to_string(blend));
@@ -146,6 +148,7 @@ void DistanceLevelStore::syncReflectors(ecs::Registry& registry, ProbeFrameStats
         if (!(r.roughness > 0.f)) return;
         if (const DistanceLevelGpu* g = probe(r.probe)) prepareGlossy(*g, stats);
     });
+    syncRoughnessMaps(registry, stats);
 }
 
 void DistanceLevelStore::prepareGlossy(const DistanceLevelGpu& g, ProbeFrameStats& stats) {
@@ -192,7 +195,8 @@ void DistanceLevelStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity 
                    "probe nearest to each pixel answers there",
                    g.indexPath);
 
-    DistanceLevelVariant v{g.methodFeature, settings.k, int(settings.blend), ctx.output};
+    DistanceLevelVariant v{g.methodFeature, settings.k, int(settings.blend), ctx.output,
+                           usesRoughnessMap(r)};
     if (r.fresnelF0 >= 0.f) v.features |= kFeatureFresnel;
     if (r.roughness > 0.f) v.features |= kFeatureGlossy; // NaN: a mirror
     const bool glossy = (v.filter().features & kFeatureGlossy) != 0;
@@ -221,6 +225,7 @@ void DistanceLevelStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity 
         prog.setUniform("uChainLevels", int(g.chains.front()->levels.size()));
         glBindTextureUnit(4, ggxAlbedo_.id());
         prog.setUniform("uGgxAlbedo", 4);
+        if (v.filter().roughnessMap) roughnessMaps_.bind(prog, r, ctx.stats);
     }
     ctx.scene.drawEntity(reflector, prog);
 }

@@ -45,6 +45,7 @@ struct DistanceLevelVariant {
     int k = 4;
     int blend = 2;
     int output = 0;
+    bool roughnessMap = false; // a glossy reflector's HAS_ROUGHNESS_MAP (usesRoughnessMap)
 
     auto operator<=>(const DistanceLevelVariant&) const = default;
     DistanceLevelVariant filter() const;

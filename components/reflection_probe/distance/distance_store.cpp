@@ -32,7 +32,12 @@ LayerTiles storedLayerTiles(const DistanceProbeAsset& stored) {
 DistanceVariant DistanceVariant::filter() const {
     DistanceVariant v = *this;
     if (v.output != 0) v.features &= ~(kFeatureFresnel | kFeatureGlossy);
+    if (!(v.features & kFeatureGlossy)) v.roughnessMap = false;
     return v;
+}
+
+std::string DistanceVariant::name() const {
+    return distanceFeatureName(features) + (roughnessMap ? "+roughness-map" : "");
 }
 
 gpu::Program DistanceVariant::build() const {
@@ -44,6 +49,7 @@ gpu::Program DistanceVariant::build() const {
     // The store keeps the object layers as tiles (uploadLayerTiles).
     defines.push_back(std::string("LAYER_TILES=") + bit(kFeatureLayers));
     defines.push_back(std::string("HAS_GLOSSY=") + bit(kFeatureGlossy));
+    defines.push_back(std::string("HAS_ROUGHNESS_MAP=") + (roughnessMap ? "1" : "0"));
     defines.push_back(std::string("HAS_FRESNEL=") + bit(kFeatureFresnel));
     defines.push_back("OUTPUT=" + std::to_string(output));
     return gpu::buildProgram(
@@ -99,7 +105,7 @@ std::size_t DistanceStore::gpuBytesOf(const DistanceProbeGpu& g) const {
 void DistanceStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector,
                                   const Reflector& r, const DistanceProbeGpu& p,
                                   const DistanceProbe&) {
-    DistanceVariant v{p.config.features, ctx.output};
+    DistanceVariant v{p.config.features, ctx.output, usesRoughnessMap(r)};
     if (r.fresnelF0 >= 0.f) v.features |= kFeatureFresnel;
     if (r.roughness > 0.f) v.features |= kFeatureGlossy; // NaN: a mirror
     const bool glossy = (v.filter().features & kFeatureGlossy) != 0;
@@ -130,6 +136,7 @@ void DistanceStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity refle
         prog.setUniform("uChainLevels", int(p.glossyChain->levels.size()));
         glBindTextureUnit(4, ggxAlbedo_.id());
         prog.setUniform("uGgxAlbedo", 4);
+        if (v.filter().roughnessMap) roughnessMaps_.bind(prog, r, ctx.stats);
     }
     ctx.scene.drawEntity(reflector, prog);
 }
@@ -139,6 +146,7 @@ void DistanceStore::syncReflectors(ecs::Registry& registry, ProbeFrameStats& sta
         if (!(r.roughness > 0.f)) return;
         if (const DistanceProbeGpu* g = probe(r.probe)) prepareGlossy(*g, stats);
     });
+    syncRoughnessMaps(registry, stats);
 }
 
 void DistanceStore::prepareGlossy(const DistanceProbeGpu& p, ProbeFrameStats& stats) {

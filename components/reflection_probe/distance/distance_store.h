@@ -41,16 +41,18 @@ DistanceProbeAsset storedDistanceAsset(DistanceProbeAsset asset);
 // storedDistanceAsset gives it.
 LayerTiles storedLayerTiles(const DistanceProbeAsset& stored);
 
-// A compiled feature set: the methods' bits, layers, glossy and Fresnel, and the output.
+// A compiled feature set: the methods' bits, layers, glossy and Fresnel, whether a glossy
+// reflector reads a roughness map (HAS_ROUGHNESS_MAP; usesRoughnessMap), and the output.
 struct DistanceVariant {
     std::uint32_t features = 0;
     int output = 0;
+    bool roughnessMap = false;
 
     auto operator<=>(const DistanceVariant&) const = default;
-    // The twin-input outputs (1, 2) write no colour, so Fresnel and glossy are irrelevant to
-    // them.
+    // The twin-input outputs (1 to 4) write no colour, so Fresnel, glossy and the roughness
+    // map are irrelevant to them; the map is irrelevant without glossy.
     DistanceVariant filter() const;
-    std::string name() const { return distanceFeatureName(features); }
+    std::string name() const;
     gpu::Program build() const;
 };
 

@@ -72,6 +72,7 @@ gpu::Texture uploadAtlas(const LightFieldAsset& a, const std::string& manifest,
 LightFieldVariant LightFieldVariant::filter() const {
     LightFieldVariant v = *this;
     if (v.background || v.output != 0) v.fresnel = v.glossy = false;
+    if (!v.glossy) v.roughnessMap = false;
     return v;
 }
 
@@ -79,6 +80,7 @@ std::string LightFieldVariant::name() const {
     std::string s = kLightFieldMethod.name;
     if (background) s += "+background";
     if (glossy) s += "+glossy";
+    if (roughnessMap) s += "+roughness-map";
     if (fresnel) s += "+fresnel";
     return s;
 }
@@ -91,7 +93,9 @@ gpu::Program LightFieldVariant::build() const {
             "components/reflection_probe/lightfield/shaders/lightfield_reflector.frag"),
         {std::string("HAS_FRESNEL=") + (fresnel ? "1" : "0"),
          std::string("BACKGROUND=") + (background ? "1" : "0"),
-         std::string("GLOSSY=") + (glossy ? "1" : "0"), "OUTPUT=" + std::to_string(output)});
+         std::string("GLOSSY=") + (glossy ? "1" : "0"),
+         std::string("HAS_ROUGHNESS_MAP=") + (roughnessMap ? "1" : "0"),
+         "OUTPUT=" + std::to_string(output)});
 }
 
 LightFieldProbeGpu LightFieldStore::loadProbe(const ProbeManifest& manifest,
@@ -155,8 +159,9 @@ void LightFieldStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity ref
     checkCell(ctx, reflector, p);
     // A rough reflector compiles the glossy lookup in (NaN roughness: a mirror); a scene of
     // mirrors never builds it, nor the mips.
-    const LightFieldVariant v =
-        LightFieldVariant{r.fresnelF0 >= 0.f, false, r.roughness > 0.f, ctx.output}.filter();
+    const LightFieldVariant v = LightFieldVariant{r.fresnelF0 >= 0.f, false, r.roughness > 0.f,
+                                                  ctx.output, usesRoughnessMap(r)}
+                                    .filter();
     gpu::Program& prog = variants_.get(v);
     ctx.stats.drew(v.name());
     prog.use();
@@ -187,6 +192,7 @@ void LightFieldStore::bindGlossy(const ProbeDrawContext& ctx, gpu::Program& prog
     prog.setUniform("uGlossyRays", kLightFieldGlossyRays);
     prog.setUniform("uLevelBias", kLightFieldGlossyLevelBias);
     prog.setUniform("uMaxLevel", p.mipLevels);
+    if (usesRoughnessMap(r)) roughnessMaps_.bind(prog, r, ctx.stats);
 }
 
 void LightFieldStore::checkCell(const ProbeDrawContext& ctx, ecs::Entity reflector,

@@ -31,10 +31,11 @@ struct LightFieldVariant {
     bool background = false; // the full-screen environment pass
     bool glossy = false;     // a rough reflector (GLOSSY: shaders/lightfield_glossy.glsl.h)
     int output = 0;
+    bool roughnessMap = false; // with glossy: HAS_ROUGHNESS_MAP (usesRoughnessMap)
 
     auto operator<=>(const LightFieldVariant&) const = default;
     // The background pass and the twin-input outputs write no reflector colour: no Fresnel,
-    // no glossy lookup.
+    // no glossy lookup, no roughness map.
     LightFieldVariant filter() const;
     std::string name() const;
     gpu::Program build() const;
@@ -51,6 +52,10 @@ public:
     std::array<float, 6> disparities(ecs::Entity probe) const;
 
     void drawBackground(const ProbeDrawContext& ctx) override;
+    // Uploads the roughness maps of the probes' rough reflectors (outside the timed pass).
+    void syncReflectors(ecs::Registry& registry, ProbeFrameStats& stats) override {
+        syncRoughnessMaps(registry, stats);
+    }
 
 private:
     LightFieldProbeGpu loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) override;

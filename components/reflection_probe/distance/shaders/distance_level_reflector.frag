@@ -1,13 +1,15 @@
 // Reflector pixels of a level of distance probes: up to LEVEL_K probes blended per pixel
 // (distance_level_blend.glsl.h). Permutation defines (0 or 1): HAS_ENVMAP, HAS_BOXPROJ,
 // HAS_BISECTION, HAS_SECANT (the one method every probe runs; HAS_AVGDIST and HAS_LAYERS
-// are 0: each probe looks up its composite), HAS_GLOSSY, HAS_FRESNEL; LEVEL_K (probes
-// per pixel), LEVEL_BLEND (kLevelBlend*), and OUTPUT (0 colour, 1 world position, 2 reflected
-// direction, 3 |n.v| in red: the CPU twin's inputs). HAS_GLOSSY (a rough reflector, issue 14)
-// blends each probe's glossy sample (its chain read at its own hit, the footprint level
-// there: distance_glossy_seen.glsl.h) with the mirror's weights, times the GGX directional
-// albedo E(|n.v|, roughness), as the single probe's shader does; without it not one line of
-// the glossy path is compiled.
+// are 0: each probe looks up its composite), HAS_GLOSSY, HAS_ROUGHNESS_MAP, HAS_FRESNEL;
+// LEVEL_K (probes per pixel), LEVEL_BLEND (kLevelBlend*), and OUTPUT (0 colour, 1 world
+// position, 2 reflected direction, 3 |n.v| in red, 4 TEXCOORD_0 in red and green: the CPU
+// twin's inputs). HAS_GLOSSY (a rough reflector, issue 14) blends each probe's glossy sample
+// (its chain read at its own hit, the footprint level there: distance_glossy_seen.glsl.h)
+// with the mirror's weights, times the GGX directional albedo E(|n.v|, roughness), as the
+// single probe's shader does, at the pixel's roughness (reflector_roughness.glsl.h: times the
+// roughness map with HAS_ROUGHNESS_MAP); without it not one line of the glossy path is
+// compiled.
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"
 #include "engine/scene/shading.glsl.h"
@@ -23,6 +25,7 @@ uniform float uF0;
 
 in vec3 vWorldPos;
 in vec3 vNormal;
+in vec2 vUv;
 out vec4 fragColor;
 
 vec3 fetchSky(vec3 dir) {
@@ -33,8 +36,11 @@ vec3 fetchSky(vec3 dir) {
 #include "components/reflection_probe/distance/shaders/distance_seen.glsl.h"
 
 #if HAS_GLOSSY
-uniform float uRoughness; // perceptual, > 0 (alpha = uRoughness^2)
+uniform float uRoughness; // perceptual factor, > 0 (alpha = roughness^2)
 uniform int uChainLevels; // every probe's chain's levels, the composite (level 0) included
+#include "components/reflection_probe/shaders/reflector_roughness.glsl.h"
+// This pixel's roughness (set by main before the blend): every probe's lookup reads it.
+float gRoughness;
 #include "components/reflection_probe/distance/shaders/distance_level_glossy_gpu.glsl"
 #include "engine/math/cube_chain_sample.glsl.h"
 #include "components/reflection_probe/distance/shaders/distance_glossy_lookup.glsl.h"
@@ -48,7 +54,7 @@ vec3 levelRadiance(int probe, vec3 p, vec3 lhat, inout int fetches) {
     gProbe = probe;
     DistanceParams q = uLevel.probes[probe].lookup;
 #if HAS_GLOSSY
-    GlossySample g = probeGlossySample(p - q.centre, lhat, uRoughness, q, uChainLevels);
+    GlossySample g = probeGlossySample(p - q.centre, lhat, gRoughness, q, uChainLevels);
     fetches += g.fetches;
     return g.radiance;
 #else
@@ -60,7 +66,7 @@ SeenSample levelSeen(int probe, vec3 p, vec3 lhat) {
     gProbe = probe;
     DistanceParams q = uLevel.probes[probe].lookup;
 #if HAS_GLOSSY
-    return probeGlossySeen(p - q.centre, lhat, uRoughness, q, uChainLevels);
+    return probeGlossySeen(p - q.centre, lhat, gRoughness, q, uChainLevels);
 #else
     return probeSampleSeen(p - q.centre, lhat, q);
 #endif
@@ -74,10 +80,13 @@ void main() {
     vec3 n = safeNormal(vNormal, geometric);
     vec3 lhat = normalize(mirrorDirection(v, n));
 
+#if HAS_GLOSSY
+    gRoughness = reflectorRoughness(uRoughness, vUv);
+#endif
     LevelBlendSample s = blendLevel(vWorldPos, lhat, LEVEL_BLEND, LEVEL_K);
     vec3 colour = s.radiance;
 #if HAS_GLOSSY
-    colour *= ggxAlbedo(abs(dot(n, v)), uRoughness);
+    colour *= ggxAlbedo(abs(dot(n, v)), gRoughness);
 #endif
 #if HAS_FRESNEL
     colour *= schlickFresnel(uF0, abs(dot(n, v)));
@@ -88,6 +97,8 @@ void main() {
     fragColor = vec4(lhat, 1.0);
 #elif OUTPUT == 3
     fragColor = vec4(abs(dot(n, v)), 0.0, 0.0, 1.0);
+#elif OUTPUT == 4
+    fragColor = vec4(vUv, 0.0, 1.0);
 #else
     fragColor = vec4(colour, 1.0);
 #endif

@@ -1,10 +1,12 @@
 // Reflector pixels of a distance-cubemap probe. Permutation defines (0 or 1): HAS_ENVMAP,
 // HAS_BOXPROJ, HAS_BISECTION, HAS_SECANT, HAS_AVGDIST, HAS_LAYERS, HAS_GLOSSY, HAS_FRESNEL,
-// and OUTPUT (0 colour, 1 probe-local position, 2 reflected direction, 3 |n.v| in red:
-// inputs for the CPU twin). HAS_GLOSSY (a rough reflector) reads the composite's prefiltered
-// chain at the hit (distance_glossy_lookup.glsl.h) instead of the composite, times the GGX
-// directional albedo E(|n.v|, roughness) (the chain is normalised; the microfacet surface
-// returns E of it, engine/image/ggx_albedo.glsl.h).
+// HAS_ROUGHNESS_MAP, and OUTPUT (0 colour, 1 probe-local position, 2 reflected direction, 3
+// |n.v| in red, 4 TEXCOORD_0 in red and green: inputs for the CPU twin). HAS_GLOSSY (a rough
+// reflector) reads the composite's prefiltered chain at the hit (distance_glossy_lookup.glsl.h)
+// instead of the composite, times the GGX directional albedo E(|n.v|, roughness) (the chain is
+// normalised; the microfacet surface returns E of it, engine/image/ggx_albedo.glsl.h), at the
+// pixel's roughness: uRoughness times the roughness map at the pixel's TEXCOORD_0 with
+// HAS_ROUGHNESS_MAP (reflector_roughness.glsl.h), uRoughness alone without.
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"
 #include "engine/scene/shading.glsl.h"
@@ -20,6 +22,7 @@ uniform float uF0;
 
 in vec3 vWorldPos;
 in vec3 vNormal;
+in vec2 vUv;
 out vec4 fragColor;
 
 vec3 fetchSky(vec3 dir) {
@@ -29,8 +32,9 @@ vec3 fetchSky(vec3 dir) {
 #include "components/reflection_probe/distance/shaders/distance_lookup.glsl.h"
 
 #if HAS_GLOSSY
-uniform float uRoughness; // perceptual, > 0 (alpha = uRoughness^2)
+uniform float uRoughness; // perceptual factor, > 0 (alpha = roughness^2)
 uniform int uChainLevels; // the chain's levels, the composite (level 0) included
+#include "components/reflection_probe/shaders/reflector_roughness.glsl.h"
 #include "components/reflection_probe/distance/shaders/distance_glossy_gpu.glsl"
 #include "engine/math/cube_chain_sample.glsl.h"
 #include "components/reflection_probe/distance/shaders/distance_glossy_lookup.glsl.h"
@@ -50,9 +54,10 @@ void main() {
     DistanceParams p = lookupParams();
     int fetches = 0;
 #if HAS_GLOSSY
-    GlossySample glossy = probeGlossySample(x, lhat, uRoughness, p, uChainLevels);
+    float roughness = reflectorRoughness(uRoughness, vUv);
+    GlossySample glossy = probeGlossySample(x, lhat, roughness, p, uChainLevels);
     fetches += glossy.fetches;
-    vec3 colour = glossy.radiance * ggxAlbedo(abs(dot(n, v)), uRoughness);
+    vec3 colour = glossy.radiance * ggxAlbedo(abs(dot(n, v)), roughness);
 #else
     vec3 colour = probeRadiance(x, lhat, p, fetches);
 #endif
@@ -65,6 +70,8 @@ void main() {
     fragColor = vec4(lhat, 1.0);
 #elif OUTPUT == 3
     fragColor = vec4(abs(dot(n, v)), 0.0, 0.0, 1.0);
+#elif OUTPUT == 4
+    fragColor = vec4(vUv, 0.0, 1.0);
 #else
     fragColor = vec4(colour, 1.0);
 #endif

@@ -1,8 +1,10 @@
 // Reflector pixels of a light-field-slab probe (and, with BACKGROUND=1, the environment seen
 // from an eye inside the slabs). Permutation defines: HAS_FRESNEL (0/1), BACKGROUND (0/1),
 // GLOSSY (0/1: a rough reflector, shaders/lightfield_glossy.glsl.h over the atlas's mips, times
-// the GGX albedo E), OUTPUT (0 colour, 1 cell-local position, 2 lookup direction, 3 shading
-// normal: inputs for the CPU twin).
+// the GGX albedo E), HAS_ROUGHNESS_MAP (0/1: with GLOSSY, the roughness is uRoughness times
+// the roughness map at the pixel's TEXCOORD_0, reflector_roughness.glsl.h), OUTPUT (0 colour,
+// 1 cell-local position, 2 lookup direction, 3 shading normal, 4 TEXCOORD_0 in red and green:
+// inputs for the CPU twin).
 #include "engine/core/glsl_device.glsl"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
 
@@ -23,6 +25,7 @@ uniform vec2 uViewport;
 #else
 in vec3 vWorldPos;
 in vec3 vNormal;
+in vec2 vUv;
 #endif
 out vec4 fragColor;
 
@@ -35,7 +38,8 @@ float slabDisparity(int slab) { return uDisparity[slab]; }
 #include "components/reflection_probe/lightfield/shaders/lightfield_lookup.glsl.h"
 
 #if GLOSSY
-uniform float uRoughness;     // perceptual, > 0
+uniform float uRoughness;     // perceptual factor, > 0
+#include "components/reflection_probe/shaders/reflector_roughness.glsl.h"
 uniform int uGlossyRays;      // K
 uniform float uLevelBias;     // added to each ray's mip level
 uniform int uMaxLevel;        // the atlas's deepest mip level
@@ -75,12 +79,12 @@ void main() {
     vec3 lhat = normalize(mirrorDirection(v, n));
 #if GLOSSY
     LightFieldGlossy g;
-    g.roughness = uRoughness;
+    g.roughness = reflectorRoughness(uRoughness, vUv);
     g.rays = uGlossyRays;
     g.levelBias = uLevelBias;
     g.maxLevel = uMaxLevel;
     vec3 colour = lightFieldGlossyRadiance(x, lhat, n, g, prm) *
-                  ggxAlbedo(lightFieldAlbedoCosine(n, lhat), min(uRoughness, 1.0));
+                  ggxAlbedo(lightFieldAlbedoCosine(n, lhat), min(g.roughness, 1.0));
 #else
     vec3 colour = lightFieldRadiance(x, lhat, prm);
 #endif
@@ -94,6 +98,8 @@ void main() {
     fragColor = vec4(lhat, 1.0);
 #elif OUTPUT == 3 && !BACKGROUND
     fragColor = vec4(n, 1.0);
+#elif OUTPUT == 4 && !BACKGROUND
+    fragColor = vec4(vUv, 0.0, 1.0);
 #else
     fragColor = vec4(colour, 1.0);
 #endif
