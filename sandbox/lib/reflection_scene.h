@@ -93,14 +93,22 @@ public:
 
     bool isMirror(ecs::Entity e) const { return scene_.markup.mirrorEntities.count(e) > 0; }
 
+    // Every Reflector component's roughness factor (GGX, alpha = r^2; a roughness map keeps
+    // multiplying it per pixel): what the probe stores draw with.
+    void setReflectorRoughness(float roughness);
+    // GGX samples a pixel of the truth where a reflector is rough (at least 1).
+    void setGlossyTruthSamples(int samples) { glossySamples_ = samples; }
+
     // Ray-traced ground truth of the current state. environmentOnly: reflected rays see
-    // only the environment (what a probe represents).
+    // only the environment (what a probe represents). A reflector is as rough as it is
+    // drawn: its Reflector component's roughness (times its map at the hit), GGX-sampled.
     GroundTruthImage groundTruth(const CameraView& camera, bool environmentOnly);
 
 private:
     ProbeScene scene_;
     ecs::Entity probe_ = ecs::kNullEntity;
     ReflectorRoots reflectors_;
+    int glossySamples_ = TraceOptions{}.glossySamples;
 };
 
 } // namespace specula

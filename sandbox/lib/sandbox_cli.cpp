@@ -40,7 +40,12 @@ constexpr const char* kWalkDescription =
     "--compare the PSNR against that frame's ground truth). Otherwise it opens a window\n"
     "(GLFW; runs under Xvfb): drag to orbit, wheel to zoom, WASD/arrows and Q/E move the\n"
     "reflector, space plays the path; a Dear ImGui panel switches the method, d_e, the layer\n"
-    "method and (light field) the disparity, and shows the pass time and the current error.\n";
+    "method and (light field) the disparity, and shows the pass time and the current error.\n"
+    "\n"
+    "--roughness R draws every reflector rough (GGX, alpha = R^2; a reflector with a roughness\n"
+    "map reads R times the map): the distance and light-field probes read their glossy chains,\n"
+    "and --compare traces the GGX truth (--samples a pixel). Without it each reflector keeps\n"
+    "its own roughness (markup or material), and the truth follows it.\n";
 
 constexpr const char* kBenchDescription =
     "Sweeps every method and its accuracy parameters (d_e in {0.1, 0.03, 0.01, 0.003}; quick:\n"
@@ -130,6 +135,14 @@ void addWalkCommand(cli::ToolCli& tool) {
     sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
     sub->add_option("--face-res", o.faceRes, "cube face resolution when baking a scene")
         ->check(CLI::Range(8, 2048));
+    sub->add_option("--roughness", o.roughness,
+                    "every reflector's perceptual GGX roughness, 0 .. 1 (times its roughness map "
+                    "where it has one; default: each reflector's own)")
+        ->check(cli::finiteRange(0.0, 1.0));
+    sub->add_option("--samples", o.glossySamples,
+                    "GGX samples a pixel of the --compare truth where a reflector is rough "
+                    "(default 256)")
+        ->check(CLI::Range(1, 65536));
     addReflectorOption(sub, a->addedReflectors);
 }
 

@@ -98,6 +98,15 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     ReflectionScene scene(src.scenePath, src.skyPath);
     attachWalkProbe(scene, src, o);
     logAddedReflectors(scene, o.width, o.height, out);
+    if (o.roughness) {
+        scene.setReflectorRoughness(*o.roughness);
+        out << "every reflector at roughness " << *o.roughness
+            << (o.compare && *o.roughness > 0.f
+                    ? " (GGX truth, " + std::to_string(o.glossySamples) + " samples a pixel)"
+                    : std::string())
+            << '\n';
+    }
+    scene.setGlossyTruthSamples(o.glossySamples);
 
     std::ostringstream csv;
     csv << "frame,reflector_x,reflector_y,reflector_z,camera_angle_deg,pass_ms"

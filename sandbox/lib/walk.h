@@ -32,6 +32,11 @@ struct WalkOptions {
     // viewpoint on the camera orbit).
     bool pemByReflector = false;
     bool progress = true;
+    // Every reflector's roughness factor (GGX, alpha = r^2; a roughness map multiplies it per
+    // pixel), drawn by the glossy lookups and traced by the GGX truth with `glossySamples`
+    // a pixel; unset: each reflector's own (its markup or material).
+    std::optional<float> roughness;
+    int glossySamples = 256;
     // Test mirrors added to the scene wherever it is opened (--add-reflector; the walk
     // functions open it inside an AddedReflectorsScope of these).
     std::vector<AddedReflector> addedReflectors;

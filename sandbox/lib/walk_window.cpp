@@ -18,6 +18,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -143,6 +144,8 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
     glfwSwapInterval(0);
     ReflectionScene scene(src.scenePath, src.skyPath);
     attachWalkProbe(scene, src, o);
+    if (o.roughness) scene.setReflectorRoughness(*o.roughness);
+    scene.setGlossyTruthSamples(o.glossySamples);
     out << "walk: " << context->renderer() << "; drag to orbit, wheel to zoom, WASD/QE move the "
         << "reflector, space plays the path, Esc quits\n";
 
@@ -159,6 +162,11 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
         float angle, distance, height;
         walkCameraOrbit(scene, angle, distance, height);
         glm::vec3 offset(0.f);
+        // The slider's roughness: --roughness, else the roughest reflector's own.
+        float roughness = o.roughness.value_or(0.f);
+        if (!o.roughness)
+            scene.registry().view<Reflector>().each(
+                [&](ecs::Entity, Reflector& r) { roughness = std::max(roughness, r.roughness); });
         bool playing = o.frames > 0, showError = true;
         float t = 0.f;
         std::deque<double> passMs;
@@ -223,6 +231,9 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
                 settingsPanel<LightFieldProbe>(scene.registry(), scene.probeEntity(),
                                                lightFieldPanel) ||
                 settingsPanel<PemProbe>(scene.registry(), scene.probeEntity(), pemPanel);
+            // Every reflector's roughness factor (a roughness map keeps multiplying it).
+            const bool roughened = ImGui::SliderFloat("roughness", &roughness, 0.f, 1.f, "%.3f");
+            if (roughened) scene.setReflectorRoughness(roughness);
             ImGui::Checkbox("play path", &playing);
             ImGui::SameLine();
             ImGui::Checkbox("error", &showError);
@@ -238,7 +249,7 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             }
             ImGui::Text("reflector offset %.2f %.2f %.2f", offset.x, offset.y, offset.z);
             ImGui::End();
-            if (edited) {
+            if (edited || roughened) {
                 passMs.clear();
                 changed = true;
             }
