@@ -125,17 +125,34 @@ glm::vec3 CpuLightFieldProbe::radiance(glm::vec3 p, glm::vec3 d) const {
     return twin_->lookup.lightFieldRadiance(p, d, twin_->params);
 }
 
+namespace {
+glsl::LightFieldTwin::LightFieldGlossy
+glossySettings(float roughness, const LightFieldGlossyOptions& o, int mipLevels) {
+    glsl::LightFieldTwin::LightFieldGlossy g;
+    g.roughness = roughness;
+    g.rays = o.rays;
+    g.raysPerTexel = o.footprint ? o.raysPerTexel : 0.f;
+    g.levelBias = o.levelBias;
+    g.maxLevel = o.mips ? mipLevels : 0;
+    return g;
+}
+} // namespace
+
 glm::vec3 CpuLightFieldProbe::glossyRadiance(glm::vec3 p, glm::vec3 lhat, glm::vec3 n,
                                              float roughness,
                                              const LightFieldGlossyOptions& o) const {
     if (!(roughness > 0.f)) return radiance(p, lhat);
     twin_->makeMips();
-    glsl::LightFieldTwin::LightFieldGlossy g;
-    g.roughness = roughness;
-    g.rays = o.rays;
-    g.levelBias = o.levelBias;
-    g.maxLevel = o.mips ? int(twin_->lookup.levels.size()) : 0;
-    return twin_->lookup.lightFieldGlossyRadiance(p, lhat, n, g, twin_->params);
+    return twin_->lookup.lightFieldGlossyRadiance(
+        p, lhat, n, glossySettings(roughness, o, int(twin_->lookup.levels.size())), twin_->params);
+}
+
+int CpuLightFieldProbe::glossyRays(glm::vec3 p, glm::vec3 lhat, glm::vec3 n, float roughness,
+                                   const LightFieldGlossyOptions& o) const {
+    if (!(roughness > 0.f)) return 0;
+    const float nv = twin_->lookup.lightFieldAlbedoCosine(n, lhat);
+    return twin_->lookup.lightFieldLobeRays(p, lhat, nv, glossySettings(roughness, o, 0),
+                                            twin_->params);
 }
 
 glm::vec3 CpuLightFieldProbe::reflectedRadiance(glm::vec3 p, glm::vec3 lhat, glm::vec3 n,

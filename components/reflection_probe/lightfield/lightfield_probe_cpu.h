@@ -19,18 +19,27 @@ namespace specula {
 // The glossy lookup's settings (the shader's uniforms; see shaders/lightfield_glossy.glsl.h).
 // The defaults are what the shader uses; the others exist for the measurements
 // (tests/probe/lightfield_glossy_test.cpp; room, NUM 8, RES 64, roughness 0.35, against the
-// GGX truth): K = 16 rays. 8 rays lose 1.2-1.6 dB, 32 gain 1.0-1.2 dB for twice the fetches;
-// the mips alone (K = 1) lose 5 dB; the same 16 rays without mips lose 0.8-1.0 dB, and rays
-// without mips alias textured surfaces (on the synthetic walls 32 rays at level 0 err 1.4-3.2x
-// as much as these 16 with mips). Level bias log2(2 / sqrt(12)): a level-k trilinear read
-// blurs with a standard deviation of 2^k / 2 texels (a 2^k box, then the bilinear tent), a
+// GGX truth): K = 16 rays at every pixel. 8 rays lose 1.2-1.6 dB, 32 gain 1.0-1.2 dB for twice
+// the fetches; the mips alone (K = 1) lose 5 dB; the same 16 rays without mips lose 0.8-1.0 dB,
+// and rays without mips alias textured surfaces (on the synthetic walls 32 rays at level 0 err
+// 1.4-3.2x as much as these 16 with mips). Level bias log2(2 / sqrt(12)): a level-k trilinear
+// read blurs with a standard deviation of 2^k / 2 texels (a 2^k box, then the bilinear tent), a
 // ray's square share of side s has s / sqrt(12); the bias makes the two equal.
+// K per pixel (tests/probe/lightfield_glossy_rays_test.cpp, the same room, both placements):
+// the footprint rule with 2 rays per texel of the lobe's width, at most 16, is within 0.05 dB of
+// K = 16 everywhere for 8 / 40 / 115 fetches a pixel at r = 0.05 / 0.1 / 0.2 against 68 / 84 /
+// 118; at r >= 0.35 every pixel asks for 16 or more. A cap of 32 there gains 1.0-1.2 dB at
+// r = 0.35, 2.1 at 0.5, 3.5-3.6 at 0.75 for twice the fetches (and 0.03-0.04 dB at r = 0.2 for
+// 1.3x): the cap stays the old fixed K, 16, so the pass costs at most what BENCH.md measured.
 inline constexpr int kLightFieldGlossyRays = 16;
 inline constexpr float kLightFieldGlossyLevelBias = -0.7925f;
+inline constexpr float kLightFieldGlossyRaysPerTexel = 2.f;
 struct LightFieldGlossyOptions {
-    int rays = kLightFieldGlossyRays;             // lobe rays: 1 or even
+    int rays = kLightFieldGlossyRays;             // the most lobe rays a pixel takes: 1 or even
     float levelBias = kLightFieldGlossyLevelBias; // added to each ray's mip level
     bool mips = true;                             // false: every ray at level 0
+    bool footprint = true; // K per pixel from the lobe's footprint; false: K = rays everywhere
+    float raysPerTexel = kLightFieldGlossyRaysPerTexel; // the rule's factor (see the shader)
 };
 
 // Continuous indices of a ray's slab lookup, before clamping (exposed for the coverage tests).
@@ -55,6 +64,10 @@ public:
     // Roughness <= 0 or NaN: radiance(p, lhat), bit for bit. Thread-safe.
     glm::vec3 glossyRadiance(glm::vec3 p, glm::vec3 lhat, glm::vec3 n, float roughness,
                              const LightFieldGlossyOptions& options = {}) const;
+    // The rays K the glossy lookup takes at this pixel (lightFieldLobeRays); 0 for a mirror
+    // (roughness <= 0 or NaN: the mirror lookup, no lobe).
+    int glossyRays(glm::vec3 p, glm::vec3 lhat, glm::vec3 n, float roughness,
+                   const LightFieldGlossyOptions& options = {}) const;
     // What the shader writes for a reflector (before Fresnel): the filter times the GGX
     // directional albedo E(|n.lhat|, roughness) when roughness > 0, else the mirror lookup.
     glm::vec3 reflectedRadiance(glm::vec3 p, glm::vec3 lhat, glm::vec3 n, float roughness,

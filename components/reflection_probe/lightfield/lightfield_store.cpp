@@ -190,6 +190,7 @@ void LightFieldStore::bindGlossy(const ProbeDrawContext& ctx, gpu::Program& prog
     prog.setUniform("uGgxAlbedo", 2);
     prog.setUniform("uRoughness", r.roughness);
     prog.setUniform("uGlossyRays", kLightFieldGlossyRays);
+    prog.setUniform("uRaysPerTexel", kLightFieldGlossyRaysPerTexel);
     prog.setUniform("uLevelBias", kLightFieldGlossyLevelBias);
     prog.setUniform("uMaxLevel", p.mipLevels);
     if (usesRoughnessMap(r)) roughnessMaps_.bind(prog, r, ctx.stats);

@@ -22,11 +22,12 @@
 // covers that ray's share of the lobe. The rays carry what a blur cannot: GGX's long tail, the
 // lobe's stretch and tilt at grazing view, a lobe that spans cameras or slabs; the mips fill
 // the space between the rays (no sharp copy of an edge or a texture shows) and average what
-// level 0, a point sample per texel, aliases. K and the level bias: lightfield_probe_cpu.h,
-// with the measurements. Roughness 0 is the mirror lookup itself, bit for bit.
+// level 0, a point sample per texel, aliases. K's cap, its rule's factor and the level bias:
+// lightfield_probe_cpu.h, with the measurements. Roughness 0 is the mirror lookup itself, bit
+// for bit.
 //
 // The rays: a fixed pattern of visible normals (Heitz 2018, "Sampling the GGX Distribution of
-// Visible Normals"), l = reflect(-v, h), the same for every pixel so the image holds no noise:
+// Visible Normals"), l = reflect(-v, h), the same at every pixel of one K (no noise):
 // K = 1 is the centre of the visible-normal disk (nearly the mirror direction: all blur from
 // the mips); an even K takes point pairs (r, phi), (r, phi + pi) of a Vogel spiral,
 // r = sqrt((j + 1/2) / (K/2)), phi = j * golden angle: equal areas of the disk, and symmetric
@@ -43,15 +44,33 @@
 // The bias the shader uses, log2(2 / sqrt(12)) = -0.79, gives the level's trilinear kernel
 // (a 2^k box, then the bilinear tent: standard deviation 2^k / 2 texels) the standard
 // deviation of the ray's square share (side / sqrt(12)).
+// K per pixel, from the lobe's footprint (lightFieldLobeRays): the mips blur each ray's share
+// exactly only at the focal plane, so rays are needed where the lobe spans what a blur cannot
+// stand for (parallax across cameras and slabs, GGX's tail, the grazing stretch), and a lobe
+// that covers a texel or less is the mirror lookup already. The footprint is the lobe's solid
+// angle Omega_lobe = 1 / pdf at its peak (h = n) = 4 pi alpha^2 n.v (1 + Lambda(n.v)), on the
+// slab of the mirror ray read as A above (level-0 texels, the magnification F included); then
+//     K = the least power of two >= raysPerTexel * sqrt(A), at most `rays` (1 for a lobe under
+// half a texel wide). Omega_lobe grows with the roughness and the mirror ray's coordinates do
+// not depend on it, so K never falls as the roughness rises. K grows with the lobe's width, not
+// its area: on the room (tests/probe/lightfield_glossy_rays_test.cpp, both capped at 32) K = the
+// least power of two >= A lost 0.04 dB against K = 16 at r = 0.1 for 50 fetches a pixel where
+// this rule lost 0.02 for 43, and took 207 fetches at r = 0.2 where this rule took 149.
+// raysPerTexel = 2 is the least of 1.5, 2, 3 within 0.05 dB of K = 16 at every roughness there
+// (1.5 lost 0.07). The cap (`rays`): lightfield_probe_cpu.h. The pattern of each K is fixed,
+// so the image is deterministic; where K changes between neighbouring pixels the colour steps
+// 0.0010-0.0024 more than the fixed-K image's at the same pixels (steps of 0.016-0.18 there),
+// as much as the rule adds where K does not change (0-0.0014): no seam shows.
 // Cost: per ray 4 bilinear fetches at an integral level, else 8: at most 8 K per pixel.
 #ifndef SPECULA_LIGHTFIELD_GLOSSY_GLSL_H
 #define SPECULA_LIGHTFIELD_GLOSSY_GLSL_H
 
 struct LightFieldGlossy {
-    float roughness; // perceptual (alpha = roughness^2), clamped to 1; <= 0 or NaN: a mirror
-    int rays;        // K: 1 (the lobe's centre only) or even
-    float levelBias; // added to every ray's mip level
-    int maxLevel;    // the atlas's deepest mip level (0: no mips, the rays alone)
+    float roughness;    // perceptual (alpha = roughness^2), clamped to 1; <= 0 or NaN: a mirror
+    int rays;           // the most rays K a pixel takes: 1 or even
+    float raysPerTexel; // the footprint rule's factor; <= 0 or NaN: K = rays at every pixel
+    float levelBias;    // added to every ray's mip level
+    int maxLevel;       // the atlas's deepest mip level (0: no mips, the rays alone)
 };
 
 // Smith's Lambda of GGX at cosine c (> 0) to the normal, a2 = alpha^2.
@@ -104,18 +123,38 @@ vec3 lightFieldSlabsAtLevel(SlabCoords sc, float lod, int maxLevel, LightFieldPa
     return sum;
 }
 
-// The mip level for a ray `l` (unit) of the lobe standing for `omega` steradians, read through
-// slab coordinates sc (see the header comment for A and F).
-float lightFieldRayLevel(SlabCoords sc, vec3 l, float omega, LightFieldGlossy g,
-                         LightFieldParams prm) {
+// The level-0 texels that `omega` steradians about the ray `l` (unit) cover on the slab it
+// reads through slab coordinates sc (A of the header comment).
+float lightFieldTexelArea(SlabCoords sc, vec3 l, float omega, LightFieldParams prm) {
     float axial = max(abs(l[sc.slab / 2]), 0.5f); // >= 1/sqrt(3) for the slab's own axis
     float disparity = max(slabDisparity(sc.slab), 0.0f);
     float magnify = 1.0f + max(sc.along, 0.0f) * disparity * float(prm.cameras - 1) /
                                (3.0f * prm.halfCell * float(prm.res));
     float texelsPerSlope = 0.5f * float(prm.res) * magnify;
-    float area = omega / (axial * axial * axial) * texelsPerSlope * texelsPerSlope;
-    float lod = 0.5f * log2(max(area, 1e-30f)) + g.levelBias;
+    return omega / (axial * axial * axial) * texelsPerSlope * texelsPerSlope;
+}
+
+// The mip level for a ray `l` (unit) of the lobe standing for `omega` steradians.
+float lightFieldRayLevel(SlabCoords sc, vec3 l, float omega, LightFieldGlossy g,
+                         LightFieldParams prm) {
+    float lod = 0.5f * log2(max(lightFieldTexelArea(sc, l, omega, prm), 1e-30f)) + g.levelBias;
     return clamp(lod, 0.0f, float(g.maxLevel));
+}
+
+// K at a pixel: the footprint rule (see the header comment), the lobe of roughness
+// g.roughness (> 0) about the mirror direction lhat (unit) at p, nv its clamped n.v.
+int lightFieldLobeRays(vec3 p, vec3 lhat, float nv, LightFieldGlossy g, LightFieldParams prm) {
+    if (!(g.raysPerTexel > 0.0f)) return g.rays;
+    float r = min(g.roughness, 1.0f);
+    float alpha = max(r * r, 1e-6f);
+    float a2 = alpha * alpha;
+    float omega = 4.0f * 3.14159265f * a2 * nv * (1.0f + lightFieldLambda(nv, a2));
+    float area = lightFieldTexelArea(slabCoords(p, lhat, prm), lhat, omega, prm);
+    float want = g.raysPerTexel * sqrt(area);
+    int k = 1;
+    while (k < g.rays && float(k) < want)
+        k *= 2;
+    return min(k, g.rays);
 }
 
 // The n.v that E(n.v, roughness) is read at: |n.lhat| (= |n.v|), kept above 1e-4 as the
@@ -160,10 +199,11 @@ vec3 lightFieldGlossyRadiance(vec3 p, vec3 lhat, vec3 n, LightFieldGlossy g,
     vec3 t2 = cross(vh, t1);
     float s = 0.5f * (1.0f + vh.z);
     float lambdaV = lightFieldLambda(nv, a2);
+    int rays = lightFieldLobeRays(p, lhat, nv, g, prm);
     vec3 sum = vec3(0.0f);
     float weights = 0.0f;
-    for (int i = 0; i < g.rays; ++i) {
-        vec2 u = lightFieldLobeDisk(i, g.rays);
+    for (int i = 0; i < rays; ++i) {
+        vec2 u = lightFieldLobeDisk(i, rays);
         float u2 = (1.0f - s) * sqrt(max(1.0f - u.x * u.x, 0.0f)) + s * u.y;
         vec3 nh = u.x * t1 + u2 * t2 + sqrt(max(1.0f - u.x * u.x - u2 * u2, 0.0f)) * vh;
         vec3 h = normalize(vec3(alpha * nh.x, alpha * nh.y, max(nh.z, 0.0f)));
@@ -174,7 +214,7 @@ vec3 lightFieldGlossyRadiance(vec3 p, vec3 lhat, vec3 n, LightFieldGlossy g,
         float pdf = a2 / (3.14159265f * q * q) / ((1.0f + lambdaV) * 4.0f * nv);
         vec3 dir = normalize(l.x * tangent + l.y * bitangent + l.z * nf);
         SlabCoords sc = slabCoords(p, dir, prm);
-        float lod = lightFieldRayLevel(sc, dir, 1.0f / (float(g.rays) * pdf), g, prm);
+        float lod = lightFieldRayLevel(sc, dir, 1.0f / (float(rays) * pdf), g, prm);
         sum += w * lightFieldSlabsAtLevel(sc, lod, g.maxLevel, prm);
         weights += w;
     }

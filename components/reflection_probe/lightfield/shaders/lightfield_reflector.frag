@@ -40,7 +40,8 @@ float slabDisparity(int slab) { return uDisparity[slab]; }
 #if GLOSSY
 uniform float uRoughness;     // perceptual factor, > 0
 #include "components/reflection_probe/shaders/reflector_roughness.glsl.h"
-uniform int uGlossyRays;      // K
+uniform int uGlossyRays;      // the most rays K a pixel takes
+uniform float uRaysPerTexel;  // the footprint rule's factor (0: K = uGlossyRays everywhere)
 uniform float uLevelBias;     // added to each ray's mip level
 uniform int uMaxLevel;        // the atlas's deepest mip level
 uniform sampler2D uGgxAlbedo; // kGgxAlbedoSize^2 R32F: E(n.v = i / 31, roughness = j / 31)
@@ -81,6 +82,7 @@ void main() {
     LightFieldGlossy g;
     g.roughness = reflectorRoughness(uRoughness, vUv);
     g.rays = uGlossyRays;
+    g.raysPerTexel = uRaysPerTexel;
     g.levelBias = uLevelBias;
     g.maxLevel = uMaxLevel;
     vec3 colour = lightFieldGlossyRadiance(x, lhat, n, g, prm) *
