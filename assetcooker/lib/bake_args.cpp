@@ -295,7 +295,7 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
     only(sub->add_option("--non-negative", a.nonNegative,
                          "keep the inferred texels >= 0 (and the local layer's coverage in "
                          "[0, 1]) by re-solving with the crossing texels pinned at the bound, "
-                         "instead of clamping afterwards: on or off (default)"),
+                         "instead of clamping afterwards: on (default) or off"),
          "pem")
         ->check(CLI::IsMember({"on", "off"}));
     only(sub->add_option("--parameter", a.parameter,

@@ -37,7 +37,7 @@ struct BakeArgs {
     std::string parameter = "viewpoint", path = "orbit";
     std::string localLayer = "auto";
     std::string rows = "subray";
-    std::string nonNegative = "off";
+    std::string nonNegative = "on";
     // The options that belong to some flavours only, with their names ("distance|pem").
     std::vector<std::pair<const CLI::Option*, std::string>> flavourOnly;
 };

@@ -26,7 +26,7 @@ struct BenchOptions {
     // supersample, rows, nonNegative): --pem-supersample, --pem-rows, --pem-non-negative.
     int pemSupersample = 1;
     std::string pemRows = "subray";
-    bool pemNonNegative = false;
+    bool pemNonNegative = true;
 };
 
 struct BenchRow {

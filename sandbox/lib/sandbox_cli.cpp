@@ -151,7 +151,7 @@ struct BenchArgs {
     std::string size;
     std::optional<int> faceRes, maxFrames;
     std::vector<std::string> addedReflectors;
-    std::string pemNonNegative = "off";
+    std::string pemNonNegative = "on";
 };
 
 int runBenchCommand(BenchArgs& a, std::ostream& out) {
@@ -201,7 +201,7 @@ void addBenchCommand(cli::ToolCli& tool) {
         ->check(CLI::IsMember({"pixel", "centre", "subray"}));
     sub->add_option("--pem-non-negative", a->pemNonNegative,
                     "the PEM bakes keep their texels >= 0 by re-solving (specula-cook bake "
-                    "--non-negative): on or off (default)")
+                    "--non-negative): on (default) or off")
         ->check(CLI::IsMember({"on", "off"}));
     addReflectorOption(sub, a->addedReflectors, " (added to every benched scene)");
 }
