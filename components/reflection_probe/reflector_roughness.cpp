@@ -20,6 +20,15 @@ float roughnessMapMin(const Image* map) {
     return std::clamp(least, 0.f, 1.f);
 }
 
+float roughnessMapMean(const Image* map) {
+    if (!map || map->channels < 2 || map->pixels.empty()) return 1.f;
+    double sum = 0.0;
+    for (std::size_t i = 1; i < map->pixels.size(); i += std::size_t(map->channels))
+        sum += double(map->pixels[i]);
+    const double texels = double(map->pixels.size() / std::size_t(map->channels));
+    return float(std::clamp(sum / texels, 0.0, 1.0));
+}
+
 MaterialRoughness materialRoughness(const ecs::Registry& registry,
                                     const std::vector<ecs::Entity>& meshes) {
     const MaterialData* only = nullptr;

@@ -20,6 +20,9 @@ float roughnessAt(float factor, const Image* map, glm::vec2 uv);
 // The smallest roughness the map holds (its G channel), 1 without a map: factor x this is
 // the sharpest lobe the reflector shows.
 float roughnessMapMin(const Image* map);
+// The mean of its G channel over its texels (as MaterialData::roughnessTextureMean is taken),
+// 1 without a map: factor x this is the one roughness a reflector took before maps were read.
+float roughnessMapMean(const Image* map);
 
 // Where a reflector takes its roughness from its meshes' materials: the one material every
 // primitive of `meshes` shares gives its factor and its metallic-roughness texture (null when

@@ -61,15 +61,7 @@ void printByRoughness(std::ostream& log, const std::vector<std::string>& methods
 ReflectorRoughnessMaps::ReflectorRoughnessMaps(const SceneMarkup& markup) {
     for (const ReflectorMarkup& r : markup.reflectors) {
         if (!r.roughnessMap) continue;
-        const Image& map = *r.roughnessMap;
-        double sum = 0.0;
-        const std::size_t step = std::size_t(std::max(map.channels, 1));
-        for (std::size_t i = 1; i < map.pixels.size(); i += step)
-            sum += double(map.pixels[i]);
-        const std::size_t texels = map.pixels.size() / step;
-        const float mean = map.channels >= 2 && texels > 0
-                               ? float(std::clamp(sum / double(texels), 0.0, 1.0))
-                               : 1.f;
+        const float mean = roughnessMapMean(r.roughnessMap.get());
         for (const ecs::Entity mesh : r.meshes)
             maps_[mesh] = Map{r.roughnessMap, mean};
     }

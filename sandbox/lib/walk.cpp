@@ -107,6 +107,9 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
             << '\n';
     }
     scene.setGlossyTruthSamples(o.glossySamples);
+    if (o.roughness && *o.roughness > 0.f && src.pem)
+        out << "note: a PEM draws its reflectors as mirrors (its maps hold no roughness); "
+               "--compare measures them against the rough truth\n";
 
     std::ostringstream csv;
     csv << "frame,reflector_x,reflector_y,reflector_z,camera_angle_deg,pass_ms"

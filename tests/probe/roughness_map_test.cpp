@@ -88,6 +88,9 @@ TEST(RoughnessMap, LoaderAndMarkupKeepTheTexture) {
     EXPECT_NEAR(md->roughnessTextureMean, mean, 1e-6f);
     EXPECT_NEAR(md->roughness(), mean, 1e-6f);
     EXPECT_NEAR(roughnessMapMin(&map), 20.f / 255.f, 1e-6f);
+    EXPECT_NEAR(roughnessMapMean(&map), mean, 1e-6f);
+    EXPECT_EQ(roughnessMapMin(nullptr), 1.f);
+    EXPECT_EQ(roughnessMapMean(nullptr), 1.f);
     // Linear, not sRGB-decoded: texel (5, 0) holds 102 / 255 in G.
     EXPECT_NEAR(map.at(5, 0)[1], 102.f / 255.f, 1e-6f);
 
