@@ -26,6 +26,7 @@ using namespace specula;
 
 namespace {
 
+using test::mirrorOf;
 using test::MirrorPixel;
 using test::randomUnit;
 // Its own suite over the glossy tests' room and probe.
@@ -54,7 +55,7 @@ TEST_F(LightFieldRaysRoom, RaysAreMonotoneInRoughnessAndBounded) {
         do
             v = randomUnit(rng);
         while (-glm::dot(v, n) < 0.f);
-        const glm::vec3 lhat = glm::normalize(glsl::mirrorDirection(v, n));
+        const glm::vec3 lhat = mirrorOf(v, n);
         ASSERT_EQ(lf_->glossyRays(p, lhat, n, 0.f), 0);
         for (const int cap : {16, 32}) {
             const LightFieldGlossyOptions rule{cap};

@@ -7,25 +7,15 @@
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "components/reflection_probe/probe_setup.h"
 #include "components/reflection_probe/reflector_pixels.h"
-#include "engine/core/glsl_host.h"
 #include "engine/raytrace/ground_truth.h"
 #include "support/probe_room.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
-#include <vector>
 
-// The reflector pass's mirror direction and normal fallback (glsl::mirrorDirection,
-// glsl::safeNormal), for tests that make their own rays.
-namespace specula::glsl {
-namespace {
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#include "components/reflection_probe/shaders/reflector_common.glsl.h"
-#pragma GCC diagnostic pop
-} // namespace
-} // namespace specula::glsl
+#include <glm/geometric.hpp>
+#include <vector>
 
 namespace specula::test {
 
@@ -42,6 +32,13 @@ inline std::vector<MirrorPixel> mirrorPixels(const GroundTruthTracer& tracer, co
     for (const ReflectorPixel& p : reflectorPixels(tracer, cam, mirrorMask))
         out.push_back({p.x, p.y, p.position - cellCentre, p.normal, p.lhat});
     return out;
+}
+
+// The reflector pass's mirror direction of the unit view ray v about n (mirrorDirection in
+// reflector_common.glsl.h turns n towards the eye first; the reflection is the same, bit for
+// bit, either way), unit.
+inline glm::vec3 mirrorOf(glm::vec3 v, glm::vec3 n) {
+    return glm::normalize(glm::reflect(v, n));
 }
 
 // A uniformly random unit vector (rejection from the unit ball).

@@ -32,6 +32,7 @@
 
 using namespace specula;
 using test::LightFieldGlossyRoom;
+using test::mirrorOf;
 using test::MirrorPixel;
 using test::mirrorPixels;
 using test::randomUnit;
@@ -100,7 +101,7 @@ Config randomConfig(std::mt19937& rng, float h, float minNv) {
     do
         c.v = randomUnit(rng);
     while (-glm::dot(c.v, c.n) < minNv);
-    c.lhat = glm::normalize(glsl::mirrorDirection(c.v, c.n));
+    c.lhat = mirrorOf(c.v, c.n);
     return c;
 }
 
