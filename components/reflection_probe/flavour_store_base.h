@@ -30,6 +30,9 @@ inline bool usesRoughnessMap(const Reflector& r) {
 // very floats the CPU twin (roughnessAt: sampleBilinear of the float image) filters; R8 would
 // round the map to 1/255 and the twin would no longer read what the GPU does. GL_LINEAR
 // without mipmaps and GL_REPEAT on S and T, as the twin samples.
+inline std::size_t roughnessMapTextureBytes(const Image& map) {
+    return std::size_t(map.width) * std::size_t(map.height) * 4; // R32F
+}
 inline gpu::Texture roughnessMapTexture(const Image& map) {
     std::vector<float> g(std::size_t(map.width) * std::size_t(map.height));
     for (int y = 0; y < map.height; ++y)
@@ -55,7 +58,7 @@ public:
     void prepare(const std::shared_ptr<const Image>& map, ProbeFrameStats& stats) {
         Entry& e = entries_[map.get()];
         if (e.texture && e.image.lock() == map) return;
-        e = Entry{map, roughnessMapTexture(*map), std::size_t(map->width) * map->height * 4};
+        e = Entry{map, roughnessMapTexture(*map), roughnessMapTextureBytes(*map)};
         ++stats.textureUploads;
     }
     // Binds the map of a reflector that usesRoughnessMap (uploaded here unless it was).
@@ -79,7 +82,7 @@ private:
     struct Entry {
         std::weak_ptr<const Image> image;
         gpu::Texture texture;
-        std::size_t bytes = 0; // R32F: 4 bytes a texel
+        std::size_t bytes = 0; // roughnessMapTextureBytes
     };
     std::unordered_map<const Image*, Entry> entries_;
 };

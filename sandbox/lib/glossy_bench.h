@@ -20,7 +20,6 @@
 #include <memory>
 #include <ostream>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -68,28 +67,6 @@ struct GlossyBenchResult {
     double envmapMs = 0.0; // the mirror envmap pass the ratios divide by (0: not timed)
     std::string timer;     // what clock timed the passes
     std::size_t storeBytes = 0, expectedStoreBytes = 0; // see GlossyTiming
-};
-
-// The reflector meshes' roughness maps (ReflectorMarkup::roughnessMap), for the bench's and the
-// level walk's per-pixel roughness; the truth reads it from many threads at once (const only).
-class ReflectorRoughnessMaps {
-public:
-    explicit ReflectorRoughnessMaps(const SceneMarkup& markup);
-    bool empty() const { return maps_.empty(); }
-    // The mesh's map, null where its reflector's roughness is uniform.
-    const Image* of(ecs::Entity mesh) const;
-    // factor x the mesh's map at uv (roughnessAt); the factor on a uniform reflector.
-    float at(float factor, ecs::Entity mesh, glm::vec2 uv) const;
-    // factor x the mean of the mesh's map (its G channel, as MaterialData::roughnessTextureMean
-    // is taken), clamped to [0, 1]; the factor on a uniform reflector.
-    float mean(float factor, ecs::Entity mesh) const;
-
-private:
-    struct Map {
-        std::shared_ptr<const Image> image;
-        float mean = 1.f;
-    };
-    std::unordered_map<ecs::Entity, Map> maps_;
 };
 
 // The method names, in the order of the rows of each roughness.

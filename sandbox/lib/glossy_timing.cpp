@@ -2,6 +2,7 @@
 
 #include "components/reflection_probe/distance/distance_store.h"
 #include "components/reflection_probe/distance/distance_textures.h"
+#include "components/reflection_probe/flavour_store_base.h"
 #include "components/reflection_probe/lightfield/lightfield_mips.h"
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
 #include "engine/gpu/timer.h"
@@ -50,7 +51,7 @@ GlossyTextures glossyTextures(const DistanceProbeAsset& distance, const CubeChai
     std::unordered_set<const Image*> maps;
     for (const ReflectorMarkup& r : markup.reflectors)
         if (r.roughnessMap && maps.insert(r.roughnessMap.get()).second)
-            t.roughnessMaps += std::size_t(r.roughnessMap->width) * r.roughnessMap->height * 4;
+            t.roughnessMaps += roughnessMapTextureBytes(*r.roughnessMap);
     t.cube = cubeArrayBytes(distance.faceRes, 1);
     t.sky = distance.sky.empty() ? 0 : skyTextureBytes(distance.sky);
     t.chain = chainArrayBytes(chain);

@@ -6,6 +6,7 @@
 #include "components/reflection_probe/distance/distance_textures.h"
 #include "components/reflection_probe/probe_setup.h"
 #include "components/reflection_probe/reflector_pixels.h"
+#include "components/reflection_probe/reflector_roughness.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/progress.h"
@@ -14,7 +15,6 @@
 #include "engine/image/contact_sheet.h"
 #include "engine/image/ggx_albedo.h"
 #include "engine/image/image_io.h"
-#include "sandbox/lib/glossy_bench.h"
 #include "sandbox/lib/level_timing.h"
 #include "sandbox/lib/reflection_scene.h"
 
