@@ -39,6 +39,7 @@ CookOptions cookOptions(const BakeArgs& a) {
         s.mipLevels = a.mipLevels;
         s.rows = a.rows;
         s.nonNegative = a.nonNegative == "on";
+        s.roundingReach = a.roundingReach;
         o.flavour = s;
     } else {
         DistanceCookSettings s;
@@ -298,6 +299,14 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
                          "instead of clamping afterwards: on (default) or off"),
          "pem")
         ->check(CLI::IsMember({"on", "off"}));
+    only(sub->add_option("--rounding-reach", a.roundingReach,
+                         "distance geometry: where moving a reflector ray's point or direction "
+                         "by this much (metres; radians) along an axis makes the search end on "
+                         "other texels, the moved ray becomes a row too, so the display, whose "
+                         "interpolants differ from the tracer's by rounding, reads fitted texels "
+                         "(default 1e-4; 0: off)"),
+         "pem")
+        ->check(CLI::Range(0.0, 0.01));
     only(sub->add_option("--parameter", a.parameter,
                          "what the maps vary with: viewpoint (the camera moves, default) or "
                          "reflector (the reflectors move before the scene camera)"),
@@ -325,6 +334,7 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
     tool.mapField("mip_levels", "--mip-levels");
     tool.mapField("rows", "--rows");
     tool.mapField("non_negative", "--non-negative");
+    tool.mapField("rounding_reach", "--rounding-reach");
     tool.mapField("geometry", "--geometry");
     tool.mapField("prior_weight", "--prior");
     tool.mapField("regularisation", "--smoothness");

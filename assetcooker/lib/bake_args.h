@@ -38,6 +38,7 @@ struct BakeArgs {
     std::string localLayer = "auto";
     std::string rows = "subray";
     std::string nonNegative = "on";
+    float roundingReach = PemCookSettings{}.roundingReach;
     // The options that belong to some flavours only, with their names ("distance|pem").
     std::vector<std::pair<const CLI::Option*, std::string>> flavourOnly;
 };

@@ -129,6 +129,7 @@ PemBake::PemBake(ProbeScene& scene, const PemCookSettings& s, std::optional<glm:
     infer_.regularisation = s.regularisation;
     infer_.rows = pemRows(s);
     infer_.nonNegative = s.nonNegative;
+    infer_.roundingReach = s.roundingReach;
     if ((needs & Infer) && s.geometry == "distance") {
         // The environment does not move with either parameter: one distance cube serves every
         // sample. d_inf past any real distance: every environment point lies in the box.

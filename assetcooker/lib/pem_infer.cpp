@@ -1,5 +1,6 @@
 #include "pem_infer.h"
 
+#include "assetcooker/lib/pem_rounding_rows.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/pem/pem_map_levels.h"
 #include "engine/core/error.h"
@@ -300,7 +301,18 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     std::vector<Triplet> entries;
     std::vector<char> seen(std::size_t(texels), 0);
     std::vector<std::pair<int, double>> w;
-    const std::vector<std::vector<int>> dataRows = pemDataRows(samples, o.rows);
+    // The rays, and where the display's rounding can take their lookups (each a row of its
+    // own, after the rays: the indices of `samples` stay those of its rows).
+    PemSamples withCopies;
+    const bool copies = o.roundingReach > 0.f && o.distance && !o.local;
+    if (copies) {
+        withCopies = samples;
+        const PemSamples extra = pemRoundingCopies(lookup, samples, o.roundingReach);
+        withCopies.insert(withCopies.end(), extra.begin(), extra.end());
+        r.roundingRows = int(extra.size());
+    }
+    const PemSamples& rowSamples = copies ? withCopies : samples;
+    const std::vector<std::vector<int>> dataRows = pemDataRows(rowSamples, o.rows);
     const int sampleRows = int(dataRows.size());
     if (sampleRows == 0)
         throw Error("", "samples", "expected a pixel's centre ray among the samples (centre rows)");
@@ -309,7 +321,7 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     for (int row = 0; row < sampleRows; ++row) {
         const std::vector<int>& members = dataRows[std::size_t(row)];
         sumScale[std::size_t(row)] = 1.0 / std::sqrt(double(members.size()));
-        pemRowWeights(lookup, samples, members, o.rows, w);
+        pemRowWeights(lookup, rowSamples, members, o.rows, w);
         const double scale = std::sqrt(double(members.size()));
         for (const auto& [t, weight] : w) {
             entries.emplace_back(row, t, weight * scale);
@@ -360,7 +372,7 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
         for (int row = 0; row < sampleRows; ++row) {
             double sum = 0;
             for (const int s : dataRows[std::size_t(row)])
-                sum += c < 3 ? double(samples[std::size_t(s)].target[c])
+                sum += c < 3 ? double(rowSamples[std::size_t(s)].target[c])
                              : double((*o.alphaTargets)[std::size_t(s)]);
             b[row] = sum * sumScale[std::size_t(row)];
         }
@@ -390,9 +402,9 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
 
     // The residual of what will be displayed: the clamped map through the lookup itself.
     // A row's residual as it was fitted (pemRowsRms).
-    r.residualRms = pemRowsRms(samples, dataRows, o.rows, [&](const PemSample& p) {
-        return lookup.radiance(p.x, p.l, p.footprint());
-    });
+    r.residualRms =
+        pemRowsRms(samples, copies ? pemDataRows(samples, o.rows) : dataRows, o.rows,
+                   [&](const PemSample& p) { return lookup.radiance(p.x, p.l, p.footprint()); });
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return r;
 }

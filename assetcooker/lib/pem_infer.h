@@ -106,6 +106,10 @@ struct PemInferOptions {
     // pinned (no release step: deterministic and bounded); what still crosses after the last
     // pass is clamped as before.
     bool nonNegative = false;
+    // Distance geometry only: rows for the lookups the display's rounding reaches
+    // (pem_rounding_rows.h), x and l moved by this much (metres; radians) both ways along
+    // each axis. 0: the rays' own lookups alone.
+    float roundingReach = 0.f;
 };
 
 // Re-solves of the active-set bounds (PemInferOptions::nonNegative) per channel at most.
@@ -121,6 +125,7 @@ struct PemInference {
     double solverError = 0;          // largest relative error estimate the solver reported
     double seconds = 0;              // building A, solving, measuring the residual
     int unseenTexels = 0;            // texels no sample reads with a weight above zero
+    int roundingRows = 0;            // of dataRows: copies of rays moved by roundingReach
     // nonNegative: the texels pinned at a bound per channel (R, G, B, alpha), and the
     // re-solves run (all channels together).
     std::array<int, 4> pinnedTexels{};

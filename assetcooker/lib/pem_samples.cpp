@@ -181,6 +181,8 @@ void validatePemCookSettings(const PemCookSettings& s, const std::string& file) 
         throw Error(file, "prior_weight",
                     "the prior is the radiance the distance geometry captures: needs geometry "
                     "distance");
+    if (!(s.roundingReach >= 0.f && s.roundingReach <= 0.01f))
+        throw Error(file, "rounding_reach", "expected 0 to 0.01 (metres; radians)");
     if (s.localLayer != "auto" && s.localLayer != "on" && s.localLayer != "off")
         throw Error(file, "local_layer", "expected auto, on or off, got '" + s.localLayer + "'");
     if (s.localFaceRes != 0) requireRange(file, "local_face_res", s.localFaceRes, 1, 1024);

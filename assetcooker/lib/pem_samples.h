@@ -110,6 +110,9 @@ struct PemCookSettings {
     // full PSNR gains 0-0.3 dB at level 0 and 1.6-3.1 dB with inferred MIPs, the cooker's own
     // fit 10-15 dB, for 1.5-1.9x the inference (BENCH.md, "PEM texels bounded ... at 256²").
     bool nonNegative = true;
+    // Distance geometry: rows for the lookups the display's rounding reaches
+    // (pem_rounding_rows.h; PemInferOptions::roundingReach), metres and radians. 0: off.
+    float roundingReach = 1e-4f;
 };
 
 // How well one sample's map fits, measured by the cooker against the ray tracer on the

@@ -43,14 +43,14 @@ json settingsJson(const LightFieldCookSettings& s) {
 template <class S, class F> void pemSettingFields(S& s, F&& f) {
     auto& [samples, faceRes, supersample, regularisation, geometry, priorWeight, parameter, path,
            imageWidth, imageHeight, localLayer, localFaceRes, localSphere, mipLevels, rows,
-           nonNegative] = s;
+           nonNegative, roundingReach] = s;
     f("samples", samples), f("face_res", faceRes), f("supersample", supersample);
     f("regularisation", regularisation), f("geometry", geometry), f("prior_weight", priorWeight);
     f("parameter", parameter), f("path", path), f("image_width", imageWidth);
     f("image_height", imageHeight), f("local_layer", localLayer);
     f("local_face_res", localFaceRes), f("local_sphere", localSphere);
     f("mip_levels", mipLevels), f("rows", rows);
-    f("non_negative", nonNegative);
+    f("non_negative", nonNegative), f("rounding_reach", roundingReach);
 }
 
 json settingsJson(const PemCookSettings& s) {

@@ -353,7 +353,8 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
                                      report.height,
                                      opt.pemSupersample,
                                      opt.pemRows,
-                                     opt.pemNonNegative};
+                                     opt.pemNonNegative,
+                                     opt.pemRoundingReach};
         appendErrorBudgets(scene, cam, truth, name, probeDir, report.faceRes, opt.progress,
                            variants, report.rows, budgets, log);
         sceneNames.push_back(name);

@@ -2,6 +2,7 @@
 // specula-sandbox bench: every method and its accuracy sweep on several scenes, measured in
 // one run against the Embree ground truth. Writes bench.csv, bench.md, accuracy_vs_time.png
 // and strip_<scene>.png into the output folder.
+#include "assetcooker/lib/pem_samples.h"
 #include "components/reflection_probe/added_reflector.h"
 
 #include <limits>
@@ -23,10 +24,12 @@ struct BenchOptions {
     // Test mirrors added to every benched scene (--add-reflector).
     std::vector<AddedReflector> addedReflectors;
     // The PEM bakes' rays per pixel side and rendering-matrix rows (PemCookSettings
-    // supersample, rows, nonNegative): --pem-supersample, --pem-rows, --pem-non-negative.
+    // supersample, rows, nonNegative, roundingReach): --pem-supersample, --pem-rows,
+    // --pem-non-negative, --pem-rounding-reach.
     int pemSupersample = 1;
     std::string pemRows = "subray";
     bool pemNonNegative = true;
+    float pemRoundingReach = PemCookSettings{}.roundingReach;
 };
 
 struct BenchRow {

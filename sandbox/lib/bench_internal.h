@@ -48,6 +48,7 @@ struct PemBenchSweep {
     int supersample = 1;         // PemCookSettings::supersample
     std::string rows = "subray"; // PemCookSettings::rows
     bool nonNegative = false;    // PemCookSettings::nonNegative
+    float roundingReach = 0.f;   // PemCookSettings::roundingReach
 };
 
 // The PEM rows of one scene, appended to report.rows and the scene's plot panel: per sample

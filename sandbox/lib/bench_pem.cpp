@@ -105,6 +105,7 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
         settings.supersample = sweep.supersample;
         settings.rows = sweep.rows;
         settings.nonNegative = sweep.nonNegative;
+        settings.roundingReach = sweep.roundingReach;
         log << sceneName << ": baking the PEM (" << samples << " viewpoints, " << settings.faceRes
             << "^2 faces, inferred for " << sweep.width << "x" << sweep.height << ")\n"
             << std::flush;

@@ -62,6 +62,7 @@ void appendPemMipRows(ReflectionScene& scene, FrameRenderer& fr, const std::stri
     settings.supersample = sweep.supersample;
     settings.rows = sweep.rows;
     settings.nonNegative = sweep.nonNegative;
+    settings.roundingReach = sweep.roundingReach;
     const PemAsset filtered = filteredMipAsset(baked, levels);
     CookResult mip;
     try {

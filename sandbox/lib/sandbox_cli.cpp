@@ -203,6 +203,10 @@ void addBenchCommand(cli::ToolCli& tool) {
                     "the PEM bakes keep their texels >= 0 by re-solving (specula-cook bake "
                     "--non-negative): on (default) or off")
         ->check(CLI::IsMember({"on", "off"}));
+    sub->add_option("--pem-rounding-reach", o.pemRoundingReach,
+                    "the PEM bakes' rows for the lookups the display's rounding reaches, in "
+                    "metres and radians (specula-cook bake --rounding-reach; 0: off)")
+        ->check(CLI::Range(0.0, 0.01));
     addReflectorOption(sub, a->addedReflectors, " (added to every benched scene)");
 }
 
