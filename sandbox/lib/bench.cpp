@@ -64,40 +64,6 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// Texture fetches per reflector pixel, counted by the CPU twin on the shader's own inputs
-// (probe-local position and reflected direction read back from the GPU).
-double countFetches(FrameRenderer& fr, ReflectionScene& scene, const CameraView& cam,
-                    const Image& mask) {
-    const Image pos = fr.render(cam, 1);
-    const Image dir = fr.render(cam, 2);
-    const ecs::Entity probe = scene.probeEntity();
-    const DistanceStore* store = fr.probes().store<DistanceStore>();
-    const DistanceProbeAsset* asset = store ? store->asset(probe) : nullptr;
-    const DistanceLookupConfig* config = store ? store->config(probe) : nullptr;
-    if (!asset || !config) return std::numeric_limits<double>::quiet_NaN();
-    const CpuDistanceProbe twin(*asset, *config);
-    using Sum = std::pair<long long, long long>; // fetches, pixels
-    const Sum total = tbb::parallel_reduce(
-        tbb::blocked_range2d<int>(0, mask.height, 0, mask.width), Sum{0, 0},
-        [&](const tbb::blocked_range2d<int>& r, Sum s) {
-            for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-                for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-                    if (mask.at(x, y)[0] < 0.5f) continue;
-                    int fetches = 0;
-                    const glm::vec3 l = glm::vec3(dir.rgba(x, y));
-                    if (!(glm::dot(l, l) > 0.5f)) continue;
-                    twin.radiance(glm::vec3(pos.rgba(x, y)), glm::normalize(l), fetches);
-                    s.first += fetches;
-                    ++s.second;
-                }
-            return s;
-        },
-        [](Sum a, Sum b) {
-            return Sum{a.first + b.first, a.second + b.second};
-        });
-    return total.second ? double(total.first) / double(total.second) : 0.0;
-}
-
 std::string num(double v, const char* f = "%.6g") {
     if (std::isnan(v)) return "nan";
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
@@ -191,6 +157,40 @@ void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePa
 }
 
 } // namespace
+
+// Texture fetches per reflector pixel, counted by the CPU twin on the shader's own inputs
+// (probe-local position and reflected direction read back from the GPU).
+double countFetches(FrameRenderer& fr, ReflectionScene& scene, const CameraView& cam,
+                    const Image& mask) {
+    const Image pos = fr.render(cam, 1);
+    const Image dir = fr.render(cam, 2);
+    const ecs::Entity probe = scene.probeEntity();
+    const DistanceStore* store = fr.probes().store<DistanceStore>();
+    const DistanceProbeAsset* asset = store ? store->asset(probe) : nullptr;
+    const DistanceLookupConfig* config = store ? store->config(probe) : nullptr;
+    if (!asset || !config) return std::numeric_limits<double>::quiet_NaN();
+    const CpuDistanceProbe twin(*asset, *config);
+    using Sum = std::pair<long long, long long>; // fetches, pixels
+    const Sum total = tbb::parallel_reduce(
+        tbb::blocked_range2d<int>(0, mask.height, 0, mask.width), Sum{0, 0},
+        [&](const tbb::blocked_range2d<int>& r, Sum s) {
+            for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+                for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+                    if (mask.at(x, y)[0] < 0.5f) continue;
+                    int fetches = 0;
+                    const glm::vec3 l = glm::vec3(dir.rgba(x, y));
+                    if (!(glm::dot(l, l) > 0.5f)) continue;
+                    twin.radiance(glm::vec3(pos.rgba(x, y)), glm::normalize(l), fetches);
+                    s.first += fetches;
+                    ++s.second;
+                }
+            return s;
+        },
+        [](Sum a, Sum b) {
+            return Sum{a.first + b.first, a.second + b.second};
+        });
+    return total.second ? double(total.first) / double(total.second) : 0.0;
+}
 
 Image measureProbeRow(FrameRenderer& fr, const CameraView& cam, const BenchTruth& truth,
                       BenchFrameBudget budget, BenchRow& row) {
@@ -346,15 +346,27 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
         // but at most 256 (the inference goal is stated at 256^2).
         const bool sampleSweep =
             !opt.quick && (scenePath == defaultScenePath() || scenePath == bowlRoomPath());
-        const PemBenchSweep pemSweep{sampleSweep ? std::vector<int>{4, 8, 16, 32}
-                                                 : std::vector<int>{8},
-                                     std::min(report.faceRes, 256),
-                                     report.width,
-                                     report.height,
-                                     opt.pemSupersample,
-                                     opt.pemRows,
-                                     opt.pemNonNegative,
-                                     opt.pemRoundingReach};
+        PemBenchSweep pemSweep;
+        pemSweep.samples = sampleSweep ? std::vector<int>{4, 8, 16, 32} : std::vector<int>{8};
+        pemSweep.faceRes = std::min(report.faceRes, 256);
+        pemSweep.width = report.width;
+        pemSweep.height = report.height;
+        pemSweep.supersample = opt.pemSupersample;
+        pemSweep.rows = opt.pemRows;
+        pemSweep.nonNegative = opt.pemNonNegative;
+        pemSweep.roundingReach = opt.pemRoundingReach;
+        // The best single-bounce method of the sweep (layered, else bisection, d_e 0.01) drawn
+        // from the PEM's cameras too.
+        for (const char* method : {"bisection", "layered"})
+            for (const MethodVariant& v : variants)
+                if (v.method == method && v.params == formatTolerance(0.01f) && !v.planned &&
+                    std::any_of(report.rows.begin(), report.rows.end(), [&](const BenchRow& r) {
+                        return r.scene == name && r.method == v.method && r.params == v.params;
+                    })) {
+                    pemSweep.reference = v;
+                    pemSweep.referenceAsset = probeDir + "/manifest.json";
+                    pemSweep.referenceBakeSeconds = bakeSeconds;
+                }
         appendErrorBudgets(scene, cam, truth, name, probeDir, report.faceRes, opt.progress,
                            variants, report.rows, budgets, log);
         sceneNames.push_back(name);

@@ -39,6 +39,12 @@ Image measureProbeRow(FrameRenderer& fr, const CameraView& cam, const BenchTruth
 // "  room envmap -: 0.123 ms (x1.00), PSNR 30.1 dB, 1.00 fetches/px"
 void logBenchRow(std::ostream& log, const BenchRow& row);
 
+// Texture fetches per reflector pixel of the synced distance probe, counted by the CPU twin
+// on the shader's own inputs (probe-local position and reflected direction read back from
+// the GPU); NaN when the scene's probe is not a distance probe.
+double countFetches(FrameRenderer& fr, ReflectionScene& scene, const CameraView& cam,
+                    const Image& mask);
+
 // Which PEMs the bench bakes on each scene: one per sample count, each inferred for the
 // bench's frame size (the pixels it is drawn at).
 struct PemBenchSweep {
@@ -49,6 +55,12 @@ struct PemBenchSweep {
     std::string rows = "subray"; // PemCookSettings::rows
     bool nonNegative = false;    // PemCookSettings::nonNegative
     float roundingReach = 0.f;   // PemCookSettings::roundingReach
+    // The single-bounce method the PEM is compared with, drawn from the PEM's own cameras
+    // (the other rows see the scene camera): its manifest, settings and row label. Empty
+    // asset: none.
+    std::string referenceAsset;
+    MethodVariant reference;
+    double referenceBakeSeconds = 0;
 };
 
 // The PEM rows of one scene, appended to report.rows and the scene's plot panel: per sample

@@ -166,6 +166,22 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
             logBenchRow(log, row);
             panel.points.push_back({row.method, row.params, row.ratioToEnvmap, row.psnr});
             report.rows.push_back(row);
+            if (b == 0 && !sweep.referenceAsset.empty()) {
+                // The single-bounce reference from this camera (rows not plotted: the plot's
+                // points all see the scene camera).
+                scene.setProbe(sweep.referenceAsset, sweep.reference.distance);
+                fr.probes().sync(scene.registry());
+                BenchRow ref;
+                ref.scene = sceneName;
+                ref.method = sweep.reference.method;
+                ref.params = sweep.reference.params + " pem-camera t=" + v.where;
+                measureProbeRow(fr, cam, truth, budget, ref);
+                ref.fetchesPerPixel = countFetches(fr, scene, cam, truth.mask);
+                ref.ratioToEnvmap = ref.msMedian / envmapMs;
+                ref.bakeSeconds = sweep.referenceBakeSeconds;
+                logBenchRow(log, ref);
+                report.rows.push_back(ref);
+            }
         }
         if (picture) writePemPicture(outDir, sceneName, tiles, heat, labels, sweep.width);
         // The MIP comparison once per scene, on the first N's bake as the cooker chose it.

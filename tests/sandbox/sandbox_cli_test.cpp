@@ -264,7 +264,17 @@ TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
             EXPECT_GE(full, 35.0);
         }
     }
-    EXPECT_GE(pemRows, 2);          // at least the room's t=on and t=off
+    EXPECT_GE(pemRows, 2); // at least the room's t=on and t=off
+    // Beside them the best single-bounce method from the same two cameras.
+    int references = 0;
+    for (const auto& row : rows)
+        if (row.at("params").find("pem-camera") != std::string::npos) {
+            ++references;
+            std::printf("[pem bench] %s %s %s: PSNR full %.2f dB\n", row.at("scene").c_str(),
+                        row.at("method").c_str(), row.at("params").c_str(), num(row, "psnr_full"));
+            EXPECT_TRUE(row.at("method") == "layered" || row.at("method") == "bisection");
+        }
+    EXPECT_GE(references, 2);
     EXPECT_EQ(perScene.size(), 4u); // room, truck_room, bowl_room, sky_only
     for (const auto& [scene, n] : perScene) {
         EXPECT_GE(n, 10) << scene;
