@@ -4,11 +4,13 @@
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/pem/pem_map_levels.h"
 #include "engine/core/error.h"
+#include "engine/core/flush_denormals.h"
 #include "engine/core/glsl_host.h"
 #include "engine/math/cube_face.h"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -356,19 +358,20 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
     Eigen::SparseMatrix<double> A(rows, texels);
     A.setFromTriplets(entries.begin(), entries.end());
 
-    // The matrix is the same for R, G and B: one preconditioner, three right-hand sides.
-    Solver solver;
-    solver.setTolerance(o.tolerance);
-    solver.setMaxIterations(o.maxIterations);
-    solver.compute(A);
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(rows), guess = Eigen::VectorXd::Zero(texels);
     map.texels.assign(std::size_t(texels), glm::vec3(0.f));
     // Channel 3 is the local layer's coverage: the same rows, its prior 0.
     const int channels = o.alphaTargets ? 4 : 3;
     // A local map without coverage targets (a refit of its RGB) still holds one alpha per
     // texel, so the residual below can look it up; the caller keeps its own.
     if (o.alphaTargets || o.local) map.alpha.assign(std::size_t(texels), 0.f);
-    for (int c = 0; c < channels; ++c) {
+    // The channels share the matrix and nothing else: solved side by side, each with its own
+    // solver (an Eigen solver keeps its last solve's figures, so one cannot serve two threads
+    // at once), with denormals flushed whichever thread runs it (flush_denormals.h): the same
+    // bits every run. Room, 256², 9 levels, two layers: 11.6 -> 8.8 s a sample on 2 cores.
+    std::vector<ChannelSolve> solved(static_cast<std::size_t>(channels));
+    tbb::parallel_for(0, channels, [&](int c) {
+        const ScopedFlushDenormals sameBitsOnAnyThread;
+        Eigen::VectorXd b = Eigen::VectorXd::Zero(rows), guess = Eigen::VectorXd::Zero(texels);
         for (int row = 0; row < sampleRows; ++row) {
             double sum = 0;
             for (const int s : dataRows[std::size_t(row)])
@@ -379,19 +382,24 @@ PemInference inferPemMap(const PemSamples& samples, const PemInferOptions& o) {
         if (usePrior)
             for (int t = 0; t < texels; ++t)
                 b[priorRow + t] = c < 3 ? double(o.priorWeight) * prior[std::size_t(t)][c] : 0.0;
-        guess.setZero();
         if (o.warmStart && c < 3)
             for (int t = 0; t < texels; ++t)
                 guess[t] = (*o.warmStart)[std::size_t(t)][c];
+        Solver solver;
+        solver.setTolerance(o.tolerance);
+        solver.setMaxIterations(o.maxIterations);
+        solver.compute(A);
         // Radiance has no upper bound before the clamp; coverage is at most 1.
-        const ChannelSolve solved =
+        solved[std::size_t(c)] =
             solveChannel(A, solver, b, guess, o.nonNegative,
                          c < 3 ? std::numeric_limits<double>::infinity() : 1.0, o);
-        const Eigen::VectorXd& x = solved.x;
-        if (c < 3) r.iterations[std::size_t(c)] = solved.iterations;
-        r.solverError = std::max(r.solverError, solved.error);
-        r.pinnedTexels[std::size_t(c)] = solved.pinned;
-        r.boundPasses += solved.passes;
+    });
+    for (int c = 0; c < channels; ++c) {
+        const Eigen::VectorXd& x = solved[std::size_t(c)].x;
+        if (c < 3) r.iterations[std::size_t(c)] = solved[std::size_t(c)].iterations;
+        r.solverError = std::max(r.solverError, solved[std::size_t(c)].error);
+        r.pinnedTexels[std::size_t(c)] = solved[std::size_t(c)].pinned;
+        r.boundPasses += solved[std::size_t(c)].passes;
         for (int t = 0; t < texels; ++t) {
             if (c < 3)
                 map.texels[std::size_t(t)][c] = toRange(x[t]);
