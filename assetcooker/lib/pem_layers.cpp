@@ -1,11 +1,14 @@
 #include "pem_layers.h"
 
 #include "engine/core/error.h"
+#include "engine/core/flush_denormals.h"
 
 #include <Eigen/Dense>
 #include <glm/glm.hpp>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <unordered_set>
 
@@ -83,11 +86,10 @@ PemLayers inferPemLayers(const PemSamples& samples, const PemInferOptions& dista
     // A hull ray shows the distant layer alone, so the distant layer must give its full
     // radiance: a grazing hull ray the shading normal turned back into its reflector keeps
     // that bounce rather than the radiance behind the reflector.
+    const auto start = std::chrono::steady_clock::now();
     PemSamples d = samples;
     for (PemSample& s : d)
         if (!s.onHull) s.target = s.distant;
-    out.distant = inferPemMap(d, distant);
-    out.seconds = out.distant.seconds;
 
     // The local rows' rays: those off the hull; with centre rows, every sub-ray of a pixel
     // whose centre ray leaves off the hull (the pixel draws the composite, its antialiased
@@ -122,6 +124,8 @@ PemLayers inferPemLayers(const PemSamples& samples, const PemInferOptions& dista
     const std::vector<glm::vec3> zeros(std::size_t(PemMap::texelCount(o.faceRes)), glm::vec3(0.f));
     o.prior = o.priorWeight > 0.f ? &zeros : nullptr;
     if (l.empty()) {
+        out.distant = inferPemMap(d, distant);
+        out.seconds = out.distant.seconds;
         PemMap& m = out.local.map;
         m.faceRes = o.faceRes;
         m.local = sphere;
@@ -130,8 +134,18 @@ PemLayers inferPemLayers(const PemSamples& samples, const PemInferOptions& dista
         out.local.unseenTexels = int(zeros.size());
         return out;
     }
-    out.local = inferPemMap(l, o);
-    out.seconds += out.local.seconds;
+    // The distant map and the local layer's first solve read nothing of each other: side by
+    // side (the refit below needs both). Denormals flushed on either thread: the same bits
+    // whichever runs which (flush_denormals.h).
+    tbb::parallel_invoke(
+        [&] {
+            const ScopedFlushDenormals sameBits;
+            out.distant = inferPemMap(d, distant);
+        },
+        [&] {
+            const ScopedFlushDenormals sameBits;
+            out.local = inferPemMap(l, o);
+        });
     // The solves are apart, but a pixel shows the composite: where the coverage the lookup
     // reads is not the ray's own 0 or 1 (smoothing, bilinear across an alpha edge), the
     // distant layer leaks in. Refit the premultiplied RGB to what the composite still lacks,
@@ -154,9 +168,9 @@ PemLayers inferPemLayers(const PemSamples& samples, const PemInferOptions& dista
     o.warmStart = &first;
     PemInference refit = inferPemMap(l, o);
     refit.map.alpha = keptAlpha;
-    out.seconds += refit.seconds;
     refit.seconds += out.local.seconds;
     out.local = std::move(refit);
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }
 

@@ -45,7 +45,7 @@ PemLocalSphere boundPemLocalSphere(const std::vector<glm::vec3>& points);
 struct PemLayers {
     PemInference distant;
     PemInference local; // all zero (alpha 0) when no ray is off the hull: nothing to infer
-    double seconds = 0; // both solves
+    double seconds = 0; // wall time of the solves (the distant one beside the local one)
 };
 
 // The distant map from every sample (target: PemSample::distant off the hull, the full target
