@@ -187,6 +187,7 @@ PemSampleMap PemBake::infer(int k, const PemSamples& samples, const PemLocalDeci
         localInfer.faceRes = d.faceRes;
         PemLayers layers = inferPemLayers(samples, infer_, localInfer, d.sphere);
         f.unseenTexels = layers.distant.unseenTexels;
+        f.roundingRows = layers.distant.roundingRows;
         f.inferSeconds = layers.seconds;
         m.map = std::move(layers.distant.map);
         m.local = std::move(layers.local.map);
@@ -194,6 +195,7 @@ PemSampleMap PemBake::infer(int k, const PemSamples& samples, const PemLocalDeci
         // No ray sees its own reflector: the distant target is the full one.
         PemInference inferred = inferPemMap(samples, infer_);
         f.unseenTexels = inferred.unseenTexels;
+        f.roundingRows = inferred.roundingRows;
         f.inferSeconds = inferred.seconds;
         m.map = std::move(inferred.map);
     }

@@ -121,6 +121,7 @@ struct PemSampleFit {
     float parameter = 0.f;
     int rays = 0;            // reflector rays traced at the sample's viewpoint: its data rows
     int unseenTexels = 0;    // texels no ray reads: filled by the smoothness rows alone
+    int roundingRows = 0;    // copies of rays the display's rounding can move (roundingReach)
     double inferSeconds = 0; // building the rendering matrix, solving, measuring
     double psnrOn = 0;       // at its own viewpoint (on the manifold)
     // Half-way to the next sample (across the wrap on the orbit): the blend of the two maps,
