@@ -166,15 +166,17 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
             logBenchRow(log, row);
             panel.points.push_back({row.method, row.params, row.ratioToEnvmap, row.psnr});
             report.rows.push_back(row);
-            if (b == 0 && !sweep.referenceAsset.empty()) {
-                // The single-bounce reference from this camera (rows not plotted: the plot's
-                // points all see the scene camera).
+            if (!bakes[b].single && (b == 0 || v.t > 0.f) && !sweep.referenceAsset.empty()) {
+                // The single-bounce reference from this camera: at the sample (the same
+                // camera for every N) once, half-way (t = 0.5 / N) for each N. Not plotted:
+                // the plot's points all see the scene camera.
                 scene.setProbe(sweep.referenceAsset, sweep.reference.distance);
                 fr.probes().sync(scene.registry());
                 BenchRow ref;
                 ref.scene = sceneName;
                 ref.method = sweep.reference.method;
-                ref.params = sweep.reference.params + " pem-camera t=" + v.where;
+                ref.params = sweep.reference.params + " pem-camera N=" + std::to_string(samples) +
+                             " t=" + v.where;
                 measureProbeRow(fr, cam, truth, budget, ref);
                 ref.fetchesPerPixel = countFetches(fr, scene, cam, truth.mask);
                 ref.ratioToEnvmap = ref.msMedian / envmapMs;

@@ -61,7 +61,7 @@ constexpr const char* kBenchDescription =
     "inferred for the frame size) are drawn from the walk orbit's camera at a sample (t=on)\n"
     "and half-way between two (t=off), each against the ground truth of that camera, and\n"
     "the best single-bounce method (layered, else bisection, d_e 0.01) beside them from the\n"
-    "same cameras (params '... pem-camera t=on|off'). The first N is also baked with every\n"
+    "same cameras (params '... pem-camera N=.. t=on|off'). The first N is also baked with every\n"
     "MIP level inferred (rows 'mip') and drawn with its level-0 maps' box-filtered chain\n"
     "(rows 'filtered-mip'); the log compares the three.\n"
     "\n"
