@@ -314,8 +314,9 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
         ->check(CLI::IsMember({"viewpoint", "reflector"}));
     only(sub->add_option("--path", a.path,
                          "the path the parameter runs along: orbit (the walk's camera orbit, or "
-                         "the reflectors' orbit), line or figure8 (reflector only); camera (a "
-                         "glTF camera animation) is refused: not read yet"),
+                         "the reflectors' orbit), line or figure8 (reflector only); camera "
+                         "(viewpoint only: the scene camera's glTF animation, first key to last, "
+                         "an open path whose two ends are samples)"),
          "pem");
 
     // Library code names the fields it read; these are the flags that set them.

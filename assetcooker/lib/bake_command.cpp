@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -134,14 +136,20 @@ void printPemSummary(const BakeArgs& a, const CookResult& r, double seconds, std
     if (r.pemFits.empty()) return;
     // The cooker's own measurement against the ray tracer: what the maps are worth on the
     // baked viewpoints and half-way between them, where the runtime blends two.
+    // An open path's last sample has nothing half-way past it (NaN).
     double on = 0, off = 0, worstOff = 1e9, infer = 0, worstInfer = 0, rays = 0, copies = 0;
+    int halfWays = 0;
     for (const PemSampleFit& f : r.pemFits) {
-        on += f.psnrOn, off += f.psnrOff, infer += f.inferSeconds, rays += f.rays;
+        on += f.psnrOn, infer += f.inferSeconds, rays += f.rays;
         copies += f.roundingRows;
-        worstOff = std::min(worstOff, f.psnrOff);
+        if (std::isfinite(f.psnrOff)) {
+            off += f.psnrOff, ++halfWays;
+            worstOff = std::min(worstOff, f.psnrOff);
+        }
         worstInfer = std::max(worstInfer, f.inferSeconds);
     }
     const double n = double(r.pemFits.size());
+    if (halfWays == 0) off = worstOff = std::numeric_limits<double>::quiet_NaN();
     char line[320];
     std::snprintf(
         line, sizeof line,
@@ -149,7 +157,7 @@ void printPemSummary(const BakeArgs& a, const CookResult& r, double seconds, std
         "%.1f dB, half-way between them %.1f dB (worst %.1f); inference %.2f s per sample "
         "(worst %.2f); rows where the display's rounding reaches (--rounding-reach) for "
         "%.1f%% of the rays\n",
-        rays / n, on / n, off / n, worstOff, infer / n, worstInfer,
+        rays / n, on / n, off / std::max(halfWays, 1), worstOff, infer / n, worstInfer,
         rays > 0 ? 100.0 * copies / rays : 0.0);
     out << line;
 }

@@ -8,7 +8,8 @@
 namespace specula {
 
 // The scene at parameter t: parameter "viewpoint" moves the camera along the walk's orbit
-// (walkOrbitCameraView) past reflectors that stay put, so one tracer serves every t;
+// (walkOrbitCameraView) or the scene camera's animation (path "camera", cameraPathView) past
+// reflectors that stay put, so one tracer serves every t;
 // parameter "reflector" moves the reflectors along the walk path (walkOffset) before a fixed
 // camera (the orbit's t = 0, the scene camera), so each t gets a tracer of the moved scene.
 // The reflectors are back where the scene authors them when the state goes.
@@ -22,6 +23,8 @@ public:
     State(ProbeScene& scene, const PemCookSettings& s)
         : scene_(scene), s_(s), byReflector_(s.parameter == "reflector"), roots_(scene) {
         if (!byReflector_) {
+            // Before any tracing: a camera path the scene does not have is refused at once.
+            if (s.path == "camera") cameraPathView(scene, s.imageWidth, s.imageHeight, 0.f);
             tracer_.emplace(scene.registry, groundTruthOptions(scene, false));
             return;
         }
@@ -38,6 +41,8 @@ public:
     State& operator=(const State&) = delete;
 
     At at(float t) {
+        if (!byReflector_ && s_.path == "camera")
+            return {&*tracer_, cameraPathView(scene_, s_.imageWidth, s_.imageHeight, t)};
         if (!byReflector_)
             return {&*tracer_, walkOrbitCameraView(scene_, s_.imageWidth, s_.imageHeight, t)};
         roots_.setOffset(scene_.registry, walkOffset(path_, t, amplitude_));

@@ -61,9 +61,11 @@ public:
 
     // The asset without samples or local layer (see assemble).
     const PemAsset& header() const { return asset_; }
-    float parameter(int k) const { return float(k) / float(s_.samples); }
+    // Sample k's parameter: k / samples on the walk's closed loops (t = 1 is t = 0 again),
+    // k / (samples - 1) on the open camera path, whose both ends are samples.
+    float parameter(int k) const { return pemSampleParameter(s_, k); }
 
-    // Sample k's reflector rays (tracePemSamples at t = k / samples, with the layer fields
+    // Sample k's reflector rays (tracePemSamples at t = parameter(k), with the layer fields
     // unless localLayer is "off"). Throws Error naming the scene and "camera" (with the
     // sample) when the camera sees no reflector there.
     PemSamples trace(int k);

@@ -8,24 +8,29 @@
 #include "engine/scene/mesh_bounds.h"
 
 #include <functional>
+#include <limits>
 
 namespace specula {
 
 namespace {
 
 // Each sample's fit half-way to the next one: the two maps blended as the runtime blends them
-// (pemBlend; the paths are closed loops, so the last sample blends with the first) against
-// the tracer at that viewpoint.
+// (pemBlend; on the walk's closed loops the last sample blends with the first, on the open
+// camera path it has no next one: NaN) against the tracer at that viewpoint.
 void measureOffManifold(const PemAsset& asset, const PemCookSettings& s, const PemCookHooks& hooks,
                         const std::string& file, const std::function<PemSamples(float)>& trace) {
     std::vector<float> params;
     for (const PemSampleMap& m : asset.samples)
         params.push_back(m.parameter);
-    const bool periodic = true; // every walk path is a closed loop (walk_path.h)
+    const bool periodic = pemPathClosed(s);
     for (int k = 0; k < s.samples; ++k) {
         if (hooks.cancelled && hooks.cancelled())
             throw Error(file, "cancelled", "the bake was cancelled");
-        const float t = (float(k) + 0.5f) / float(s.samples);
+        if (!periodic && k + 1 == s.samples) {
+            (*hooks.fits)[std::size_t(k)].psnrOff = std::numeric_limits<double>::quiet_NaN();
+            continue;
+        }
+        const float t = 0.5f * (pemSampleParameter(s, k) + pemSampleParameter(s, k + 1));
         const PemBlendWeights w = pemBlend(params, t, false, periodic);
         // The runtime's own twin: the blend, and the local layer off the hull.
         glsl::PemParams block = pemParams(asset, PemProbe{});

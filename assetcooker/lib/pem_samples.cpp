@@ -199,15 +199,17 @@ void validatePemCookSettings(const PemCookSettings& s, const std::string& file) 
     if (s.parameter != "viewpoint" && s.parameter != "reflector")
         throw Error(file, "parameter",
                     "expected viewpoint or reflector, got '" + s.parameter + "'");
-    if (s.path == "camera")
-        throw Error(file, "path",
-                    "'camera' needs the glTF camera's animation, which the loader does not read "
-                    "yet (use orbit, or line/figure8 with --parameter reflector)");
     WalkPath path;
+    if (s.parameter == "viewpoint" && s.path == "camera") return;
     if (s.parameter == "viewpoint" && s.path != "orbit")
         throw Error(file, "path",
-                    "the viewpoint moves along the walk's camera orbit only ('orbit'), got '" +
+                    "the viewpoint moves along the walk's camera orbit ('orbit') or the scene "
+                    "camera's animation ('camera'), got '" +
                         s.path + "'");
+    if (s.path == "camera")
+        throw Error(file, "path",
+                    "'camera' moves the viewpoint (--parameter viewpoint); the reflectors walk "
+                    "orbit, line or figure8");
     if (!parseWalkPath(s.path, path))
         throw Error(file, "path", "expected orbit, line or figure8, got '" + s.path + "'");
 }
@@ -216,6 +218,15 @@ double pemSamplesPsnr(const PemSamples& samples,
                       const std::function<glm::vec3(const PemSample&)>& radiance, PemRows rows) {
     const double rms = pemRowsRms(samples, pemDataRows(samples, rows), rows, radiance);
     return 10.0 * std::log10(1.0 / std::max(rms * rms, 1e-12));
+}
+
+bool pemPathClosed(const PemCookSettings& s) {
+    return s.path != "camera";
+}
+
+float pemSampleParameter(const PemCookSettings& s, int k) {
+    if (pemPathClosed(s)) return float(k) / float(s.samples);
+    return s.samples > 1 ? float(k) / float(s.samples - 1) : 0.f;
 }
 
 PemRows pemRows(const PemCookSettings& s) {

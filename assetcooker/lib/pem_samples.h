@@ -125,7 +125,8 @@ struct PemSampleFit {
     double inferSeconds = 0; // building the rendering matrix, solving, measuring
     double psnrOn = 0;       // at its own viewpoint (on the manifold)
     // Half-way to the next sample (across the wrap on the orbit): the blend of the two maps,
-    // as the runtime draws it, against the tracer at that viewpoint (off the manifold).
+    // as the runtime draws it, against the tracer at that viewpoint (off the manifold). NaN
+    // for the last sample of an open path (the camera path): nothing lies past it.
     double psnrOff = 0;
     // Layered bakes: the share of this sample's rays that meet their own reflector again
     // (off the hull), and whether the asset got a local layer. Single-map bakes: 0, false.
@@ -134,7 +135,8 @@ struct PemSampleFit {
 };
 
 // Throws Error naming the field ("samples", "face_res", "supersample", "regularisation",
-// "image_size", "geometry", "prior_weight" (needs the distance geometry), "parameter", "path",
+// "image_size", "geometry", "prior_weight" (needs the distance geometry), "parameter", "path"
+// (orbit or camera for the viewpoint, a walk path for the reflector),
 // "local_layer", "local_face_res", "local_sphere", "mip_levels", "rows").
 void validatePemCookSettings(const PemCookSettings& s, const std::string& file);
 
@@ -153,15 +155,15 @@ struct PemCookHooks {
 // alone when the scene has no environment mesh (a sky-only scene).
 Aabb pemMapBox(const ProbeScene& scene, glm::vec3 centre);
 
-// Every parameter sample is independent: its scene state at t = k / samples (the viewpoint
-// walkOrbitCameraView(t), or the reflectors at walkOffset(path, t) with the registry's
-// transforms restored afterwards), its samples (tracePemSamples, full ground truth), its
-// map (inferPemMap). Validates first. Every sample is traced before any is inferred: the
-// local layer (localLayer "auto": some off-hull ray of some sample meets its own reflector
-// again) and its sphere are the asset's, and then each sample's maps are the two layers
-// (inferPemLayers, the rays' layer fields traced with every reflector's pemHullFlags).
-// With hooks.fits, each sample's fit is measured on and off the manifold (one more trace per
-// sample, half-way to the next). A cancel polled between samples throws Error naming the
+// Every parameter sample is independent: its scene state at t = pemSampleParameter (the
+// viewpoint walkOrbitCameraView(t) or, on the camera path, cameraPathView(t), or the reflectors at
+// walkOffset(path, t) with the registry's transforms restored afterwards), its samples
+// (tracePemSamples, full ground truth), its map (inferPemMap). Validates first. Every sample is
+// traced before any is inferred: the local layer (localLayer "auto": some off-hull ray of some
+// sample meets its own reflector again) and its sphere are the asset's, and then each sample's maps
+// are the two layers (inferPemLayers, the rays' layer fields traced with every reflector's
+// pemHullFlags). With hooks.fits, each sample's fit is measured on and off the manifold (one more
+// trace per sample, half-way to the next). A cancel polled between samples throws Error naming the
 // scene and "cancelled".
 PemAsset cookPemAsset(ProbeScene& scene, const PemCookSettings& s, const PemCookHooks& hooks);
 
@@ -174,5 +176,11 @@ double pemSamplesPsnr(const PemSamples& samples,
 
 // The settings' rows as the inference takes them.
 PemRows pemRows(const PemCookSettings& s);
+
+// Whether the settings' path is a closed loop (every walk path) or open (the camera path).
+bool pemPathClosed(const PemCookSettings& s);
+// Sample k's parameter: k / samples on a closed loop, k / (samples - 1) on an open path (0 for
+// a single sample), so an open path's two ends are both samples.
+float pemSampleParameter(const PemCookSettings& s, int k);
 
 } // namespace specula

@@ -5,6 +5,7 @@
 #include "engine/core/error.h"
 #include "engine/image/image_io.h"
 #include "engine/raytrace/embree_scene.h"
+#include "engine/scene/animation.h"
 #include "engine/scene/components.h"
 #include "engine/scene/mesh_bounds.h"
 #include "engine/scene/transform_system.h"
@@ -14,6 +15,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -229,19 +232,39 @@ CameraOrbit defaultViewpointOrbit(const ProbeScene& scene) {
                     "sphere:x,y,z,r");
 }
 
+namespace {
+
+// The scene's first camera node, or the null entity.
+ecs::Entity sceneCameraEntity(const ProbeScene& scene) {
+    for (ecs::Entity e : scene.loaded.entities)
+        if (scene.registry.find<Camera>(e) && scene.registry.find<Transform>(e)) return e;
+    return ecs::kNullEntity;
+}
+
+// A camera node's view: it looks down its local -Z, so the view matrix is its world's inverse.
+CameraView cameraNodeView(const Camera& cam, const glm::mat4& world, int width, int height) {
+    CameraView v;
+    v.view = glm::inverse(world);
+    v.proj = glm::perspective(cam.yfov, float(width) / float(height), cam.znear, cam.zfar);
+    v.width = width;
+    v.height = height;
+    return v;
+}
+
+// The span of the camera's animation when it has one that moves.
+std::optional<std::pair<float, float>> cameraSpan(const ProbeScene& scene, ecs::Entity camera) {
+    if (camera.isNull()) return std::nullopt;
+    const auto span = animatedRange(scene.registry, camera);
+    if (!span || !(span->second > span->first)) return std::nullopt;
+    return span;
+}
+
+} // namespace
+
 CameraView sceneCameraView(const ProbeScene& scene, int width, int height) {
-    for (ecs::Entity e : scene.loaded.entities) {
-        const Camera* cam = scene.registry.find<Camera>(e);
-        const Transform* t = scene.registry.find<Transform>(e);
-        if (!cam || !t) continue;
-        CameraView v;
-        // The camera looks down its local -Z; the view matrix is the inverse of its world.
-        v.view = glm::inverse(t->world);
-        v.proj = glm::perspective(cam->yfov, float(width) / float(height), cam->znear, cam->zfar);
-        v.width = width;
-        v.height = height;
-        return v;
-    }
+    if (const ecs::Entity e = sceneCameraEntity(scene); !e.isNull())
+        return cameraNodeView(*scene.registry.find<Camera>(e),
+                              scene.registry.find<Transform>(e)->world, width, height);
     const CameraOrbit o = scene.defaultView.get([&] { return defaultViewpointOrbit(scene); });
     return orbitCameraView(markupProbeCentre(scene.registry, scene.markup, scene.loaded), width,
                            height, o.angle, o.distance, o.height);
@@ -259,6 +282,26 @@ CameraView walkOrbitCameraView(const ProbeScene& scene, int width, int height, f
         markupProbeCentre(scene.registry, scene.markup, scene.loaded), width, height,
         o.angle + DefaultViewpointRules::kWalkSwing * std::sin(glm::two_pi<float>() * t),
         o.distance, o.height);
+}
+
+bool sceneCameraMoves(const ProbeScene& scene) {
+    return cameraSpan(scene, sceneCameraEntity(scene)).has_value();
+}
+
+CameraView cameraPathView(const ProbeScene& scene, int width, int height, float t) {
+    const ecs::Entity camera = sceneCameraEntity(scene);
+    if (camera.isNull())
+        throw Error(scene.path, "path",
+                    "the camera path follows the scene's camera node, and the scene has none");
+    const auto span = cameraSpan(scene, camera);
+    if (!span)
+        throw Error(scene.path, "path",
+                    "the camera path follows the animation of the scene's camera node, and "
+                    "nothing animates it (its first animation has no channel moving it or a "
+                    "parent over time)");
+    const float seconds = span->first + std::clamp(t, 0.f, 1.f) * (span->second - span->first);
+    return cameraNodeView(*scene.registry.find<Camera>(camera),
+                          animatedWorld(scene.registry, camera, seconds), width, height);
 }
 
 ReflectorRoots::ReflectorRoots(const ProbeScene& scene) {

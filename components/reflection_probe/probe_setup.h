@@ -138,6 +138,14 @@ CameraOrbit sceneCameraOrbit(const ProbeScene& scene);
 // angle.
 CameraView walkOrbitCameraView(const ProbeScene& scene, int width, int height, float t);
 
+// The scene camera (sceneCameraView's node) at fraction t in [0, 1] of its animation's span
+// (the glTF animation of the camera node and its ancestors, NodeAnimation; 0 the first key,
+// 1 the last): the PEM's "camera" path. An open path, unlike the walk's loops. Throws Error
+// naming the scene's file and "path" when the scene has no camera node or nothing moves it.
+CameraView cameraPathView(const ProbeScene& scene, int width, int height, float t);
+// Whether cameraPathView has a path to follow.
+bool sceneCameraMoves(const ProbeScene& scene);
+
 // The reflector nodes of the markup (found by name) with their authored translations, to
 // move them all by one world-space offset (the translation is the parent's space, which is
 // world space for root nodes: the reflectors of our scenes).

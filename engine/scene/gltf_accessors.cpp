@@ -197,6 +197,10 @@ std::vector<glm::vec2> readVec2(const Context& ctx, int index, const std::string
     return v;
 }
 
+std::vector<float> readFloats(const Context& ctx, int index, int comps, const std::string& from) {
+    return readAccessor<float>(ctx, index, comps, false, from);
+}
+
 std::vector<std::uint32_t> readIndices(const Context& ctx, int index, const std::string& from) {
     return readAccessor<std::uint32_t>(ctx, index, 1, true, from);
 }

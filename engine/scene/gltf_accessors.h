@@ -37,6 +37,10 @@ Bytes viewBytes(const Context& ctx, int view, const std::string& field);
 std::vector<glm::vec3> readVec3(const Context& ctx, int index, const std::string& from);
 std::vector<glm::vec2> readVec2(const Context& ctx, int index, const std::string& from);
 
+// Accessor `index` as `comps` floats per element (SCALAR, VEC3 or VEC4; normalised integers
+// mapped as glTF says), flattened: animation keys and their values.
+std::vector<float> readFloats(const Context& ctx, int index, int comps, const std::string& from);
+
 // Accessor `index` as SCALAR unsigned integers (triangle indices).
 std::vector<std::uint32_t> readIndices(const Context& ctx, int index, const std::string& from);
 

@@ -3,6 +3,7 @@
 #include "engine/math/aabb.h"
 
 #include "engine/scene/components.h"
+#include "engine/scene/gltf_animation.h"
 #include "engine/scene/gltf_context.h"
 #include "engine/scene/gltf_material.h"
 #include "engine/scene/gltf_node.h"
@@ -42,8 +43,9 @@ public:
         const std::vector<NodeDesc> descs = walkHierarchy(rootNodes());
         computeBounds(descs);
         countMaterials();
+        const std::map<int, NodeAnimation> animations = readNodeAnimations(ctx_);
         // Only now touch the registry: a failure above leaves it unchanged.
-        createEntities(descs, registry);
+        createEntities(descs, animations, registry);
     }
 
 private:
@@ -174,7 +176,8 @@ private:
         out_.materials = mats.size();
     }
 
-    void createEntities(const std::vector<NodeDesc>& descs, ecs::Registry& registry) {
+    void createEntities(const std::vector<NodeDesc>& descs,
+                        const std::map<int, NodeAnimation>& animations, ecs::Registry& registry) {
         std::vector<ecs::Entity> entities(descs.size());
         for (std::size_t i = 0; i < descs.size(); ++i) {
             const NodeDesc& d = descs[i];
@@ -189,6 +192,8 @@ private:
             registry.emplace<SceneNode>(e, SceneNode{d.node});
             if (d.mesh) registry.emplace<Mesh>(e, *d.mesh);
             if (d.camera) registry.emplace<Camera>(e, *d.camera);
+            if (const auto a = animations.find(d.node); a != animations.end())
+                registry.emplace<NodeAnimation>(e, a->second);
             if (!node.extras_json_string.empty())
                 registry.emplace<Extras>(e, Extras{node.extras_json_string});
             out_.entities.push_back(e);

@@ -2,9 +2,10 @@
 // glTF 2.0 (.gltf and .glb, KHR_draco_mesh_compression) into ECS entities.
 //
 // Every node of the loaded scene becomes one entity with Name, Transform (local TRS, parent
-// link, world already computed), SceneNode and, where the node has them, Mesh, Camera and
-// Extras. glTF meshes and materials used by several nodes are loaded once and shared
-// through their shared_ptrs.
+// link, world already computed), SceneNode and, where the node has them, Mesh, Camera,
+// NodeAnimation (the first animation's channels; Transform keeps the rest pose) and Extras.
+// glTF meshes and materials used by several nodes are loaded once and shared through their
+// shared_ptrs.
 //
 // Input is untrusted: every index, accessor range and decoded payload is checked, and any
 // defect throws specula::Error with a one-line message "FILE: FIELD: what is wrong".

@@ -7,6 +7,8 @@
 #include "sandbox/lib/bench_internal.h"
 #include "sandbox/lib/probe_source.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <unordered_map>
@@ -20,9 +22,11 @@ namespace {
 // Mean over the samples of what the cooker measured: on the viewpoints and half-way between.
 void logCookerFit(std::ostream& log, const std::string& sceneName, int samples,
                   const CookResult& cooked) {
-    double on = 0, off = 0, infer = 0, self = 0;
-    for (const PemSampleFit& f : cooked.pemFits)
-        on += f.psnrOn, off += f.psnrOff, infer += f.inferSeconds, self += f.selfHitFraction;
+    double on = 0, off = 0, infer = 0, self = 0, halfWays = 0;
+    for (const PemSampleFit& f : cooked.pemFits) {
+        on += f.psnrOn, infer += f.inferSeconds, self += f.selfHitFraction;
+        if (std::isfinite(f.psnrOff)) off += f.psnrOff, ++halfWays; // NaN: an open path's end
+    }
     const double n = double(std::max<std::size_t>(cooked.pemFits.size(), 1));
     const PemAsset& asset = std::get<PemAsset>(cooked.asset);
     // Bytes per sample: the distant map, and the local layer's RGBA when there is one.
@@ -35,7 +39,8 @@ void logCookerFit(std::ostream& log, const std::string& sceneName, int samples,
                   "%.1f dB on, %.1f dB half-way; inference %.2f s per sample; %.0f KiB per "
                   "sample (float texels); %.1f%% of rays meet their reflector again\n",
                   sceneName.c_str(), samples, asset.localLayer ? "two layers" : "single map",
-                  cooked.bakeSeconds, on / n, off / n, infer / n, kib, 100.0 * self / n);
+                  cooked.bakeSeconds, on / n, off / std::max(halfWays, 1.0), infer / n, kib,
+                  100.0 * self / n);
     log << line << std::flush;
 }
 

@@ -52,8 +52,10 @@ void readPemParameter(const std::string& manifestPath, ProbeSource& src) {
     const ManifestFields f{m.path};
     src.pemByReflector = f.string(m.json, "parameter_kind", "") == "reflector";
     const std::string path = f.string(m.json, "path", "");
-    if (!parseWalkPath(path, src.pemPath))
-        throw Error(manifestPath, "path", "expected orbit, line or figure8, got '" + path + "'");
+    src.pemCameraPath = path == "camera" && !src.pemByReflector;
+    if (!src.pemCameraPath && !parseWalkPath(path, src.pemPath))
+        throw Error(manifestPath, "path",
+                    "expected orbit, line, figure8 or camera (viewpoint only), got '" + path + "'");
     if (m.json.contains("image_size")) {
         const nlohmann::json& size = m.json["image_size"];
         if (size.is_array() && size.size() == 2 && size[0].is_number_integer() &&

@@ -27,6 +27,7 @@ struct ProbeSource {
     // the orbit past still reflectors.
     bool pemByReflector = false;
     WalkPath pemPath = WalkPath::Orbit;
+    bool pemCameraPath = false; // "path": "camera": the viewpoint follows the camera animation
     int pemImageWidth = 0, pemImageHeight = 0; // the frame its maps fit; 0: not recorded
 };
 

@@ -58,6 +58,7 @@ SourceBake walkSourceBake(const WalkOptions& o) {
 WalkMotion walkMotion(const ProbeSource& src, const WalkOptions& o) {
     if (!src.pem) return {true, true, o.path};
     if (src.pemByReflector) return {true, false, src.pemPath};
+    if (src.pemCameraPath) return {false, false, o.path, true};
     return {false, true, o.path};
 }
 
@@ -115,6 +116,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     csv << "frame,reflector_x,reflector_y,reflector_z,camera_angle_deg,pass_ms"
         << (o.compare ? ",psnr,psnr_full" : "") << '\n';
     const WalkMotion motion = walkMotion(src, o);
+    const std::string pathName = motion.cameraPath ? "camera" : toString(motion.path);
     if (src.pem && src.pemImageWidth > 0 &&
         (src.pemImageWidth != o.width || src.pemImageHeight != o.height))
         out << "note: the PEM was inferred for " << src.pemImageWidth << "x" << src.pemImageHeight
@@ -131,17 +133,27 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
         float angle0, dist, h;
         walkCameraOrbit(scene, angle0, dist, h);
         std::optional<ProgressBar> bar;
-        if (o.progress) bar.emplace("walk " + std::string(toString(o.path)));
+        if (o.progress) bar.emplace("walk " + pathName);
         for (int i = 0; i < o.frames; ++i) {
-            const float t = float(i) / float(o.frames);
+            // A loop's frame `frames` would be frame 0 again; an open path ends on its last key.
+            const float t = !motion.cameraPath ? float(i) / float(o.frames)
+                            : o.frames > 1     ? float(i) / float(o.frames - 1)
+                                               : 0.f;
             if (motion.moveReflectors)
                 scene.setReflectorOffset(walkOffset(motion.path, t, scene.walkAmplitude()));
             setWalkParameter(scene, t);
             const float swing = motion.swingCamera ? DefaultViewpointRules::kWalkSwing *
                                                          std::sin(glm::two_pi<float>() * t)
                                                    : 0.f;
-            const float angle = angle0 + swing;
-            const CameraView cam = walkCamera(scene, o.width, o.height, angle, dist, h);
+            float angle = angle0 + swing;
+            CameraView cam = walkCamera(scene, o.width, o.height, angle, dist, h);
+            if (motion.cameraPath) {
+                cam = cameraPathView(scene.probeScene(), o.width, o.height, t);
+                // The column holds the eye's angle about the probe, as the orbit's does.
+                const glm::vec3 e = cam.eye() - scene.probeCentre();
+                angle = std::atan2(e.x, e.z);
+                if (i == 0) angle0 = angle;
+            }
             const Image img = fr.render(cam);
             const double ms = fr.passMs();
             char name[32];
@@ -179,7 +191,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
                               : src.pem && walkSourceBake(o) != SourceBake::Pem
                                   ? kPemMethods[0].label.name
                                   : o.method;
-    out << "wrote " << o.frames << " frames (" << drawn << ", " << toString(o.path)
+    out << "wrote " << o.frames << " frames (" << drawn << ", " << pathName
         << " path), contact_sheet.png and frames.csv to " << o.outDir << '\n';
     return 0;
 }

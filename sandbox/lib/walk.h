@@ -48,6 +48,9 @@ struct WalkOptions {
 struct WalkMotion {
     bool moveReflectors = true, swingCamera = true;
     WalkPath path = WalkPath::Orbit;
+    // A viewpoint PEM baked along the scene camera's animation: the camera follows it
+    // (cameraPathView), first key to last, instead of swinging.
+    bool cameraPath = false;
 };
 WalkMotion walkMotion(const ProbeSource& src, const WalkOptions& options);
 

@@ -206,6 +206,46 @@ TEST(SpeculaSandbox, HeadlessPemWalkBakesAndFollowsTheOrbit) {
     EXPECT_EQ(readCsv(dir.path / "again" / "frames.csv").size(), 1u);
 }
 
+// A PEM cooked along the scene camera's animation (--path camera: the room whose camera
+// dollies, scripts/make_room_camera_path.py) walks that path, first key to last: frames 0,
+// 2 and 4 of five are its three samples (t = 0, 1/2, 1), on the manifold; 1 and 3 half-way.
+TEST(SpeculaSandbox, HeadlessPemWalkFollowsTheCameraPathItWasBakedAlong) {
+    TempDir dir("pem-camera-walk");
+    const fs::path scene = fs::path(SPECULA_SOURCE_DIR) / "assets/room/room_camera_path.gltf";
+    const fs::path sky = fs::path(SPECULA_SOURCE_DIR) / "assets/scenes/env/field.jpg";
+    const fs::path probe = dir.path / "probe";
+    const ToolRun cook = specula::test::runShellTool(
+        fs::path(SPECULA_BIN_DIR) / "specula-cook",
+        "bake " + shellQuote(scene.string()) +
+            " --flavour pem --path camera --samples 3 --face-res 32 --image-size 96x72 "
+            "--local-layer off --sky " +
+            shellQuote(sky.string()) + " --out " + shellQuote(probe.string()));
+    ASSERT_EQ(cook.status, 0) << cook.err;
+    const fs::path out = dir.path / "walk";
+    const ToolRun r =
+        tool("walk " + shellQuote((probe / "manifest.json").string()) +
+             " --headless --frames 5 --size 96x72 --compare --out " + shellQuote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("(pem, camera path)"), std::string::npos) << r.out;
+    const Table rows = readCsv(out / "frames.csv");
+    ASSERT_EQ(rows.size(), 5u);
+    double previousAngle = -1e9;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const double full = num(rows[i], "psnr_full"), angle = num(rows[i], "camera_angle_deg");
+        std::printf("[pem camera walk] frame %zu: camera %.1f deg, full %.2f dB\n", i, angle, full);
+        // The dolly turns the eye about the probe one way, about 38 degrees in all.
+        EXPECT_GT(angle, previousAngle);
+        previousAngle = angle;
+        if (i % 2 == 0) {
+            EXPECT_GE(full, 35.0) << "frame " << i << " is a sample's own view";
+        } else {
+            EXPECT_LT(full, std::min(num(rows[i - 1], "psnr_full"), num(rows[i + 1], "psnr_full")))
+                << "frame " << i << " lies half-way between two samples";
+        }
+    }
+    EXPECT_NEAR(previousAngle, 38.05, 0.5);
+}
+
 TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
     TempDir dir("bench");
     const fs::path out = dir.path / "bench";

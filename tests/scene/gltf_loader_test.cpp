@@ -4,6 +4,7 @@
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/transform_system.h"
 #include "numerics/bad_input_support.h"
+#include "support/gltf_load_error.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -103,21 +104,7 @@ ecs::Entity byName(ecs::Registry& reg, const LoadedScene& s, const std::string& 
     return ecs::kNullEntity;
 }
 
-// Expects loadGltf(path) to throw specula::Error naming the file and containing `fragment`,
-// and to leave the registry untouched.
-void expectLoadError(const fs::path& path, const std::string& fragment) {
-    ecs::Registry reg;
-    try {
-        loadGltf(path.string(), reg);
-        ADD_FAILURE() << path << " loaded; expected an error containing '" << fragment << "'";
-    } catch (const Error& e) {
-        const std::string what = e.what();
-        EXPECT_NE(what.find(fragment), std::string::npos) << what;
-        EXPECT_NE(what.find(path.filename().string()), std::string::npos) << what;
-        EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
-    }
-    EXPECT_EQ(reg.alive(), 0u);
-}
+using test::expectLoadError;
 
 } // namespace
 

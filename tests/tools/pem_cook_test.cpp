@@ -215,7 +215,7 @@ TEST_F(PemCook, BadSettingsAreRefusedNamingTheFieldAndNothingIsWritten) {
     // The viewpoint moves along the camera orbit only; the reflectors along any walk path.
     cases[3].s.path = "figure8", cases[3].field = "path";
     cases[4].s.parameter = "reflector", cases[4].s.path = "spiral", cases[4].field = "path";
-    cases[5].s.path = "camera", cases[5].field = "path";
+    cases[5].s.path = "camera", cases[5].field = "path"; // the room's camera has no animation
     cases[6].s.geometry = "ellipsoid", cases[6].field = "geometry";
     cases[7].s.geometry = "box", cases[7].s.priorWeight = 0.1f, cases[7].field = "prior_weight";
     for (const Case& c : cases) {
@@ -249,7 +249,10 @@ TEST_F(PemCook, BakeCommandLineTakesThePemFlagsAndRefusesBadOnes) {
     EXPECT_EQ(bake("--flavour pem --path line", &err), 2); // the viewpoint walks the orbit only
     EXPECT_NE(err.find("--path"), std::string::npos) << err;
     EXPECT_EQ(bake("--flavour pem --parameter reflector --path camera", &err), 2);
-    EXPECT_NE(err.find("animation"), std::string::npos) << err;
+    EXPECT_NE(err.find("--parameter viewpoint"), std::string::npos) << err;
+    // The room's camera stands still: nothing to follow (the scene's fault: status 1).
+    EXPECT_EQ(bake("--flavour pem --path camera", &err), 1);
+    EXPECT_NE(err.find("animat"), std::string::npos) << err;
     EXPECT_EQ(bake("--flavour pem --geometry box --prior 0.1", &err), 2);
     EXPECT_NE(err.find("--prior"), std::string::npos) << err;
     EXPECT_EQ(bake("--flavour pem --image-size 12x9000", &err), 2);
@@ -296,6 +299,63 @@ TEST_F(PemCook, EverySampleIsMeasuredOnAndOffTheManifold) {
         EXPECT_GT(f.psnrOn, 30.0);
         EXPECT_GT(f.psnrOn, f.psnrOff + 5.0);
         EXPECT_GT(f.psnrOff, 10.0);
+    }
+}
+
+// Path "camera": the viewpoint follows the scene camera's glTF animation (a 4 s dolly across
+// the room, scripts/make_room_camera_path.py), an open path whose ends are both samples.
+// Each sample's map is checked against rays traced afresh from cameraPathView at its own
+// parameter (the same view the bake used, found independently of it) and from the orbit's.
+TEST_F(PemCook, CameraPathFollowsTheSceneCameraAnimation) {
+    const std::string scenePath =
+        std::string(SPECULA_SOURCE_DIR) + "/assets/room/room_camera_path.gltf";
+    PemCookSettings s;
+    s.samples = 3;
+    s.faceRes = 32;
+    s.imageWidth = 96, s.imageHeight = 72;
+    s.path = "camera";
+    s.localLayer = "off"; // each map alone holds a sample's full radiance
+    CookOptions o = options(s, "camera");
+    o.scene = scenePath;
+    o.sky = kSky;
+    const CookResult r = cookProbe(o, nullptr);
+    const PemAsset read = readPemProbe(r.manifest);
+    EXPECT_EQ(read.path, "camera");
+    ASSERT_EQ(read.samples.size(), 3u);
+    EXPECT_EQ(read.samples[0].parameter, 0.f);
+    EXPECT_EQ(read.samples[1].parameter, 0.5f);
+    EXPECT_EQ(read.samples[2].parameter, 1.f);
+    ASSERT_EQ(r.pemFits.size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k) {
+        const PemSampleFit& f = r.pemFits[k];
+        std::printf("[pem camera path] sample %zu: on %.1f dB, half-way %.1f dB\n", k, f.psnrOn,
+                    f.psnrOff);
+        EXPECT_GT(f.psnrOn, 30.0);
+        if (k < 2) {
+            EXPECT_GT(f.psnrOn, f.psnrOff + 5.0);
+        }
+    }
+    EXPECT_TRUE(std::isnan(r.pemFits[2].psnrOff)); // nothing lies past the path's end
+
+    ProbeScene scene(scenePath, kSky);
+    const glm::vec3 centre = read.centre;
+    for (int k = 0; k < 3; ++k) {
+        const float t = read.samples[std::size_t(k)].parameter;
+        const PemLookupCpu lookup(read.samples[std::size_t(k)].map);
+        auto fit = [&](const CameraView& camera) {
+            PemSampleOptions traced;
+            traced.supersample = s.supersample; // the bake's rays: the pixel centres
+            const PemSamples rays = tracePemSamples(scene, camera, centre, traced);
+            return pemSamplesPsnr(rays,
+                                  [&](const PemSample& p) { return lookup.radiance(p.x, p.l); });
+        };
+        const double onPath = fit(cameraPathView(scene, 96, 72, t));
+        const double onOrbit = fit(walkOrbitCameraView(scene, 96, 72, t));
+        std::printf("[pem camera path] map %d: %.1f dB from the path's camera, %.1f from the "
+                    "orbit's\n",
+                    k, onPath, onOrbit);
+        EXPECT_GT(onPath, 30.0);
+        EXPECT_GT(onPath, onOrbit + 5.0);
     }
 }
 
