@@ -260,7 +260,10 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
 
             // A viewpoint PEM's maps hold the reflectors where they were baked.
             scene.setReflectorOffset(motion.moveReflectors ? offset : glm::vec3(0.f));
-            const CameraView cam = walkCamera(scene, o.width, o.height, angle, distance, height);
+            // A PEM baked along the camera's animation is seen from that path at its parameter.
+            const CameraView cam =
+                motion.cameraPath ? cameraPathView(scene.probeScene(), o.width, o.height, t)
+                                  : walkCamera(scene, o.width, o.height, angle, distance, height);
             const Image img = fr.render(cam);
             if (frames > 0) { // the first timer result of a context can be garbage
                 passMs.push_back(fr.passMs());
