@@ -39,7 +39,7 @@ PemCookSettings sandboxPemSettings(SourceBakeSize size, int samples) {
     s.imageHeight = size.height;
     s.supersample = 1;
     s.parameter = size.pemByReflector ? "reflector" : "viewpoint";
-    s.path = toString(size.pemByReflector ? size.path : WalkPath::Orbit);
+    s.path = size.pemByReflector ? toString(size.path) : size.cameraPath ? "camera" : "orbit";
     return s;
 }
 
@@ -132,6 +132,7 @@ ProbeSource resolveProbeSource(const std::string& input,
         src.pem = true;
         src.pemByReflector = size.pemByReflector;
         src.pemPath = size.path;
+        src.pemCameraPath = size.cameraPath && !size.pemByReflector;
         src.pemImageWidth = size.width;
         src.pemImageHeight = size.height;
     } else {

@@ -42,6 +42,7 @@ struct SourceBakeSize {
     int width = 640, height = 480;
     bool pemByReflector = false;
     WalkPath path = WalkPath::Orbit;
+    bool cameraPath = false; // a viewpoint PEM along the scene camera's animation (--path camera)
 };
 
 // `input`: a scene or a manifest.json. `sceneOverride`: the scene to use with a manifest

@@ -83,8 +83,12 @@ int runWalk(WalkArgs& a, std::ostream& out) {
     o.addedReflectors = parseAddedReflectors(a.addedReflectors);
     // The window walk opens its scene itself: it sees the reflectors through the scope.
     const AddedReflectorsScope added(o.addedReflectors);
-    parseWalkPath(a.path, o.path);
+    o.cameraPath = a.path == "camera";
+    if (!o.cameraPath) parseWalkPath(a.path, o.path);
     o.pemByReflector = a.parameter == "reflector";
+    if (o.cameraPath && o.pemByReflector)
+        throw UsageError("--path", "camera moves the viewpoint; --parameter reflector walks the "
+                                   "reflectors along orbit, line or figure8");
     if (!a.size.empty()) cli::parseSize(a.size, o.width, o.height);
     if (o.headless && a.frames && *a.frames < 1)
         throw UsageError("--frames", "expected at least 1 frame with --headless, got " +
@@ -117,8 +121,11 @@ void addWalkCommand(cli::ToolCli& tool) {
     sub->add_option("--method", o.method, methodHelp)->check(CLI::IsMember(methods));
     sub->add_option("--de", o.tolerance, "rectification tolerance d_e in metres")
         ->check(cli::finiteRange(1e-5, 10.0));
-    sub->add_option("--path", a->path, "within 0.2 cell sizes of the start")
-        ->check(CLI::IsMember({"orbit", "line", "figure8"}));
+    sub->add_option("--path", a->path,
+                    "the reflectors' path, within 0.2 cell sizes of the start; camera: the "
+                    "camera follows the scene camera's glTF animation instead, first key to "
+                    "last, past still reflectors (a PEM baked here is baked along it)")
+        ->check(CLI::IsMember({"orbit", "line", "figure8", "camera"}));
     sub->add_option("--parameter", a->parameter,
                     "a PEM baked from a scene varies with the viewpoint (the camera swings, the "
                     "reflectors stay) or the reflector (the reflectors walk --path before a "

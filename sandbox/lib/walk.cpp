@@ -56,6 +56,7 @@ SourceBake walkSourceBake(const WalkOptions& o) {
 }
 
 WalkMotion walkMotion(const ProbeSource& src, const WalkOptions& o) {
+    if (o.cameraPath && !src.pemByReflector) return {false, false, o.path, true};
     if (!src.pem) return {true, true, o.path};
     if (src.pemByReflector) return {true, false, src.pemPath};
     if (src.pemCameraPath) return {false, false, o.path, true};
@@ -90,10 +91,10 @@ ecs::Entity attachWalkProbe(ReflectionScene& scene, const ProbeSource& src, cons
 int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     const AddedReflectorsScope added(o.addedReflectors);
     fs::create_directories(o.outDir);
-    const ProbeSource src =
-        resolveProbeSource(o.input, o.scene, o.sky, (fs::path(o.outDir) / "probe").string(),
-                           SourceBakeSize{o.faceRes, o.width, o.height, o.pemByReflector, o.path},
-                           o.progress, walkSourceBake(o), &out);
+    const ProbeSource src = resolveProbeSource(
+        o.input, o.scene, o.sky, (fs::path(o.outDir) / "probe").string(),
+        SourceBakeSize{o.faceRes, o.width, o.height, o.pemByReflector, o.path, o.cameraPath},
+        o.progress, walkSourceBake(o), &out);
     if (src.baked) out << "baked " << src.manifest << " in " << src.bakeSeconds << " s\n";
     auto context = gpu::GlContext::createHeadless();
     ReflectionScene scene(src.scenePath, src.skyPath);

@@ -22,6 +22,9 @@ struct WalkOptions {
     std::string method = "bisection"; // a row of sandboxMethods()
     float tolerance = 0.01f;          // d_e
     WalkPath path = WalkPath::Orbit;
+    // --path camera: the camera follows the scene camera's glTF animation, first key to last,
+    // past reflectors that stay put (a PEM baked here follows it too).
+    bool cameraPath = false;
     int frames = 60; // headless: frames written; window: 0 = until closed, else exit after N
     bool headless = false;
     bool compare = false; // headless: PSNR of every frame against its ground truth
@@ -45,6 +48,7 @@ struct WalkOptions {
 // What a walk frame moves: the reflectors along a path and/or the camera along its orbit. A
 // viewpoint PEM keeps its reflectors where its maps were inferred; a reflector PEM keeps the
 // scene camera still and walks the reflectors along its baked path; every other probe both.
+// The camera path (--path camera, or a PEM baked along it) moves the camera alone.
 struct WalkMotion {
     bool moveReflectors = true, swingCamera = true;
     WalkPath path = WalkPath::Orbit;

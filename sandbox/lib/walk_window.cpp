@@ -136,8 +136,8 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
     } cleanup{bakeDir};
     const ProbeSource src =
         resolveProbeSource(o.input, o.scene, o.sky, bakeDir.string(),
-                           {o.faceRes, o.width, o.height, o.pemByReflector, o.path}, o.progress,
-                           walkSourceBake(o), &out);
+                           {o.faceRes, o.width, o.height, o.pemByReflector, o.path, o.cameraPath},
+                           o.progress, walkSourceBake(o), &out);
     const WalkMotion motion = walkMotion(src, o);
     auto context = gpu::GlContext::createWindow(o.width, o.height, "specula-sandbox walk");
     GLFWwindow* window = context->window();

@@ -244,6 +244,29 @@ TEST(SpeculaSandbox, HeadlessPemWalkFollowsTheCameraPathItWasBakedAlong) {
         }
     }
     EXPECT_NEAR(previousAngle, 38.05, 0.5);
+
+    // Any method walks the same path (--path camera): the same cameras, reflectors still.
+    const ToolRun secant = tool("walk " + shellQuote(scene.string()) +
+                                " --path camera --method secant --headless --frames 5 --size "
+                                "96x72 --face-res 32 --out " +
+                                shellQuote((dir.path / "secant").string()));
+    ASSERT_EQ(secant.status, 0) << secant.err;
+    const Table secantRows = readCsv(dir.path / "secant" / "frames.csv");
+    ASSERT_EQ(secantRows.size(), rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        EXPECT_NEAR(num(secantRows[i], "camera_angle_deg"), num(rows[i], "camera_angle_deg"), 1e-3);
+        EXPECT_NEAR(num(secantRows[i], "reflector_x"), -0.42, 1e-4);
+    }
+    // A still camera has no path; a reflector parameter walks the reflectors, not the camera.
+    const ToolRun still =
+        headlessRoomWalk("--path camera --frames 1 --size 64x48", dir.path / "still");
+    EXPECT_EQ(still.status, 1);
+    EXPECT_NE(still.err.find("nothing animates it"), std::string::npos) << still.err;
+    EXPECT_FALSE(fs::exists(dir.path / "still"));
+    const ToolRun mixed =
+        headlessRoomWalk("--path camera --parameter reflector --method pem", dir.path / "mixed");
+    EXPECT_EQ(mixed.status, 2);
+    EXPECT_NE(mixed.err.find("--path"), std::string::npos) << mixed.err;
 }
 
 TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
