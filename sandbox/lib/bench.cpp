@@ -342,12 +342,14 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
             report.rows.push_back(row);
         }
         // The PEM sweep N in {4, 8, 16, 32} on the room and the concave bowl (self- and
-        // inter-reflection), N = 8 elsewhere and in quick runs; faces as the distance probes'
-        // but at most 256 (the inference goal is stated at 256^2).
+        // inter-reflection), N = 8 elsewhere and in quick runs, or the --pem-samples given;
+        // faces as the distance probes' but at most 256 (the inference goal is stated at 256^2).
         const bool sampleSweep =
             !opt.quick && (scenePath == defaultScenePath() || scenePath == bowlRoomPath());
         PemBenchSweep pemSweep;
-        pemSweep.samples = sampleSweep ? std::vector<int>{4, 8, 16, 32} : std::vector<int>{8};
+        pemSweep.samples = !opt.pemSamples.empty() ? opt.pemSamples
+                           : sampleSweep           ? std::vector<int>{4, 8, 16, 32}
+                                                   : std::vector<int>{8};
         pemSweep.faceRes = std::min(report.faceRes, 256);
         pemSweep.width = report.width;
         pemSweep.height = report.height;

@@ -30,6 +30,9 @@ struct BenchOptions {
     std::string pemRows = "subray";
     bool pemNonNegative = true;
     float pemRoundingReach = PemCookSettings{}.roundingReach;
+    // The PEM sample counts to bake (--pem-samples); empty: N in {4, 8, 16, 32} on the room and
+    // the bowl, N = 8 elsewhere and in quick runs.
+    std::vector<int> pemSamples;
 };
 
 struct BenchRow {

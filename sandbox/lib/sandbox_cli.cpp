@@ -212,6 +212,11 @@ void addBenchCommand(cli::ToolCli& tool) {
                     "the PEM bakes keep their texels >= 0 by re-solving (specula-cook bake "
                     "--non-negative): on (default) or off")
         ->check(CLI::IsMember({"on", "off"}));
+    sub->add_option("--pem-samples", o.pemSamples,
+                    "the PEM sample counts to bake, e.g. 16 or 4,16 (default 4,8,16,32 on the "
+                    "room and the bowl, 8 elsewhere and with --quick)")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 1024));
     sub->add_option("--pem-rounding-reach", o.pemRoundingReach,
                     "the PEM bakes' rows for the lookups the display's rounding reaches, in "
                     "metres and radians (specula-cook bake --rounding-reach; 0: off)")
