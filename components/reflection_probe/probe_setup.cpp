@@ -341,7 +341,8 @@ CookedProbeFacts readCookedProbeFacts(const std::string& manifestPath) {
     CookedProbeFacts f;
     f.flavour = r.probeFlavour(m, kProbeFormatVersion);
     if (m.contains("source")) f.source = r.string(m, "source", "");
-    if (m.contains("sky_source")) f.skySource = r.string(m, "sky_source", "");
+    f.skySourceGiven = m.contains("sky_source");
+    if (f.skySourceGiven) f.skySource = r.string(m, "sky_source", "");
     if (m.contains("sky"))
         f.skyFile =
             r.fileInFolder(m["sky"], "sky.", std::filesystem::path(manifestPath).parent_path());

@@ -179,8 +179,10 @@ struct CookedProbeFacts {
     std::string source;  // the "source" member as written (a path; empty when absent)
     std::string skyFile; // the sky image beside the manifest (a path; empty when none)
     // "sky_source": the sky the bake used, as it was given (a path, like "source"), for a
-    // flavour that keeps no copy (a PEM's maps hold the sky already); empty when absent.
+    // flavour that keeps no copy (a PEM's maps hold the sky already); empty for a black sky.
+    // skySourceGiven: the manifest has the field (older PEM manifests do not).
     std::string skySource;
+    bool skySourceGiven = false;
 };
 // Throws Error naming the manifest and the field when it is no Specula probe manifest of
 // this format version.

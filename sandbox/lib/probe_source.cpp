@@ -67,10 +67,11 @@ void readPemParameter(const std::string& manifestPath, ProbeSource& src) {
 }
 
 // The sky a PEM was baked under ("sky_source", resolved as "source" is: as written, else
-// beside the manifest), for the ground truth it is compared with; the bundled field.jpg
-// when the manifest does not say (older manifests).
+// beside the manifest), for the ground truth it is compared with: "" a black sky (the
+// cooker's default), the bundled field.jpg when the manifest does not say (older manifests).
 std::string pemSky(const std::string& manifest, const CookedProbeFacts& facts) {
-    if (facts.skySource.empty()) return defaultSkyPath();
+    if (!facts.skySourceGiven) return defaultSkyPath();
+    if (facts.skySource.empty()) return "";
     const fs::path s = facts.skySource;
     const fs::path beside = fs::path(manifest).parent_path() / s;
     return fs::exists(s) || s.is_absolute() || !fs::exists(beside) ? s.string() : beside.string();

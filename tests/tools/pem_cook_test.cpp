@@ -269,6 +269,10 @@ TEST_F(PemCook, BakeCommandLineTakesThePemFlagsAndRefusesBadOnes) {
     EXPECT_EQ(cooked.faceRes, 8);
     EXPECT_EQ(cooked.geometry, "distance"); // the default
     EXPECT_EQ(cooked.mipLevels, 1);         // the default
+    // No --sky: a black sky, said so ("sky_source": ""), not left for a reader to guess.
+    const CookedProbeFacts facts = readCookedProbeFacts((root_ / "cli" / "manifest.json").string());
+    EXPECT_TRUE(facts.skySourceGiven);
+    EXPECT_EQ(facts.skySource, "");
     fs::remove_all(root_ / "cli");
     ASSERT_EQ(
         bake("--flavour pem --samples 1 --face-res 8 --image-size 64x48 --mip-levels 4", &err), 0)

@@ -304,7 +304,9 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
                                        {"radius", asset.localSphere.radius}};
         if (asset.mipLevels > 1) manifest["mip_levels"] = asset.mipLevels;
         if (asset.imageWidth > 0) manifest["image_size"] = {asset.imageWidth, asset.imageHeight};
-        if (!asset.skySource.empty()) manifest["sky_source"] = asset.skySource;
+        // Always written: "" says the bake traced a black sky, which a reader must not take for
+        // a manifest that predates the field.
+        manifest["sky_source"] = asset.skySource;
         if (const PemDistanceGeometry* g = asset.distance.get()) {
             const std::string path = (tmp / kDistanceFile).string();
             writeImage(path, stackDistances(*g));

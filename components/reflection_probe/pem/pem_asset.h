@@ -38,7 +38,8 @@ struct PemSampleMap {
 struct PemAsset {
     std::string manifestPath; // where it was read from (errors); empty when cooked
     glm::vec3 centre{0.f};    // world position of the maps' origin (the probe centre)
-    std::string skySource;    // the sky the bake traced (a path as given; empty: black or unknown)
+    std::string skySource; // the sky the bake traced (a path as given; empty: black, or unknown in
+                           // a manifest older than "sky_source")
     std::string parameterKind = "viewpoint"; // "viewpoint" | "reflector"
     std::string path = "orbit";              // the walk path the parameter runs along
     int faceRes = 0;
