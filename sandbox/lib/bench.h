@@ -33,6 +33,9 @@ struct BenchOptions {
     // The PEM sample counts to bake (--pem-samples); empty: N in {4, 8, 16, 32} on the room and
     // the bowl, N = 8 elsewhere and in quick runs.
     std::vector<int> pemSamples;
+    // The PEM viewpoint's path (--pem-path): "auto" the scene camera's animation where the
+    // scene has one that moves (sceneCameraMoves), else the walk's orbit; "orbit"; "camera".
+    std::string pemPath = "auto";
 };
 
 struct BenchRow {

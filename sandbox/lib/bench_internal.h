@@ -55,6 +55,9 @@ struct PemBenchSweep {
     std::string rows = "subray"; // PemCookSettings::rows
     bool nonNegative = false;    // PemCookSettings::nonNegative
     float roundingReach = 0.f;   // PemCookSettings::roundingReach
+    // The viewpoint follows the scene camera's animation (PemCookSettings::path "camera";
+    // cameraPathView) instead of the walk's orbit.
+    bool cameraPath = false;
     // The single-bounce method the PEM is compared with, drawn from the PEM's own cameras
     // (the other rows see the scene camera): its manifest, settings and row label. Empty
     // asset: none.
@@ -65,10 +68,18 @@ struct PemBenchSweep {
 
 // The PEM rows of one scene, appended to report.rows and the scene's plot panel: per sample
 // count N, one PEM baked through the cooking API into outDir/probes/<scene>_pemN, drawn from
-// the walk orbit's camera at a sample's viewpoint ("N=8 t=on", t = 0) and half-way between
-// two samples ("t=off", t = 0.5 / N), each against the ground truth of that camera. The
+// the walk orbit's camera (or the camera path's) at a sample's viewpoint ("N=8 t=on", t = 0)
+// and half-way between the first two samples ("t=off", pemBenchHalfWay), each against the
+// ground truth of that camera. The
 // cooker's own fit (on and half-way, over all samples) and inference time go to the log.
 // A scene the PEM cannot be baked for is logged and left without rows.
+// The PEM settings the sweep bakes N samples with, the camera of parameter t, and the
+// parameter half-way between the first two samples (0.5 / N on the orbit's loop, 0.5 / (N - 1)
+// on the open camera path).
+PemCookSettings pemBenchSettings(const PemBenchSweep& sweep, int samples);
+CameraView pemBenchCamera(const ReflectionScene& scene, const PemBenchSweep& sweep, float t);
+float pemBenchHalfWay(const PemBenchSweep& sweep, int samples);
+
 void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string& sceneName,
                    const std::string& outDir, const PemBenchSweep& sweep, BenchFrameBudget budget,
                    double envmapMs, BenchReport& report, PlotPanel& panel, std::ostream& log);

@@ -90,6 +90,27 @@ void writePemPicture(const std::string& outDir, const std::string& sceneName,
 
 } // namespace
 
+PemCookSettings pemBenchSettings(const PemBenchSweep& sweep, int samples) {
+    SourceBakeSize size{sweep.faceRes, sweep.width, sweep.height};
+    size.cameraPath = sweep.cameraPath;
+    PemCookSettings s = sandboxPemSettings(size, samples);
+    s.supersample = sweep.supersample;
+    s.rows = sweep.rows;
+    s.nonNegative = sweep.nonNegative;
+    s.roundingReach = sweep.roundingReach;
+    return s;
+}
+
+CameraView pemBenchCamera(const ReflectionScene& scene, const PemBenchSweep& sweep, float t) {
+    return sweep.cameraPath ? cameraPathView(scene.probeScene(), sweep.width, sweep.height, t)
+                            : walkOrbitCameraView(scene.probeScene(), sweep.width, sweep.height, t);
+}
+
+float pemBenchHalfWay(const PemBenchSweep& sweep, int samples) {
+    if (!sweep.cameraPath) return 0.5f / float(samples);
+    return samples > 1 ? 0.5f / float(samples - 1) : 0.f;
+}
+
 void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string& sceneName,
                    const std::string& outDir, const PemBenchSweep& sweep, BenchFrameBudget budget,
                    double envmapMs, BenchReport& report, PlotPanel& panel, std::ostream& log) {
@@ -104,14 +125,10 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
         bakes.push_back({samples, false});
     for (std::size_t b = 0; b < bakes.size(); ++b) {
         const int samples = bakes[b].samples;
-        PemCookSettings settings =
-            sandboxPemSettings({sweep.faceRes, sweep.width, sweep.height}, samples);
+        PemCookSettings settings = pemBenchSettings(sweep, samples);
         if (bakes[b].single) settings.localLayer = "off";
-        settings.supersample = sweep.supersample;
-        settings.rows = sweep.rows;
-        settings.nonNegative = sweep.nonNegative;
-        settings.roundingReach = sweep.roundingReach;
-        log << sceneName << ": baking the PEM (" << samples << " viewpoints, " << settings.faceRes
+        log << sceneName << ": baking the PEM (" << samples << " viewpoints on the "
+            << (sweep.cameraPath ? "camera path" : "orbit") << ", " << settings.faceRes
             << "^2 faces, inferred for " << sweep.width << "x" << sweep.height << ")\n"
             << std::flush;
         CookResult cooked;
@@ -135,14 +152,13 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
         };
         // At the first sample, and half-way between the first two (where the blend is
         // furthest from both maps it blends).
-        const float half = 0.5f / float(samples);
+        const float half = pemBenchHalfWay(sweep, samples);
         // The picture of the first PEM of the sweep: full truth and PEM, on and off.
         std::vector<Image> tiles, heat;
         std::vector<std::string> labels;
         const bool picture = samples == sweep.samples.front() && !bakes[b].single;
         for (const Viewpoint& v : {Viewpoint{"on", 0.f}, Viewpoint{"off", half}}) {
-            const CameraView cam =
-                walkOrbitCameraView(scene.probeScene(), sweep.width, sweep.height, v.t);
+            const CameraView cam = pemBenchCamera(scene, sweep, v.t);
             BenchTruth truth{scene.groundTruth(cam, true), scene.groundTruth(cam, false), Image{}};
             truth.mask = erodedMask(truth.env.mirrorMask);
             PemProbe probe;
@@ -173,7 +189,7 @@ void appendPemRows(ReflectionScene& scene, FrameRenderer& fr, const std::string&
             report.rows.push_back(row);
             if (!bakes[b].single && (b == 0 || v.t > 0.f) && !sweep.referenceAsset.empty()) {
                 // The single-bounce reference from this camera: at the sample (the same
-                // camera for every N) once, half-way (t = 0.5 / N) for each N. Not plotted:
+                // camera for every N) once, half-way (pemBenchHalfWay) for each N. Not plotted:
                 // the plot's points all see the scene camera.
                 scene.setProbe(sweep.referenceAsset, sweep.reference.distance);
                 fr.probes().sync(scene.registry());

@@ -28,7 +28,7 @@ BenchRow measurePemRow(ReflectionScene& scene, FrameRenderer& fr, const std::str
                        const PemBenchSweep& sweep, const std::string& manifest,
                        const PemAsset& asset, float t, const std::string& params,
                        BenchFrameBudget budget, double envmapMs) {
-    const CameraView cam = walkOrbitCameraView(scene.probeScene(), sweep.width, sweep.height, t);
+    const CameraView cam = pemBenchCamera(scene, sweep, t);
     BenchTruth truth{scene.groundTruth(cam, true), scene.groundTruth(cam, false), Image{}};
     truth.mask = erodedMask(truth.env.mirrorMask);
     PemProbe probe;
@@ -55,14 +55,9 @@ void appendPemMipRows(ReflectionScene& scene, FrameRenderer& fr, const std::stri
     const int levels = PemMap::maxLevels(baked.faceRes);
     const std::string base =
         (fs::path(outDir) / "probes" / (sceneName + "_pem" + std::to_string(samples))).string();
-    PemCookSettings settings =
-        sandboxPemSettings({sweep.faceRes, sweep.width, sweep.height}, samples);
+    PemCookSettings settings = pemBenchSettings(sweep, samples);
     settings.localLayer = baked.localLayer ? "on" : "off"; // as the level-0 bake decided
     settings.mipLevels = levels;
-    settings.supersample = sweep.supersample;
-    settings.rows = sweep.rows;
-    settings.nonNegative = sweep.nonNegative;
-    settings.roundingReach = sweep.roundingReach;
     const PemAsset filtered = filteredMipAsset(baked, levels);
     CookResult mip;
     try {
@@ -85,7 +80,7 @@ void appendPemMipRows(ReflectionScene& scene, FrameRenderer& fr, const std::stri
     const std::string manifests[3] = {level0.manifest, filteredManifest, mip.manifest};
     const PemAsset* assets[3] = {&baked, &filtered, &std::get<PemAsset>(mip.asset)};
     const char* labels[3] = {"", " filtered-mip", " mip"};
-    const float half = 0.5f / float(samples);
+    const float half = pemBenchHalfWay(sweep, samples);
     for (int v = 0; v < 3; ++v)
         for (int w = 0; w < 2; ++w) {
             const float t = w == 0 ? 0.f : half;

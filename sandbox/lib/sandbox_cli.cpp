@@ -217,6 +217,11 @@ void addBenchCommand(cli::ToolCli& tool) {
                     "room and the bowl, 8 elsewhere and with --quick)")
         ->delimiter(',')
         ->check(CLI::Range(1, 1024));
+    sub->add_option("--pem-path", o.pemPath,
+                    "the PEM viewpoint's path: the scene camera's glTF animation (camera), the "
+                    "walk's orbit (orbit), or auto (default): camera where the scene's camera "
+                    "is animated, else orbit")
+        ->check(CLI::IsMember({"auto", "orbit", "camera"}));
     sub->add_option("--pem-rounding-reach", o.pemRoundingReach,
                     "the PEM bakes' rows for the lookups the display's rounding reaches, in "
                     "metres and radians (specula-cook bake --rounding-reach; 0: off)")

@@ -268,6 +268,24 @@ TEST(SpeculaSandbox, HeadlessPemWalkFollowsTheCameraPathItWasBakedAlong) {
         headlessRoomWalk("--path camera --parameter reflector --method pem", dir.path / "mixed");
     EXPECT_EQ(mixed.status, 2);
     EXPECT_NE(mixed.err.find("--path"), std::string::npos) << mixed.err;
+
+    // The bench bakes its PEM rows along the animation of a scene whose camera moves.
+    const fs::path bench = dir.path / "bench";
+    const ToolRun b =
+        tool("bench --quick --size 96x72 --face-res 32 --max-frames 4 --scene " +
+             shellQuote(scene.string()) + " --pem-samples 3 --out " + shellQuote(bench.string()));
+    ASSERT_EQ(b.status, 0) << b.err;
+    const std::string log = b.out + b.err;
+    EXPECT_NE(log.find("3 viewpoints on the camera path"), std::string::npos) << log;
+    std::map<std::string, double> full;
+    for (const auto& row : readCsv(bench / "bench.csv"))
+        if (row.at("method") == "pem" || row.at("params").find("pem-camera") != std::string::npos)
+            full[row.at("method") + " " + row.at("params")] = num(row, "psnr_full");
+    ASSERT_EQ(full.count("pem N=3 t=on"), 1u);
+    ASSERT_EQ(full.count("pem N=3 t=off"), 1u);
+    EXPECT_GE(full["pem N=3 t=on"], 35.0);
+    EXPECT_LT(full["pem N=3 t=off"], full["pem N=3 t=on"]);
+    EXPECT_EQ(full.count("layered d_e=0.01 pem-camera N=3 t=off"), 1u);
 }
 
 TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
