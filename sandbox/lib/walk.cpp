@@ -135,6 +135,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
         walkCameraOrbit(scene, angle0, dist, h);
         std::optional<ProgressBar> bar;
         if (o.progress) bar.emplace("walk " + pathName);
+        float previousAngle = 0.f;
         for (int i = 0; i < o.frames; ++i) {
             // A loop's frame `frames` would be frame 0 again; an open path ends on its last key.
             const float t = !motion.cameraPath ? float(i) / float(o.frames)
@@ -150,10 +151,15 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
             CameraView cam = walkCamera(scene, o.width, o.height, angle, dist, h);
             if (motion.cameraPath) {
                 cam = cameraPathView(scene.probeScene(), o.width, o.height, t);
-                // The column holds the eye's angle about the probe, as the orbit's does.
+                // The column holds the eye's angle about the probe, as the orbit's does,
+                // unwrapped frame to frame: a path passing behind the probe does not jump 360°.
                 const glm::vec3 e = cam.eye() - scene.probeCentre();
-                angle = std::atan2(e.x, e.z);
+                const float raw = std::atan2(e.x, e.z);
+                angle = i == 0 ? raw
+                               : previousAngle +
+                                     std::remainder(raw - previousAngle, glm::two_pi<float>());
                 if (i == 0) angle0 = angle;
+                previousAngle = angle;
             }
             const Image img = fr.render(cam);
             const double ms = fr.passMs();
