@@ -26,7 +26,8 @@ template <typename T> struct KeyframeTrack {
     std::vector<T> values;
 
     bool empty() const { return times.empty(); }
-    // The value at `seconds`, held at the first and last keys outside their range.
+    // The value at `seconds` (the track not empty), held at the first and last keys outside
+    // their range.
     T sample(float seconds) const;
 };
 

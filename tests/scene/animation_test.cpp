@@ -124,6 +124,29 @@ TEST(GltfAnimation, TheCameraFollowsItsKeysAndLooksWhereTheScriptAimedIt) {
 
 using test::expectLoadError;
 
+// The glTF fuzz seed with one channel of each interpolation on node 0 (embedded keys 0, 0.5,
+// 2 s): LINEAR translation, STEP rotation, CUBICSPLINE scale.
+TEST(GltfAnimation, EachInterpolationLoadsFromAFile) {
+    const fs::path seed =
+        fs::path(SPECULA_SOURCE_DIR) / "tests/fuzz/corpus/gltf/Box_animated_embedded.gltf";
+    ecs::Registry registry;
+    const LoadedScene scene = loadGltf(seed.string(), registry);
+    const NodeAnimation* a = nullptr;
+    for (ecs::Entity e : scene.entities)
+        if (registry.find<SceneNode>(e)->nodeIndex == 0) a = registry.find<NodeAnimation>(e);
+    ASSERT_NE(a, nullptr);
+    EXPECT_EQ(a->translation.interpolation, Interpolation::Linear);
+    EXPECT_EQ(a->rotation.interpolation, Interpolation::Step);
+    EXPECT_EQ(a->scale.interpolation, Interpolation::CubicSpline);
+    EXPECT_EQ(a->scale.values.size(), 9u); // in-tangent, value, out-tangent a key
+    EXPECT_LT(glm::length(a->translation.sample(0.25f) - glm::vec3(0.5f, 0.f, 0.f)), 1e-6f);
+    // STEP holds key 1 (90 degrees about +Y) until key 2: +X turns to -Z.
+    EXPECT_LT(glm::length(a->rotation.sample(1.9f) * glm::vec3(1.f, 0.f, 0.f) -
+                          glm::vec3(0.f, 0.f, -1.f)),
+              1e-5f);
+    EXPECT_LT(glm::length(a->scale.sample(0.5f) - glm::vec3(2.f)), 1e-6f); // a key's value
+}
+
 // The camera-path room in `dir` (its room.bin beside it) with `edit` applied to its JSON.
 template <typename Edit>
 fs::path editedRoom(const test::TempDir& dir, const char* name, Edit edit) {
