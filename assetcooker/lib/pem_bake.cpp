@@ -23,8 +23,6 @@ public:
     State(ProbeScene& scene, const PemCookSettings& s)
         : scene_(scene), s_(s), byReflector_(s.parameter == "reflector"), roots_(scene) {
         if (!byReflector_) {
-            // Before any tracing: a camera path the scene does not have is refused at once.
-            if (s.path == "camera") cameraPathView(scene, s.imageWidth, s.imageHeight, 0.f);
             tracer_.emplace(scene.registry, groundTruthOptions(scene, false));
             return;
         }
@@ -114,6 +112,9 @@ PemBake::PemBake(ProbeScene& scene, const PemCookSettings& s, std::optional<glm:
     validatePemCookSettings(s, scene.path);
     if (scene.markup.mirrorEntities.empty())
         throw Error(scene.path, "specula_reflector", "expected at least one reflector, found none");
+    // Before any tracing (the distance cube below too): a camera path the scene does not have
+    // is refused at once.
+    if (s.path == "camera") cameraPathView(scene, s.imageWidth, s.imageHeight, 0.f);
     asset_.centre =
         centre ? *centre : markupProbeCentre(scene.registry, scene.markup, scene.loaded);
     asset_.parameterKind = s.parameter;
