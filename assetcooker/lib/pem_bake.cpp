@@ -39,7 +39,7 @@ public:
     State& operator=(const State&) = delete;
 
     At at(float t) {
-        if (!byReflector_ && s_.path == "camera")
+        if (!byReflector_ && s_.path == kCameraPathName)
             return {&*tracer_, cameraPathView(scene_, s_.imageWidth, s_.imageHeight, t)};
         if (!byReflector_)
             return {&*tracer_, walkOrbitCameraView(scene_, s_.imageWidth, s_.imageHeight, t)};
@@ -114,7 +114,7 @@ PemBake::PemBake(ProbeScene& scene, const PemCookSettings& s, std::optional<glm:
         throw Error(scene.path, "specula_reflector", "expected at least one reflector, found none");
     // Before any tracing (the distance cube below too): a camera path the scene does not have
     // is refused at once.
-    if (s.path == "camera") cameraPathView(scene, s.imageWidth, s.imageHeight, 0.f);
+    if (s.path == kCameraPathName) cameraPathView(scene, s.imageWidth, s.imageHeight, 0.f);
     asset_.centre =
         centre ? *centre : markupProbeCentre(scene.registry, scene.markup, scene.loaded);
     asset_.parameterKind = s.parameter;

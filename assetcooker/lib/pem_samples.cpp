@@ -200,13 +200,13 @@ void validatePemCookSettings(const PemCookSettings& s, const std::string& file) 
         throw Error(file, "parameter",
                     "expected viewpoint or reflector, got '" + s.parameter + "'");
     WalkPath path;
-    if (s.parameter == "viewpoint" && s.path == "camera") return;
+    if (s.parameter == "viewpoint" && s.path == kCameraPathName) return;
     if (s.parameter == "viewpoint" && s.path != "orbit")
         throw Error(file, "path",
                     "the viewpoint moves along the walk's camera orbit ('orbit') or the scene "
                     "camera's animation ('camera'), got '" +
                         s.path + "'");
-    if (s.path == "camera")
+    if (s.path == kCameraPathName)
         throw Error(file, "path",
                     "'camera' moves the viewpoint (--parameter viewpoint); the reflectors walk "
                     "orbit, line or figure8");
@@ -221,7 +221,7 @@ double pemSamplesPsnr(const PemSamples& samples,
 }
 
 bool pemPathClosed(const PemCookSettings& s) {
-    return s.path != "camera";
+    return s.path != kCameraPathName;
 }
 
 float pemSampleParameter(const PemCookSettings& s, int k) {

@@ -12,6 +12,9 @@
 namespace specula {
 
 enum class WalkPath { Orbit, Line, Figure8 };
+// The name of the one open path: the scene camera's glTF animation (cameraPathView), which
+// only the viewpoint follows, so it is no WalkPath.
+inline constexpr const char* kCameraPathName = "camera";
 bool parseWalkPath(const std::string& s, WalkPath& out);
 const char* toString(WalkPath p);
 glm::vec3 walkOffset(WalkPath path, float t, float amplitude);

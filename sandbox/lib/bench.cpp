@@ -357,7 +357,7 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
         pemSweep.rows = opt.pemRows;
         pemSweep.nonNegative = opt.pemNonNegative;
         pemSweep.roundingReach = opt.pemRoundingReach;
-        pemSweep.cameraPath = opt.pemPath == "camera" ||
+        pemSweep.cameraPath = opt.pemPath == kCameraPathName ||
                               (opt.pemPath == "auto" && sceneCameraMoves(scene.probeScene()));
         // The best single-bounce method of the sweep (layered, else bisection, d_e 0.01) drawn
         // from the PEM's cameras too.

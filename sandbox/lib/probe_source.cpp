@@ -39,7 +39,9 @@ PemCookSettings sandboxPemSettings(SourceBakeSize size, int samples) {
     s.imageHeight = size.height;
     s.supersample = 1;
     s.parameter = size.pemByReflector ? "reflector" : "viewpoint";
-    s.path = size.pemByReflector ? toString(size.path) : size.cameraPath ? "camera" : "orbit";
+    s.path = size.pemByReflector ? toString(size.path)
+             : size.cameraPath   ? kCameraPathName
+                                 : "orbit";
     return s;
 }
 
@@ -52,7 +54,7 @@ void readPemParameter(const std::string& manifestPath, ProbeSource& src) {
     const ManifestFields f{m.path};
     src.pemByReflector = f.string(m.json, "parameter_kind", "") == "reflector";
     const std::string path = f.string(m.json, "path", "");
-    src.pemCameraPath = path == "camera" && !src.pemByReflector;
+    src.pemCameraPath = path == kCameraPathName && !src.pemByReflector;
     if (!src.pemCameraPath && !parseWalkPath(path, src.pemPath))
         throw Error(manifestPath, "path",
                     "expected orbit, line, figure8 or camera (viewpoint only), got '" + path + "'");

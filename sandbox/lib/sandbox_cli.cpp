@@ -83,7 +83,7 @@ int runWalk(WalkArgs& a, std::ostream& out) {
     o.addedReflectors = parseAddedReflectors(a.addedReflectors);
     // The window walk opens its scene itself: it sees the reflectors through the scope.
     const AddedReflectorsScope added(o.addedReflectors);
-    o.cameraPath = a.path == "camera";
+    o.cameraPath = a.path == kCameraPathName;
     if (!o.cameraPath) parseWalkPath(a.path, o.path);
     o.pemByReflector = a.parameter == "reflector";
     if (o.cameraPath && o.pemByReflector)

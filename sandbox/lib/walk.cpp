@@ -56,11 +56,16 @@ SourceBake walkSourceBake(const WalkOptions& o) {
 }
 
 WalkMotion walkMotion(const ProbeSource& src, const WalkOptions& o) {
-    if (o.cameraPath && !src.pemByReflector) return {false, false, o.path, true};
-    if (!src.pem) return {true, true, o.path};
     if (src.pemByReflector) return {true, false, src.pemPath};
-    if (src.pemCameraPath) return {false, false, o.path, true};
+    if (o.cameraPath || src.pemCameraPath) return {false, false, o.path, true};
+    if (!src.pem) return {true, true, o.path};
     return {false, true, o.path};
+}
+
+CameraView walkFrameCamera(const ReflectionScene& scene, const WalkMotion& motion, int width,
+                           int height, float t, float angle, float distance, float heightAbove) {
+    if (motion.cameraPath) return cameraPathView(scene.probeScene(), width, height, t);
+    return walkCamera(scene, width, height, angle, distance, heightAbove);
 }
 
 void setWalkParameter(ReflectionScene& scene, float t) {
@@ -117,7 +122,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     csv << "frame,reflector_x,reflector_y,reflector_z,camera_angle_deg,pass_ms"
         << (o.compare ? ",psnr,psnr_full" : "") << '\n';
     const WalkMotion motion = walkMotion(src, o);
-    const std::string pathName = motion.cameraPath ? "camera" : toString(motion.path);
+    const std::string pathName = motion.cameraPath ? kCameraPathName : toString(motion.path);
     if (src.pem && src.pemImageWidth > 0 &&
         (src.pemImageWidth != o.width || src.pemImageHeight != o.height))
         out << "note: the PEM was inferred for " << src.pemImageWidth << "x" << src.pemImageHeight
@@ -148,9 +153,9 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
                                                          std::sin(glm::two_pi<float>() * t)
                                                    : 0.f;
             float angle = angle0 + swing;
-            CameraView cam = walkCamera(scene, o.width, o.height, angle, dist, h);
+            const CameraView cam =
+                walkFrameCamera(scene, motion, o.width, o.height, t, angle, dist, h);
             if (motion.cameraPath) {
-                cam = cameraPathView(scene.probeScene(), o.width, o.height, t);
                 // The column holds the eye's angle about the probe, as the orbit's does,
                 // unwrapped frame to frame: a path passing behind the probe does not jump 360°.
                 const glm::vec3 e = cam.eye() - scene.probeCentre();

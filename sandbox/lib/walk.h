@@ -57,6 +57,10 @@ struct WalkMotion {
     bool cameraPath = false;
 };
 WalkMotion walkMotion(const ProbeSource& src, const WalkOptions& options);
+// The camera of a frame at t: the camera path's (cameraPathView) when the motion follows it,
+// else the orbit's at `angle`, `distance` and `heightAbove` (walkCamera).
+CameraView walkFrameCamera(const ReflectionScene& scene, const WalkMotion& motion, int width,
+                           int height, float t, float angle, float distance, float heightAbove);
 
 // The camera of frame t in [0, 1): the scene camera's distance and height around the probe,
 // swung +-23 degrees about its starting angle (a full circle would pass behind columns).

@@ -262,8 +262,7 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
             scene.setReflectorOffset(motion.moveReflectors ? offset : glm::vec3(0.f));
             // A PEM baked along the camera's animation is seen from that path at its parameter.
             const CameraView cam =
-                motion.cameraPath ? cameraPathView(scene.probeScene(), o.width, o.height, t)
-                                  : walkCamera(scene, o.width, o.height, angle, distance, height);
+                walkFrameCamera(scene, motion, o.width, o.height, t, angle, distance, height);
             const Image img = fr.render(cam);
             if (frames > 0) { // the first timer result of a context can be garbage
                 passMs.push_back(fr.passMs());
