@@ -171,10 +171,11 @@ inline constexpr DistanceMethod kAllMethods[] = {DistanceMethod::Envmap,    Dist
 // the march; for bisection and secant the first-crossing march (kBracketSteps) plus N, since
 // on the composite they march to the first crossing before searching (issue 15; before it,
 // N alone); the march's points are never spent on object layers, where N stays the bound.
+// Secant's safeguard allows two steps for each halving of its bracket (secantIn): 2N.
 inline int searchFetchCap(DistanceMethod m, const DistanceLookupConfig& c) {
     if (m == DistanceMethod::March) return glsl::kMarchSteps + glsl::kMarchRefineSteps;
-    if (m == DistanceMethod::Bisection || m == DistanceMethod::Secant)
-        return glsl::kBracketSteps + c.params.maxSteps;
+    if (m == DistanceMethod::Secant) return glsl::kBracketSteps + 2 * c.params.maxSteps;
+    if (m == DistanceMethod::Bisection) return glsl::kBracketSteps + c.params.maxSteps;
     return c.params.maxSteps;
 }
 

@@ -182,3 +182,42 @@ TEST(DistanceFirstCrossing, WhereTheSearchesMissTheFirstCrossing) {
         }
     }
 }
+
+// Where a search ends on a surface texel, it has either converged (the stored distance agrees
+// with |l| within d_e) or it has located a crossing within d_e along the ray: f changes sign
+// within d_e of the end point. Bisection holds this by construction (its bracket halves every
+// step). Secant held it only while its false-position steps kept up: on the nearest-texel
+// staircase an Illinois secant can creep towards one end of its bracket and run out of steps
+// far from the crossing (issue 15); Dekker's safeguard (a midpoint after any step that did not
+// halve the bracket, 2N steps at most) gives it bisection's guarantee.
+TEST(DistanceFirstCrossing, SearchesEndWithinTheToleranceOfACrossing) {
+    Fixture& fx = fixture();
+    ASSERT_GT(fx.rays.size(), 500u);
+    constexpr int kAround = 512; // samples of f over [t_end - d_e, t_end + d_e]
+    for (const float de : {0.1f, 0.03f, 0.01f}) {
+        for (const DistanceMethod m : {DistanceMethod::Bisection, DistanceMethod::Secant}) {
+            const CpuDistanceProbe twin(fx.asset, configOf(fx.asset, m, de));
+            int ended = 0, far = 0;
+            for (const Ray& r : fx.rays) {
+                const CpuDistanceProbe::CompositeHit h = twin.compositeHit(r.x, r.lhat);
+                if (!h.hit) continue;
+                ++ended;
+                const float tEnd = glm::dot(h.at - r.x, r.lhat);
+                const float fEnd = fx.stored(h.at) - glm::length(h.at);
+                if (std::abs(fEnd) < de) continue;
+                bool changes = false;
+                for (int k = 0; k <= kAround && !changes; ++k) {
+                    const float t = tEnd - de + 2.f * de * float(k) / float(kAround);
+                    const glm::vec3 l = r.x + t * r.lhat;
+                    changes = (fx.stored(l) - glm::length(l) > 0.f) != (fEnd > 0.f);
+                }
+                if (!changes) ++far;
+            }
+            std::printf("d_e %.2f %-9s: %d of %d hits ended neither converged nor within d_e of "
+                        "a crossing\n",
+                        de, toString(m), far, ended);
+            EXPECT_GT(ended, 400) << toString(m) << " d_e " << de;
+            EXPECT_EQ(far, 0) << toString(m) << " d_e " << de;
+        }
+    }
+}

@@ -115,8 +115,14 @@ LayerHit lookupBisection(int layer, vec3 x, vec3 lhat, DistanceParams p, RaySpan
 // Same bracket search as bisection (identical first steps), but once the surface is
 // bracketed by a point before it (f > 0) and one beyond it (f < 0) the next t comes from
 // the secant through both, with the Illinois weighting so one end cannot stall. A secant
-// step that leaves the bracket, or an end that saw only d_inf, falls back to the midpoint.
-// Starts from bracket b (its ends and fetches so far) and spends at most `steps` more.
+// step that leaves the bracket, or an end that saw only d_inf, falls back to the midpoint,
+// and so does the step after one that did not halve the bracket (Dekker's safeguard): the
+// nearest-texel distance is a staircase along the ray, where a secant can creep towards
+// one end while its steps run out far from the crossing (issue 15: that held 9-37 % of
+// secant's error over the exact search). So the bracket at least halves every two steps,
+// and the search ends where the stored distance agrees with |l| within d_e, or the bracket
+// is narrower than d_e (the crossing's position is known as well as bisection knows it),
+// or after 2 `steps` fetches. Starts from bracket b (its ends and fetches so far).
 LayerHit secantIn(int layer, vec3 x, vec3 lhat, DistanceParams p, Bracket b, int steps) {
     float ta = b.ta;
     float fa = b.fa;
@@ -125,12 +131,16 @@ LayerHit secantIn(int layer, vec3 x, vec3 lhat, DistanceParams p, Bracket b, int
     float fb = b.fb;
     bool haveB = b.crossed; // tb: last t beyond the surface
     int lastSide = 0;
+    float widthBefore = 2.0f * (tb - ta); // the bracket before the last step: none yet
     vec3 l = x + 0.5f * (ta + tb) * lhat;
     float d = p.dInf;
     int fetches = b.fetches;
-    for (int n = 1; n <= steps; ++n) {
+    for (int n = 1; n <= 2 * steps; ++n) {
+        float width = tb - ta;
         float t = 0.5f * (ta + tb);
-        if (haveA && haveB) {
+        bool secantStep = haveA && haveB && width <= 0.5f * widthBefore;
+        widthBefore = secantStep ? width : 2.0f * width; // a midpoint halves it by itself
+        if (secantStep) {
             float candidate = ta + fa * (tb - ta) / (fa - fb);
             if (candidate > ta && candidate < tb) t = candidate;
         }
@@ -152,6 +162,7 @@ LayerHit secantIn(int layer, vec3 x, vec3 lhat, DistanceParams p, Bracket b, int
             haveB = true;
             lastSide = -1;
         }
+        if (tb - ta < p.tolerance) break;
     }
     return finishRectified(layer, x, lhat, l, d, fetches, p.dInf);
 }
@@ -247,7 +258,8 @@ vec2 layerSpan(int layer, vec3 x, vec3 lhat) {
 // left for the sky, or passed something thinner than a march step. The search over the
 // whole span that used to follow found such slivers behind 8 points, but behind 20 it
 // changed no error on the room or truck_room (measured, issue 15) and cost N fetches on
-// every ray that sees the sky. At most kBracketSteps + N distance fetches.
+// every ray that sees the sky. At most kBracketSteps + N distance fetches for bisection,
+// kBracketSteps + 2N for secant (secantIn).
 LayerHit lookupFirstCrossing(int method, vec3 x, vec3 lhat, DistanceParams p, RaySpan span) {
     Bracket b = bracketFirstCrossing(0, x, lhat, p, span, kBracketSteps);
     if (!b.crossed) return finishRectified(0, x, lhat, b.l, b.d, b.fetches, p.dInf);
