@@ -45,7 +45,8 @@ void scoreCandidates(std::vector<PlanCandidate>& candidates, const DistanceProbe
 
 // The choice: with a budget, the cheapest candidate meeting it; without, the cheapest within
 // kNoBudgetSlackDb of the best PSNR. Cheapest: the lowest predicted cost at the precision
-// printed (0.01 x envmap), then the fewest MiB, then the higher PSNR, then list order. Sets
+// printed (0.01 x envmap), then with a budget the fewest MiB and the higher PSNR, without one
+// the higher PSNR and the fewest MiB, then list order. Sets
 // `meets` on every candidate. No candidate meeting the budget: the best PSNR wins (cost
 // breaks ties) and `warning` says so, naming max_error. Returns the winner's index (-1 when
 // nothing was measured); `reason` says why it won.

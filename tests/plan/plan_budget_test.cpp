@@ -2,13 +2,17 @@
 // plan hands the runtime (the Planned method).
 #include "assetcooker/lib/cli.h"
 #include "assetcooker/lib/plan_budget.h"
+#include "assetcooker/lib/plan_candidates.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "engine/core/error.h"
 #include "plan/code_scene.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 using namespace specula;
 
@@ -128,4 +132,43 @@ TEST(PlannedLookup, TakesTheMeasuredToleranceElseTheUsers) {
     }
     a.effectPlan = "not json";
     EXPECT_EQ(fieldThrown([&] { makeLookupConfig(p, a); }).rfind("effect_plan:", 0), 0u);
+}
+
+// Two candidates of equal predicted time, one with half the faces (less memory, 0.4 dB
+// less): without a budget the better picture is chosen (the 0.5 dB slack trades accuracy
+// for time, not memory), with a budget both meet the smaller one is.
+TEST(PlanChoice, EqualTimeTradesMemoryOnlyUnderABudget) {
+    auto candidate = [](int faceRes, double psnr, double mib) {
+        PlanCandidate c;
+        c.method = "layered";
+        c.tolerance = 0.01f;
+        c.faceRes = faceRes;
+        c.psnr = psnr;
+        c.rmse = std::pow(10.0, -psnr / 20.0);
+        c.mib = mib;
+        c.cost = 9.47;
+        return c;
+    };
+    PlanCandidate slower = candidate(256, 31.35, 98.0);
+    slower.method = "march";
+    slower.cost = 12.0; // best PSNR, but slower: never the choice below
+    const std::vector<PlanCandidate> cs = {candidate(256, 31.3, 98.0), candidate(128, 30.9, 30.5),
+                                           slower};
+    std::string reason, warning;
+
+    std::vector<PlanCandidate> none = cs;
+    EXPECT_EQ(choosePlanCandidate(none, ErrorBudget{}, reason, warning), 0) << reason;
+    EXPECT_TRUE(none[0].meets && none[1].meets && none[2].meets);
+    EXPECT_NE(reason.find("31.30 dB"), std::string::npos) << reason;
+
+    std::vector<PlanCandidate> budgeted = cs;
+    const ErrorBudget b = parseErrorBudget("30dB", "", "--max-error");
+    EXPECT_EQ(choosePlanCandidate(budgeted, b, reason, warning), 1) << reason;
+    EXPECT_NE(reason.find("30.5 MiB"), std::string::npos) << reason;
+    EXPECT_TRUE(warning.empty());
+
+    // The time still comes first: a cheaper candidate within the slack wins either way.
+    std::vector<PlanCandidate> faster = cs;
+    faster[1].cost = 9.0;
+    EXPECT_EQ(choosePlanCandidate(faster, ErrorBudget{}, reason, warning), 1) << reason;
 }
