@@ -317,11 +317,12 @@ def build():
     return gltf, bytes(b.bin)
 
 
-def write_scene(out_dir, stem, gltf, binary):
-    """Writes out_dir/stem.gltf, stem.bin and the room's textures (the glTF's buffer is stem.bin)."""
+def write_scene(out_dir, stem, gltf, binary, textures=None):
+    """Writes out_dir/stem.gltf, stem.bin and the textures (the glTF's buffer is stem.bin):
+    `textures` as (name, pixel function, width, height), else the room's 64 x 64 ones."""
     os.makedirs(out_dir, exist_ok=True)
-    for name, fn in TEXTURES:
-        write_png(os.path.join(out_dir, name), 64, 64, fn)
+    for name, fn, w, h in textures or [(n, f, 64, 64) for n, f in TEXTURES]:
+        write_png(os.path.join(out_dir, name), w, h, fn)
     with open(os.path.join(out_dir, stem + ".bin"), "wb") as f:
         f.write(binary)
     with open(os.path.join(out_dir, stem + ".gltf"), "w") as f:

@@ -34,7 +34,6 @@ nearest column 2.31 m away); everything lies inside the hall. Every object is it
 node.
 """
 import colorsys
-import json
 import math
 import os
 import sys
@@ -42,6 +41,8 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import make_default_scene as room  # noqa: E402  (Builder, geometry, PNG writer)
+from make_bowl_room import check_winding  # noqa: E402
+from make_two_rooms import look_at  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
 OUT_DIR = os.path.join(ROOT, "assets", "gallery")
@@ -194,37 +195,7 @@ def cylinder(radius, height, segments):
     return pos, nrm, uv, idx
 
 
-def check_winding(geom):
-    """Every triangle counter-clockwise seen from where its vertex normals point."""
-    pos, nrm, _, idx = geom
-    for k in range(0, len(idx), 3):
-        a, b, c = (pos[i] for i in idx[k:k + 3])
-        e1 = [b[i] - a[i] for i in range(3)]
-        e2 = [c[i] - a[i] for i in range(3)]
-        g = (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-             e1[0] * e2[1] - e1[1] * e2[0])
-        area = math.sqrt(sum(x * x for x in g))
-        assert area > 1e-9, "degenerate triangle %d" % (k // 3)
-        n = [sum(nrm[i][j] for i in idx[k:k + 3]) for j in range(3)]
-        assert sum(g[j] * n[j] for j in range(3)) > 0, "triangle %d winds backwards" % (k // 3)
-
-
 # ---------------------------------------------------------------- helpers
-def qmul(a, b):
-    ax, ay, az, aw = a
-    bx, by, bz, bw = b
-    return (aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
-            aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz)
-
-
-def look_at(eye, target):
-    """Rotation turning a glTF camera (looking down its -Z, +Y up) at `target`."""
-    d = [target[i] - eye[i] for i in range(3)]
-    heading = math.degrees(math.atan2(-d[0], -d[2]))
-    pitch = math.degrees(math.atan2(d[1], math.hypot(d[0], d[2])))
-    return qmul(yaw(heading), room.quat_axis((1, 0, 0), pitch))
-
-
 def yaw(degrees):
     return room.quat_axis((0, 1, 0), degrees)
 
@@ -314,16 +285,7 @@ def build():
 
 def main():
     gltf, binary = build()
-    os.makedirs(OUT_DIR, exist_ok=True)
-    for name, fn, w, h in TEXTURES:
-        room.write_png(os.path.join(OUT_DIR, name), w, h, fn)
-    with open(os.path.join(OUT_DIR, "gallery.bin"), "wb") as f:
-        f.write(binary)
-    with open(os.path.join(OUT_DIR, "gallery.gltf"), "w") as f:
-        json.dump(gltf, f, indent=1)
-        f.write("\n")
-    total = sum(os.path.getsize(os.path.join(OUT_DIR, n)) for n in os.listdir(OUT_DIR))
-    print("wrote %s (%d bytes in all)" % (OUT_DIR, total), file=sys.stderr)
+    room.write_scene(OUT_DIR, "gallery", gltf, binary, TEXTURES)
 
 
 if __name__ == "__main__":
