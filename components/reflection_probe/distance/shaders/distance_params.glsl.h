@@ -34,7 +34,10 @@ SHARED_CONST int kMarchRefineSteps = 6;
 // 0.01), in 18-21 fetches against its 25-26. Counts of 12-24, a second pass between the
 // points where none crossed, and counts following the texels the ray's projection crosses
 // measured no better at equal fetches (thin objects alias with the step: the error is not
-// monotonic in the count).
+// monotonic in the count). Swept again over 4 scenes (the gallery among them) x 2 sizes x d_e
+// 0.1 / 0.01 with the safeguarded secant: 24 points would raise the median by 0.06 dB for 3
+// more fetches, one scene moving +2.7 dB and another -0.15 (aliasing, not a trend): kept at
+// 20, the count the first two scenes chose, rather than tuned to the bench.
 SHARED_CONST int kBracketSteps = 20;
 
 // What the lookup of every layer reads.
