@@ -127,7 +127,6 @@ FetchImages runFetches(gpu::Program& prog, const gpu::Texture& queries, int w, i
                 prog.setUniform("uTileAtlas", 5);
                 prog.setUniform("uTileTable", 6);
                 prog.setUniform("uTileGrid", glm::ivec2(grid->tileSize, grid->tilesPerFace));
-                prog.setUniform("uTileSlots", glm::ivec2(grid->cols, grid->rows));
             }
             params.bind(glsl::kDistanceParamsBinding);
         });
@@ -223,7 +222,7 @@ std::size_t textureBytes(GLuint id) {
     glGetTextureLevelParameteriv(id, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
     const std::size_t texel = format == GL_RGBA32F   ? 16
                               : format == GL_RGBA16F ? 8
-                              : format == GL_R32I    ? 4
+                              : format == GL_RGBA16I ? 8
                                                      : 0;
     EXPECT_NE(texel, 0u) << "unexpected format " << format;
     return std::size_t(w) * std::size_t(h) * std::size_t(std::max(d, 1)) * texel;

@@ -107,12 +107,26 @@ LayerTiles tileObjectLayers(const DistanceProbeAsset& asset, int tileSize, bool 
     return t;
 }
 
+glm::ivec3 LayerTiles::slotOrigin(int slot) const {
+    const int s = slotSize(), inPage = slot % (cols * rows);
+    return glm::ivec3(inPage % cols * s, inPage / cols * s, slot / (cols * rows));
+}
+
+std::vector<std::int16_t> LayerTiles::tableOrigins() const {
+    std::vector<std::int16_t> texels;
+    texels.reserve(table.size() * 4);
+    for (const std::int32_t slot : table) {
+        const glm::ivec3 o = slotOrigin(slot);
+        for (const int v : {o.x, o.y, o.z, 0})
+            texels.push_back(std::int16_t(v));
+    }
+    return texels;
+}
+
 glm::vec4 LayerTiles::texel(int layer, int face, int x, int y) const {
     const int tx = x / tileSize, ty = y / tileSize;
-    const int slot = table[tableIndex(layer, face, tx, ty)];
-    const int s = slotSize(), page = slot / (cols * rows), inPage = slot % (cols * rows);
-    const int ax = inPage % cols * s + x - tx * tileSize + 1;
-    const int ay = inPage / cols * s + y - ty * tileSize + 1;
+    const glm::ivec3 o = slotOrigin(table[tableIndex(layer, face, tx, ty)]);
+    const int ax = o.x + x - tx * tileSize + 1, ay = o.y + y - ty * tileSize + 1, page = o.z;
     const float* p = &atlas[((std::size_t(page) * std::size_t(height()) + std::size_t(ay)) *
                                  std::size_t(width()) +
                              std::size_t(ax)) *

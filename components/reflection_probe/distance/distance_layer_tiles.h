@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 namespace specula {
@@ -38,6 +39,10 @@ struct LayerTiles {
     std::vector<float> atlas;
 
     int slotSize() const { return tileSize + 2; }
+    // The atlas texel where slot `slot`'s tile starts (gutter included) and its page: what the
+    // GPU table holds per tile, so the shader reads an origin instead of dividing a slot index
+    // (integer division by a uniform is a long sequence on GPUs and in llvmpipe alike).
+    glm::ivec3 slotOrigin(int slot) const;
     int width() const { return cols * slotSize(); }
     int height() const { return rows * slotSize(); }
     std::size_t tableIndex(int layer, int face, int tx, int ty) const {
@@ -55,7 +60,10 @@ struct LayerTiles {
     std::size_t atlasBytes() const {
         return std::size_t(width()) * std::size_t(height()) * std::size_t(pages) * (half ? 8 : 16);
     }
-    std::size_t tableBytes() const { return table.size() * sizeof(std::int32_t); }
+    // The GPU table: an RGBA16I origin (slotOrigin) per tile.
+    std::size_t tableBytes() const { return table.size() * 4 * sizeof(std::int16_t); }
+    // slotOrigin of every table entry, in table order, as the GPU table's RGBA16I texels.
+    std::vector<std::int16_t> tableOrigins() const;
 };
 
 // What an object layer holds where it sees nothing.

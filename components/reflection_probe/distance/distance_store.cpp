@@ -84,7 +84,7 @@ void DistanceStore::applySettings(DistanceProbeGpu& g, const DistanceProbe& sett
         if (needed > 1) {
             const LayerTiles tiles = storedLayerTiles(a);
             g.tiles = uploadLayerTiles(tiles);
-            g.tileGrid = glm::ivec4(tiles.tileSize, tiles.tilesPerFace, tiles.cols, tiles.rows);
+            g.tileGrid = glm::ivec2(tiles.tileSize, tiles.tilesPerFace);
             g.tileBytes = layerTileBytes(tiles);
         }
         g.layersUploaded = needed;
@@ -124,8 +124,7 @@ void DistanceStore::drawReflector(const ProbeDrawContext& ctx, ecs::Entity refle
         glBindTextureUnit(6, p.tiles.table.id());
         prog.setUniform("uTileAtlas", 5);
         prog.setUniform("uTileTable", 6);
-        prog.setUniform("uTileGrid", glm::ivec2(p.tileGrid.x, p.tileGrid.y));
-        prog.setUniform("uTileSlots", glm::ivec2(p.tileGrid.z, p.tileGrid.w));
+        prog.setUniform("uTileGrid", p.tileGrid);
     }
     p.params.bind(glsl::kDistanceParamsBinding);
     prog.setUniform("uF0", r.fresnelF0);

@@ -22,9 +22,9 @@ struct DistanceProbeGpu {
     gpu::Texture layers;                                  // the composite's cube (layer 0)
     int layersUploaded = 0; // layers on the GPU: the composite, or every layer
     // The object layers (1..) as tiles (distance_layer_tiles.h), once layered lookups need
-    // them: tile size, tiles per face side, slot columns and rows per atlas page.
+    // them: tile size and tiles per face side.
     LayerTileTextures tiles;
-    glm::ivec4 tileGrid{0};
+    glm::ivec2 tileGrid{0};
     std::size_t tileBytes = 0;
     gpu::Texture sky;
     // The composite's GGX prefiltered chain (glossyChainOf) and its levels 1.. on the GPU

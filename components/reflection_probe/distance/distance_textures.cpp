@@ -59,9 +59,10 @@ LayerTileTextures uploadLayerTiles(const LayerTiles& t) {
 
     g.table = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
     const GLuint tb = g.table.id();
-    glTextureStorage3D(tb, 1, GL_R32I, t.tilesPerFace, t.tilesPerFace, 6 * t.layers);
+    const std::vector<std::int16_t> origins = t.tableOrigins();
+    glTextureStorage3D(tb, 1, GL_RGBA16I, t.tilesPerFace, t.tilesPerFace, 6 * t.layers);
     glTextureSubImage3D(tb, 0, 0, 0, 0, t.tilesPerFace, t.tilesPerFace, 6 * t.layers,
-                        GL_RED_INTEGER, GL_INT, t.table.data());
+                        GL_RGBA_INTEGER, GL_SHORT, origins.data());
     glTextureParameteri(tb, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(tb, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return g;

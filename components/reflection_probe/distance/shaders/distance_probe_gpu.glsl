@@ -25,13 +25,11 @@ layout(std140, binding = kDistanceParamsBinding) uniform DistanceParamsUniforms 
 uniform sampler2DArray uTileAtlas;
 uniform isampler2DArray uTileTable;
 uniform ivec2 uTileGrid;  // tile side in texels, tiles along a face side
-uniform ivec2 uTileSlots; // slot columns and slot rows per atlas page
 
-// The atlas page and the texel origin (gutter included) of tile `tile` of object layer `layer`.
+// The texel origin (gutter included) and the atlas page of tile `tile` of object layer
+// `layer`, as the table holds them (LayerTiles::slotOrigin).
 ivec3 tileSlot(int layer, int face, ivec2 tile) {
-    int slot = texelFetch(uTileTable, ivec3(tile, (layer - 1) * 6 + face), 0).r;
-    int perPage = uTileSlots.x * uTileSlots.y, inPage = slot % perPage, s = uTileGrid.x + 2;
-    return ivec3(inPage % uTileSlots.x * s, inPage / uTileSlots.x * s, slot / perPage);
+    return texelFetch(uTileTable, ivec3(tile, (layer - 1) * 6 + face), 0).xyz;
 }
 
 // The atlas coordinate of face point f (cubeFaceUv) of object layer `layer`.
