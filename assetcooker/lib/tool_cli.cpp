@@ -1,6 +1,7 @@
 #include "tool_cli.h"
 
 #include "engine/core/error.h"
+#include "specula/version.h"
 
 #include <charconv>
 #include <cmath>
@@ -54,6 +55,8 @@ ToolCli::ToolCli(std::string tool, std::string description)
     app_.get_formatter()->label("Usage", "usage");
     app_.get_formatter()->column_width(26);
     app_.set_help_flag("-h,--help", "show this help");
+    app_.set_version_flag("--version", app_.get_name() + " " + SPECULA_VERSION,
+                          "print the version and exit");
     app_.option_defaults()->always_capture_default();
     app_.set_config("--config", "",
                     "read options from FILE (TOML or INI, one [section] per subcommand, e.g. "
@@ -108,6 +111,9 @@ int ToolCli::run(std::span<const std::string> args, std::ostream& out, std::ostr
     };
     try {
         return dispatch(args, out);
+    } catch (const CLI::CallForVersion& e) {
+        out << e.what() << '\n';
+        return kExitOk;
     } catch (const CLI::CallForHelp&) {
         out << app_.help();
         return kExitOk;

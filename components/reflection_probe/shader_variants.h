@@ -5,15 +5,23 @@
 //   Variant filter() const;                          canonical form
 //   std::string name() const;                        for stats and logs
 //   gpu::Program build() const;                      sources + defines
-// and operator<=>. Built on first use, kept for the system's lifetime.
+// and operator<=>. Built on first use, kept for the system's lifetime. The probe's GLSL is
+// compiled into this library and registered when a store's variants are created.
 #include "engine/gpu/shader.h"
+#include "engine/gpu/shader_files.h"
 
 #include <map>
+
+namespace specula::gpu::embedded {
+std::span<const ShaderFile> probeShaderFiles(); // generated: components/reflection_probe/**
+} // namespace specula::gpu::embedded
 
 namespace specula {
 
 template <typename Variant> class ShaderVariants {
 public:
+    ShaderVariants() { gpu::addShaderFiles(gpu::embedded::probeShaderFiles()); }
+
     gpu::Program& get(const Variant& requested) {
         const Variant v = requested.filter();
         auto it = programs_.find(v);

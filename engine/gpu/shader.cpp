@@ -1,6 +1,7 @@
 #include "engine/gpu/shader.h"
 
 #include "engine/core/error.h"
+#include "engine/gpu/shader_files.h"
 
 #include <cstring>
 #include <fstream>
@@ -36,12 +37,25 @@ fs::path resolve(const fs::path& p) {
     return p.is_absolute() ? p : shaderRoot() / p;
 }
 
-bool readFile(const fs::path& p, std::string& out) {
-    std::ifstream in(p, std::ios::binary);
+// A shader file's text: a relative path from the embedded tables first (shader_files.h), then
+// from the disk under shaderRoot(); an absolute path from the disk. `key` identifies the file
+// for the include-once rule, `where` says where it was looked for.
+bool readShaderFile(const fs::path& p, std::string& out, fs::path& key, std::string& where) {
+    if (!p.is_absolute()) {
+        if (const auto text = embeddedShaderFile(p.generic_string())) {
+            out.assign(*text);
+            key = "embedded:" + p.lexically_normal().generic_string();
+            return true;
+        }
+    }
+    const fs::path onDisk = resolve(p);
+    where = "not embedded; looked at " + onDisk.string();
+    std::ifstream in(onDisk, std::ios::binary);
     if (!in) return false;
     std::ostringstream ss;
     ss << in.rdbuf();
     out = ss.str();
+    key = fs::weakly_canonical(onDisk);
     return true;
 }
 
@@ -95,8 +109,11 @@ public:
                 throw Error(name, "line " + std::to_string(lineNo),
                             "expected #include \"path\" (path relative to the repository root)");
             const std::string incName = t.substr(q0 + 1, q1 - q0 - 1);
-            const fs::path incPath = resolve(incName);
-            const fs::path incKey = fs::weakly_canonical(incPath);
+            std::string incText, where;
+            fs::path incKey;
+            if (!readShaderFile(incName, incText, incKey, where))
+                throw Error(name, "line " + std::to_string(lineNo),
+                            "cannot open included file \"" + incName + "\" (" + where + ")");
             if (seen_.count(incKey)) {
                 out.text += "\n";
                 continue;
@@ -104,11 +121,6 @@ public:
             if (depth > 32)
                 throw Error(name, "line " + std::to_string(lineNo),
                             "#include nesting deeper than 32 levels");
-            std::string incText;
-            if (!readFile(incPath, incText))
-                throw Error(name, "line " + std::to_string(lineNo),
-                            "cannot open included file \"" + incName + "\" (looked at " +
-                                incPath.string() + ")");
             file(incName, incText, incKey, depth + 1);
             out.text += lineDirective(index, lineNo + 1);
         }
@@ -191,11 +203,11 @@ ExpandedSource expandShader(const ShaderSource& src, const std::vector<std::stri
     if (src.path.empty()) {
         ex.file(src.name, src.source, {}, 0);
     } else {
-        const fs::path p = resolve(src.path);
-        std::string content;
-        if (!readFile(p, content))
-            throw Error(src.name, "shader file", "cannot open (looked at " + p.string() + ")");
-        ex.file(src.name, content, fs::weakly_canonical(p), 0);
+        std::string content, where;
+        fs::path key;
+        if (!readShaderFile(src.path, content, key, where))
+            throw Error(src.name, "shader file", "cannot open (" + where + ")");
+        ex.file(src.name, content, key, 0);
     }
     return std::move(ex.out);
 }

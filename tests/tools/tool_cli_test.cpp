@@ -4,6 +4,7 @@
 // what the old hand-written parser refused.
 #include "assetcooker/lib/tool_cli.h"
 #include "engine/core/error.h"
+#include "specula/version.h"
 
 #include <gtest/gtest.h>
 
@@ -88,4 +89,18 @@ TEST(ToolCli, FiniteRangeRefusesNanAndTheEnds) {
         EXPECT_FALSE(v(bad).empty()) << bad;
     for (std::string good : {"1", "1.5", "2"})
         EXPECT_TRUE(v(good).empty()) << good;
+}
+
+// Every tool answers --version with its name and the project's version (project() in the top
+// CMakeLists.txt, through specula/version.h), exit 0, nothing run.
+TEST(ToolCli, VersionPrintsTheProjectVersionAndRunsNothing) {
+    bool ran = false;
+    const ToolRun r = runTool({"--version"}, [&] {
+        ran = true;
+        return 0;
+    });
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.out, std::string("tool ") + SPECULA_VERSION + "\n");
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    EXPECT_FALSE(ran);
 }
