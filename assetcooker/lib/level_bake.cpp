@@ -228,6 +228,9 @@ void warnOfDroppedProbes(const LevelPlan& plan, const std::string& dir,
 LevelCookResult cookLevel(ProbeScene& scene, const LevelCookOptions& options, std::ostream* log) {
     const auto start = Clock::now();
     const fs::path dir = options.cook.out;
+    // What killed bakes of this level left (DIR/<probe>.tmp-PID): under the caller's lock.
+    std::ostringstream dropped;
+    removeStaleTemporariesIn(dir.string(), log ? *log : dropped);
     LevelPlan plan = planLevel(scene, options, log);
     LevelCookResult result;
     result.warnings = plan.warnings;

@@ -16,6 +16,7 @@
 #include <exception>
 #include <filesystem>
 #include <optional>
+#include <sstream>
 
 namespace specula {
 
@@ -335,6 +336,11 @@ void installLevel(const std::string& dir, ShardList& list, LevelCookResult& resu
 LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
     const auto start = std::chrono::steady_clock::now();
     ShardList list = readShardList(dir);
+    // What a killed merge or bake-shard left (DIR/<probe>.tmp-PID, DIR/.shards/<hash>.tmp-PID):
+    // under the caller's lock.
+    std::ostringstream dropped;
+    removeStaleTemporariesIn(dir, log ? *log : dropped);
+    removeStaleTemporariesIn(shardStore(dir), log ? *log : dropped);
     const std::vector<int> leaves = leafShardsToBake(dir, list);
     if (!leaves.empty()) {
         std::string missing;
