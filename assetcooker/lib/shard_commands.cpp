@@ -2,6 +2,7 @@
 
 #include "assetcooker/lib/bake_args.h"
 #include "assetcooker/lib/farm_sim.h"
+#include "assetcooker/lib/output_lock.h"
 #include "assetcooker/lib/shard_bake.h"
 #include "assetcooker/lib/signal_guard.h"
 #include "engine/core/error.h"
@@ -78,6 +79,7 @@ constexpr const char* kCancellableFooter =
 
 int runShards(const BakeArgs& a, std::ostream& out) {
     const CookOptions options = checkedCookOptions(a);
+    const OutputLock lock(options.out, "shards", FileLockMode::Exclusive);
     ProbeScene scene(options.scene, options.sky);
     const LevelCookOptions sharded = shardedCookOptions(a, options, scene, "SCENE");
     const int rows = checkedShardRows(a);
@@ -156,6 +158,8 @@ void addShardCommands(cli::ToolCli& tool) {
         tool.addSubcommand("bake-shard", "compute one shard of a level bake into its shard store",
                            kBakeShardDescription, kCancellableFooter, [s](std::ostream& out) {
                                const SignalGuard guard; // scancel: no half-written shard
+                               // Shards of one level may bake at once; a bake or merge not.
+                               const OutputLock lock(s->dir, "bake-shard", FileLockMode::Shared);
                                const ShardOutcome r = bakeShard(s->dir, s->shard, &out);
                                if (r.skipped)
                                    out << "shard " << s->shard
@@ -173,6 +177,7 @@ void addShardCommands(cli::ToolCli& tool) {
         "merge", "assemble a level's cooked probes and index from its shard store",
         kMergeDescription, kCancellableFooter, [dir](std::ostream& out) {
             const SignalGuard guard;
+            const OutputLock lock(*dir, "merge", FileLockMode::Exclusive);
             const LevelCookResult r = mergeShards(*dir, &out);
             out << "merged " << r.probes.size() << (r.probes.size() == 1 ? " probe" : " probes")
                 << " in " << r.seconds << " s -> " << r.index << "\n";
