@@ -309,7 +309,7 @@ TEST_F(OutputSafety, SignalToABakeShardLeavesTheStoreAsItWas) {
     r = specula::test::runChild(kCook, {"bake-shard", level.string(), "--shard", "0"},
                                 root_ / "scratch");
     EXPECT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(storeNames().size(), before.size() + 2) << "the shard and its time";
+    EXPECT_EQ(storeNames().size(), before.size() + 3) << "the shard, its checksums and its time";
 }
 
 TEST_F(OutputSafety, WhatAKilledMergeLeftIsRemovedByTheNextMerge) {
