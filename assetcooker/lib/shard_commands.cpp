@@ -54,8 +54,11 @@ constexpr const char* kMergeDescription =
     "DIR/<probe>/ (each replaced atomically) and the level index DIR/level.json, or a PEM's\n"
     "folder DIR/pem/: the same bytes a plain `specula-cook bake` writes. Refuses, naming them and "
     "writing nothing, when\n"
-    "shards are missing or a part is malformed. The store is kept (a re-run of bake-shard\n"
-    "skips what it holds).\n";
+    "shards are missing or a part is malformed. Every shard it reads is checked against its\n"
+    "checksums (DIR/.shards/<hash>.sum.json, written by bake-shard): one tampered with,\n"
+    "truncated or swapped is refused, naming the shard and the file. The store is kept (a\n"
+    "re-run of bake-shard skips what it holds). One writer at a time: merge holds DIR.lock,\n"
+    "bake-shard holds it shared.\n";
 
 constexpr const char* kFarmDescription =
     "Predicts a sharded bake's wall time on a farm of N identical nodes, from the seconds\n"

@@ -134,6 +134,12 @@ void commit(const fs::path& tmp, const fs::path& target, const std::string& dir,
         return;
     }
     if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) {
+        // The previous probe now sits at the temporary name: owned again before it is removed,
+        // so a kill during the removal leaves a folder the next run may clear.
+        try {
+            writeTemporaryOwner(tmp);
+        } catch (const Error&) {
+        }
         fs::remove_all(tmp, ec);
         return;
     }
