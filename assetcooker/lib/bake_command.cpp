@@ -1,6 +1,7 @@
 #include "bake_command.h"
 
 #include "assetcooker/lib/bake_args.h"
+#include "assetcooker/lib/output_lock.h"
 #include "assetcooker/lib/signal_guard.h"
 #include "assetcooker/lib/slurm_command.h"
 #include "components/reflection_probe/probe_folder.h"
@@ -73,6 +74,10 @@ constexpr const char* kBakeFooter =
     "no temporary folder behind. DIR is replaced only if it is empty or a cooked probe that\n"
     "holds nothing but the files its manifest lists, and never if it holds SCENE. Temporary\n"
     "folders of killed bakes (DIR.tmp-PID of a process that no longer runs) are removed.\n"
+    "\n"
+    "One writer at a time: a bake holds the lock file DIR.lock (beside DIR, naming its host\n"
+    "and process) for its whole run; a second bake, shards, merge or bake-shard of DIR fails\n"
+    "at once, naming the holder.\n"
     "\n"
     "exit status: 0 ok, 1 the scene could not be baked, 2 bad command line, 130 cancelled\n"
     "by SIGINT/SIGTERM (DIR left as it was)\n";
@@ -179,6 +184,7 @@ int runBake(const BakeArgs& a, const SlurmArgs& s, std::ostream& out) {
     const bool lightField = a.flavour == "lightfield";
     const CookOptions options = checkedCookOptions(a);
     const SignalGuard guard; // first: a signal during the load and the plan is honoured too
+    const OutputLock lock(options.out, "bake", FileLockMode::Exclusive); // one writer: fails now
     const auto start = std::chrono::steady_clock::now();
     ProbeScene scene(options.scene, options.sky);
     throwIfCancelled(options.out);

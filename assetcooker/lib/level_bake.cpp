@@ -85,6 +85,51 @@ std::optional<LevelIndex> previousLevel(const std::string& dir, std::vector<std:
     }
 }
 
+// Every {"file", "checksum"} a manifest lists, at any depth (layers, sky, slabs, glossy
+// levels): file -> checksum ("" when it states none). Depth-bounded like the manifest readers.
+void listedFiles(const nlohmann::json& j, std::map<std::string, std::string>& files,
+                 int depth = 0) {
+    if (depth > 16) return;
+    if (j.is_object()) {
+        const auto file = j.find("file");
+        if (file != j.end() && file->is_string()) {
+            const auto sum = j.find("checksum");
+            files[file->get<std::string>()] =
+                sum != j.end() && sum->is_string() ? sum->get<std::string>() : "";
+        }
+        for (const auto& [key, value] : j.items())
+            if (key != "file") listedFiles(value, files, depth + 1);
+    } else if (j.is_array()) {
+        for (const nlohmann::json& v : j)
+            listedFiles(v, files, depth + 1);
+    }
+}
+
+// Why the files a probe folder's manifest lists are not what it says ("" when they are): the
+// first one missing or whose bytes differ from its checksum.
+std::string folderFilesReason(const fs::path& folder) {
+    const std::string manifest = (folder / "manifest.json").string();
+    std::map<std::string, std::string> files;
+    try {
+        listedFiles(parseManifestJson(readManifestText(manifest), manifest), files);
+    } catch (const Error& e) {
+        return std::string("asset unreadable (") + e.what() + ")";
+    }
+    std::error_code ec;
+    for (const auto& [file, sum] : files) {
+        const fs::path path = folder / file;
+        if (file.find("..") != std::string::npos || !fs::is_regular_file(path, ec))
+            return "file " + file + " missing";
+        try {
+            if (!sum.empty() && fileChecksum(path.string()) != sum)
+                return "file " + file + " altered on disk";
+        } catch (const Error& e) {
+            return "file " + file + " unreadable (" + e.what() + ")";
+        }
+    }
+    return "";
+}
+
 std::string staleReason(const std::optional<LevelIndex>& previous, const fs::path& dir,
                         const std::string& folder, const ProbeVolume& v,
                         const LevelProbeInputs& inputs) {
@@ -97,6 +142,8 @@ std::string staleReason(const std::optional<LevelIndex>& previous, const fs::pat
     std::error_code ec;
     if (old->folder != folder || !fs::is_regular_file(manifest, ec)) return "asset missing";
     if (fileChecksum(manifest.string()) != old->manifestChecksum) return "asset altered on disk";
+    // The manifest alone proves nothing of the files it lists: each is checked too.
+    if (std::string why = folderFilesReason(dir / folder); !why.empty()) return why;
     std::vector<std::string> why;
     if (old->inputs.geometry != inputs.geometry) why.push_back("geometry changed");
     if (old->inputs.options != inputs.options) why.push_back("options changed");
@@ -228,6 +275,9 @@ void warnOfDroppedProbes(const LevelPlan& plan, const std::string& dir,
 LevelCookResult cookLevel(ProbeScene& scene, const LevelCookOptions& options, std::ostream* log) {
     const auto start = Clock::now();
     const fs::path dir = options.cook.out;
+    // What killed bakes of this level left (DIR/<probe>.tmp-PID): under the caller's lock.
+    std::ostringstream dropped;
+    removeStaleTemporariesIn(dir.string(), log ? *log : dropped);
     LevelPlan plan = planLevel(scene, options, log);
     LevelCookResult result;
     result.warnings = plan.warnings;

@@ -1,5 +1,7 @@
 #include "process_runner.h"
 
+#include "components/reflection_probe/probe_folder.h"
+
 #include <chrono>
 #include <cstdio>
 #include <sys/wait.h>
@@ -38,7 +40,10 @@ ProcessResult SystemProcessRunner::run(const std::vector<std::string>& argv) {
 }
 
 void SystemProcessRunner::pause(double seconds) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    // In short steps: a cancel request (a signal) ends the wait at once.
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (!cancelRequested() && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
 }
 
 } // namespace specula

@@ -16,7 +16,7 @@ public:
     virtual ~ProcessRunner() = default;
     // Runs argv[0] (looked up in PATH) with the arguments; waits for it.
     virtual ProcessResult run(const std::vector<std::string>& argv) = 0;
-    // Waits between two looks at the scheduler.
+    // Waits between two looks at the scheduler (SystemProcessRunner's ends at a cancel request).
     virtual void pause(double seconds) = 0;
 };
 

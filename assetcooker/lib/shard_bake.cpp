@@ -1,5 +1,6 @@
 #include "shard_bake.h"
 
+#include "assetcooker/lib/shard_checksum.h"
 #include "assetcooker/lib/shard_install.h"
 #include "assetcooker/lib/shard_pem.h"
 
@@ -16,6 +17,8 @@
 #include <exception>
 #include <filesystem>
 #include <optional>
+#include <set>
+#include <sstream>
 
 namespace specula {
 
@@ -289,16 +292,22 @@ ShardOutcome bakeShard(const std::string& dir, int index, std::ostream* log) {
     const Shard& s = list.shards[std::size_t(index)];
     ShardOutcome outcome;
     outcome.folder = shardOutputPath(dir, s);
-    if (shardPresent(dir, s)) {
+    // A shard without its checksums (killed before they were written) is baked again.
+    if (shardPresent(dir, s) && shardSumPresent(dir, s)) {
         outcome.skipped = true;
         return outcome;
     }
     const auto start = std::chrono::steady_clock::now();
     // A shard's dependencies are checked before the scene is loaded: a missing one fails fast.
-    if (!shardDependencies(list, index).empty()) checkPartsPresent(dir, list, index);
+    if (!shardDependencies(list, index).empty()) {
+        checkPartsPresent(dir, list, index);
+        for (const int d : shardDependencies(list, index))
+            verifyShard(dir, list, d); // what it reads is what was baked
+    }
     ProbeScene scene(list.scene, list.sky);
     checkSceneUnchanged(dir, list, index, scene, environmentOf(scene));
     computeShard(dir, list, index, scene, log);
+    writeShardSum(dir, s);
     outcome.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writeTime(shardTimePath(dir, s), timeWhat(list, index), outcome.seconds);
@@ -335,6 +344,11 @@ void installLevel(const std::string& dir, ShardList& list, LevelCookResult& resu
 LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
     const auto start = std::chrono::steady_clock::now();
     ShardList list = readShardList(dir);
+    // What a killed merge or bake-shard left (DIR/<probe>.tmp-PID, DIR/.shards/<hash>.tmp-PID):
+    // under the caller's lock.
+    std::ostringstream dropped;
+    removeStaleTemporariesIn(dir, log ? *log : dropped);
+    removeStaleTemporariesIn(shardStore(dir), log ? *log : dropped);
     const std::vector<int> leaves = leafShardsToBake(dir, list);
     if (!leaves.empty()) {
         std::string missing;
@@ -352,6 +366,16 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
     std::vector<int> assemble;
     for (std::size_t i = 0; i < list.shards.size(); ++i)
         if (!shardPresent(dir, list.shards[i])) assemble.push_back(int(i));
+    // Verify, never trust: every shard the merge reads (the final shards it installs, the
+    // dependencies of those it computes) is what was baked, before anything is written.
+    std::set<int> read;
+    for (std::size_t i = 0; i < list.shards.size(); ++i)
+        if (isFinalShard(list.shards[i]) && shardPresent(dir, list.shards[i])) read.insert(int(i));
+    for (const int i : assemble)
+        for (const int d : shardDependencies(list, i))
+            read.insert(d);
+    for (const int i : read)
+        verifyShard(dir, list, i);
     std::optional<ProbeScene> scene;
     if (!assemble.empty() || isPemList(list)) {
         scene.emplace(list.scene, list.sky);
@@ -368,6 +392,7 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
             const auto probeStart = std::chrono::steady_clock::now();
             try {
                 computeShard(dir, list, assemble[k], *scene, nullptr);
+                writeShardSum(dir, list.shards[std::size_t(assemble[k])]);
                 writeTime(
                     shardTimePath(dir, list.shards[std::size_t(assemble[k])]),
                     timeWhat(list, assemble[k]),

@@ -2,6 +2,7 @@
 
 #include "assetcooker/lib/bake_args.h"
 #include "assetcooker/lib/farm_sim.h"
+#include "assetcooker/lib/output_lock.h"
 #include "assetcooker/lib/shard_bake.h"
 #include "assetcooker/lib/signal_guard.h"
 #include "engine/core/error.h"
@@ -53,8 +54,11 @@ constexpr const char* kMergeDescription =
     "DIR/<probe>/ (each replaced atomically) and the level index DIR/level.json, or a PEM's\n"
     "folder DIR/pem/: the same bytes a plain `specula-cook bake` writes. Refuses, naming them and "
     "writing nothing, when\n"
-    "shards are missing or a part is malformed. The store is kept (a re-run of bake-shard\n"
-    "skips what it holds).\n";
+    "shards are missing or a part is malformed. Every shard it reads is checked against its\n"
+    "checksums (DIR/.shards/<hash>.sum.json, written by bake-shard): one tampered with,\n"
+    "truncated or swapped is refused, naming the shard and the file. The store is kept (a\n"
+    "re-run of bake-shard skips what it holds). One writer at a time: merge holds DIR.lock,\n"
+    "bake-shard holds it shared.\n";
 
 constexpr const char* kFarmDescription =
     "Predicts a sharded bake's wall time on a farm of N identical nodes, from the seconds\n"
@@ -78,6 +82,7 @@ constexpr const char* kCancellableFooter =
 
 int runShards(const BakeArgs& a, std::ostream& out) {
     const CookOptions options = checkedCookOptions(a);
+    const OutputLock lock(options.out, "shards", FileLockMode::Exclusive);
     ProbeScene scene(options.scene, options.sky);
     const LevelCookOptions sharded = shardedCookOptions(a, options, scene, "SCENE");
     const int rows = checkedShardRows(a);
@@ -156,6 +161,8 @@ void addShardCommands(cli::ToolCli& tool) {
         tool.addSubcommand("bake-shard", "compute one shard of a level bake into its shard store",
                            kBakeShardDescription, kCancellableFooter, [s](std::ostream& out) {
                                const SignalGuard guard; // scancel: no half-written shard
+                               // Shards of one level may bake at once; a bake or merge not.
+                               const OutputLock lock(s->dir, "bake-shard", FileLockMode::Shared);
                                const ShardOutcome r = bakeShard(s->dir, s->shard, &out);
                                if (r.skipped)
                                    out << "shard " << s->shard
@@ -173,6 +180,7 @@ void addShardCommands(cli::ToolCli& tool) {
         "merge", "assemble a level's cooked probes and index from its shard store",
         kMergeDescription, kCancellableFooter, [dir](std::ostream& out) {
             const SignalGuard guard;
+            const OutputLock lock(*dir, "merge", FileLockMode::Exclusive);
             const LevelCookResult r = mergeShards(*dir, &out);
             out << "merged " << r.probes.size() << (r.probes.size() == 1 ? " probe" : " probes")
                 << " in " << r.seconds << " s -> " << r.index << "\n";

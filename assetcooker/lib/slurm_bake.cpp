@@ -1,6 +1,8 @@
 #include "slurm_bake.h"
 
+#include "assetcooker/lib/output_lock.h"
 #include "assetcooker/lib/shard_bake.h"
+#include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/progress.h"
@@ -26,6 +28,7 @@ const std::set<std::string> kEndStates = {"COMPLETED", "FAILED",      "CANCELLED
                                           "NODE_FAIL", "PREEMPTED",   "OUT_OF_MEMORY", "BOOT_FAIL",
                                           "DEADLINE",  "SPECIAL_EXIT"};
 constexpr const char* kGone = "GONE"; // no longer listed by squeue (past MinJobAge)
+constexpr int kCancelLooks = 120;     // how many polls a cancel waits for its jobs to end
 
 double since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
@@ -69,7 +72,12 @@ public:
         if (o_.cook.empty()) o_.cook = fs::read_symlink("/proc/self/exe").string();
         fs::create_directories(slurmDir_ / "logs");
         const std::string d = shellQuote(dir_.string()), cook = shellQuote(o_.cook);
-        const std::string head = "#!/bin/bash\n# Written by specula-cook bake --slurm.\n";
+        // The jobs run under this bake's output lock (output_lock.h).
+        const std::string head =
+            "#!/bin/bash\n# Written by specula-cook bake --slurm.\n" +
+            (o_.lockHolder.empty() ? std::string()
+                                   : "export " + std::string(kLockHolderVariable) + "=" +
+                                         shellQuote(o_.lockHolder) + "\n");
         writeFileAtomically((slurmDir_ / "shard.sh").string(),
                             head + "exec " + cook + " bake-shard " + d +
                                 " --shard \"$SLURM_ARRAY_TASK_ID\"\n");
@@ -101,8 +109,11 @@ public:
         for (int attempt = 0;; ++attempt) {
             const std::vector<int> dependents = dependentShardsToBake(dir_.string(), list_);
             std::string array, second;
+            stopIfCancelled();
             if (!pending.empty()) array = submitArray(pending, "shard.sh", "");
+            stopIfCancelled();
             if (!dependents.empty()) second = submitArray(dependents, "dependent.sh", array);
+            stopIfCancelled();
             const std::string merge = submitMerge(second.empty() ? array : second);
             if (!pending.empty()) {
                 const std::map<int, std::string> states = follow(array, pending, bar.get());
@@ -129,6 +140,7 @@ public:
                       << o_.retries << ")\n";
         }
         bar.reset();
+        if (!result_.merged) stopIfCancelled(); // a merge that completed stands
         if (!result_.failures.empty()) result_.merged = false;
         result_.seconds = since(start);
         return result_;
@@ -219,6 +231,7 @@ private:
                                       ProgressBar* bar) {
         std::map<int, std::string> last;
         for (;;) {
+            stopIfCancelled();   // first: a signal also ends the squeue it interrupts
             bool listed = false; // unused: a task not listed has ended, whatever the array
             const std::map<int, std::string> now = states(array, listed);
             bool running = false;
@@ -243,7 +256,9 @@ private:
                 bar->update(double(done) / double(tracked_.size()));
             }
             if (!running) return last;
+            stopIfCancelled();
             runner_.pause(o_.pollSeconds);
+            stopIfCancelled();
         }
     }
 
@@ -284,11 +299,14 @@ private:
     void finishMerge(const std::string& merge) {
         std::string state;
         for (;;) {
+            stopIfCancelled();
             bool listed = false;
             const std::map<int, std::string> s = states(merge, listed);
             state = listed ? s.at(-1) : kGone;
             if (state == kGone || kEndStates.count(state)) break;
+            stopIfCancelled();
             runner_.pause(o_.pollSeconds);
+            stopIfCancelled();
         }
         result_.mergeLog = (slurmDir_ / "logs" / ("merge-job" + merge + ".log")).string();
         const std::string text = readText(result_.mergeLog);
@@ -297,6 +315,47 @@ private:
         result_.mergeState = state;
         result_.merged = state == "COMPLETED";
         if (log_) *log_ << "merge job " << merge << ": " << state << "\n";
+    }
+
+    // On a cancel request (SIGINT/SIGTERM): every job this bake submitted is cancelled
+    // (scancel, the merge with them: it never runs), waited for until none runs, and Cancelled
+    // is thrown naming them. A second request while waiting stops the wait.
+    void stopIfCancelled() {
+        if (!cancelRequested()) return;
+        std::string ids;
+        for (const std::string& job : result_.jobs)
+            ids += (ids.empty() ? "" : ", ") + job;
+        if (result_.jobs.empty())
+            throw Cancelled(dir_.string(), "",
+                            "interrupted by a signal before any job was submitted; nothing was "
+                            "merged");
+        std::vector<std::string> argv = {"scancel"};
+        argv.insert(argv.end(), result_.jobs.begin(), result_.jobs.end());
+        const ProcessResult r = runner_.run(argv);
+        if (log_)
+            *log_ << "cancelling jobs " << ids << " (interrupted)"
+                  << (r.status == 0 ? "" : ": scancel said " + lastLines(r.output, 2)) << "\n";
+        clearCancelRequest();
+        std::vector<std::string> running = result_.jobs;
+        for (int look = 0; !running.empty() && !cancelRequested(); ++look) {
+            std::erase_if(running, [&](const std::string& job) {
+                bool listed = false;
+                for (const auto& [task, state] : states(job, listed))
+                    if (!kEndStates.count(state)) return false;
+                return true;
+            });
+            if (running.empty() || look >= kCancelLooks) break;
+            runner_.pause(o_.pollSeconds);
+        }
+        requestCancel();
+        std::string still;
+        for (const std::string& job : running)
+            still += (still.empty() ? "" : ", ") + job;
+        throw Cancelled(
+            dir_.string(), "",
+            "interrupted by a signal: cancelled jobs " + ids + " (scancel)" +
+                (still.empty() ? " and waited for them to end" : "; still ending: " + still) +
+                "; nothing was merged (a re-run resumes from the shards in the store)");
     }
 
     void cancel(const std::string& job, const char* why) {

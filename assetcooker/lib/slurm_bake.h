@@ -32,6 +32,10 @@ struct SlurmOptions {
     int retries = 2;       // a failed shard is resubmitted this many times
     double pollSeconds = 1;
     bool progress = true; // a progress bar on the terminal
+    // The submitter's output lock holder (OutputLock::holder): the batch scripts export it as
+    // SPECULA_COOK_LOCK_HOLDER, so the jobs run under its lock. Empty: the jobs lock for
+    // themselves.
+    std::string lockHolder;
 };
 
 struct SlurmShardFailure {
@@ -64,7 +68,9 @@ struct SlurmBakeResult {
 // failed leaf cancels that submission's second array and merge; a failed dependent is
 // resubmitted in a second array of its own). Never throws for a failed job: failures and the
 // merge's state are in the result. Throws Error naming the command when the scheduler refuses a
-// submission.
+// submission. A cancel request (cancelRequested: SIGINT/SIGTERM under a SignalGuard) cancels
+// every job submitted (scancel, the merge job with them), waits for them to end and throws
+// Cancelled naming them: nothing is merged.
 SlurmBakeResult bakeOnSlurm(const std::string& dir, const SlurmOptions& options,
                             ProcessRunner& runner, std::ostream* log);
 

@@ -1,8 +1,11 @@
 #include "slurm_command.h"
 
+#include "assetcooker/lib/output_lock.h"
 #include "assetcooker/lib/shard_bake.h"
 #include "assetcooker/lib/shard_pem.h"
+#include "assetcooker/lib/signal_guard.h"
 #include "assetcooker/lib/slurm_bake.h"
+#include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
 
 #include <filesystem>
@@ -48,7 +51,11 @@ int runSlurmBake(const BakeArgs& args, const SlurmArgs& s, std::ostream& out) {
     a.shardRows = s.shardRows;
     const int rows = checkedShardRows(a);
     const CookOptions options = checkedCookOptions(a);
+    // A signal cancels the jobs submitted so far (bakeOnSlurm), never leaving them to merge.
+    const SignalGuard guard;
+    const OutputLock lock(options.out, "bake --slurm", FileLockMode::Exclusive);
     ProbeScene scene(options.scene, options.sky);
+    throwIfCancelled(options.out);
     const ShardList list =
         writeShardList(scene, shardedCookOptions(a, options, scene, "--slurm"), &out, rows);
     out << describeShards(list) << " -> " << shardListPath(a.out) << "\n";
@@ -57,6 +64,7 @@ int runSlurmBake(const BakeArgs& args, const SlurmArgs& s, std::ostream& out) {
     o.time = s.time;
     o.maxParallel = s.maxParallel;
     o.retries = s.retries;
+    o.lockHolder = lock.holder();
     SystemProcessRunner runner;
     const SlurmBakeResult r = bakeOnSlurm(a.out, o, runner, &out);
     if (!r.merged) {

@@ -1,5 +1,7 @@
 #include "probe_folder.h"
 
+#include "components/reflection_probe/temporary_owner.h"
+
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/regular_file.h"
@@ -13,7 +15,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <set>
-#include <signal.h>
 #include <thread>
 #include <unistd.h>
 #include <vector>
@@ -133,6 +134,12 @@ void commit(const fs::path& tmp, const fs::path& target, const std::string& dir,
         return;
     }
     if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) {
+        // The previous probe now sits at the temporary name: owned again before it is removed,
+        // so a kill during the removal leaves a folder the next run may clear.
+        try {
+            writeTemporaryOwner(tmp);
+        } catch (const Error&) {
+        }
         fs::remove_all(tmp, ec);
         return;
     }
@@ -141,6 +148,12 @@ void commit(const fs::path& tmp, const fs::path& target, const std::string& dir,
     // them (a crash there is repaired by removeStaleProbeTemporaries).
     const fs::path old = siblingName(target, ".old-", ::getpid());
     if (std::rename(target.c_str(), old.c_str()) != 0) throwMoveFailed(dir, errno);
+    try {
+        writeTemporaryOwner(old); // removed with it, or before it is restored
+    } catch (const Error&) {
+        std::rename(old.c_str(), target.c_str());
+        throw;
+    }
     if (std::rename(tmp.c_str(), target.c_str()) != 0) {
         const int error = errno;
         std::rename(old.c_str(), target.c_str());
@@ -205,7 +218,10 @@ void removeStaleProbeTemporaries(const std::string& dir, std::ostream& log) {
         bool old;
     };
     std::vector<Stale> stale;
-    for (const auto& e : fs::directory_iterator(target.parent_path(), ec)) {
+    std::vector<fs::directory_entry> entries(fs::directory_iterator(target.parent_path(), ec),
+                                             fs::directory_iterator{});
+    std::sort(entries.begin(), entries.end());
+    for (const auto& e : entries) {
         const std::string name = e.path().filename().string();
         for (const char* kind : {".tmp-", ".old-"}) {
             const std::string prefix = base + kind;
@@ -216,15 +232,19 @@ void removeStaleProbeTemporaries(const std::string& dir, std::ostream& log) {
             const auto [end, err] = std::from_chars(first, last, pid);
             if (err != std::errc() || end != last || first == last || pid <= 0) continue;
             if (!e.is_directory(ec) || e.is_symlink(ec)) continue; // only what a bake makes
-            // ESRCH: no such process. EPERM means it runs under another user: leave it.
-            if (pid == ::getpid() || ::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
+            if (pid == ::getpid()) continue;                       // this run's own
+            if (const std::string why = whyTemporaryIsNotStale(e.path(), pid); !why.empty()) {
+                log << "left " << e.path().string() << " as it is: " << why << "\n";
+                continue;
+            }
             stale.push_back({e.path(), pid, kind[1] == 'o'});
         }
     }
     for (const Stale& s : stale) {
         const std::string why =
-            " (left by process " + std::to_string(s.pid) + ", which no longer runs)";
+            " (left by process " + std::to_string(s.pid) + " on this host, which no longer runs)";
         if (s.old && !fs::exists(fs::symlink_status(target, ec))) {
+            fs::remove(s.path / kTemporaryOwnerFile, ec);
             fs::rename(s.path, target, ec);
             if (ec) throw Error(s.path.string(), "", "cannot restore it: " + ec.message());
             log << "restored " << target.string() << " from " << s.path.string() << why << "\n";
@@ -234,6 +254,29 @@ void removeStaleProbeTemporaries(const std::string& dir, std::ostream& log) {
             log << "removed stale " << s.path.string() << why << "\n";
         }
     }
+}
+
+void removeStaleTemporariesIn(const std::string& folder, std::ostream& log) {
+    std::error_code ec;
+    std::set<std::string> outputs; // X of every X.tmp-PID and X.old-PID folder
+    for (const auto& e : fs::directory_iterator(folder, ec)) {
+        const std::string name = e.path().filename().string();
+        for (const char* kind : {".tmp-", ".old-"}) {
+            const std::size_t at = name.rfind(kind);
+            if (at == std::string::npos || at == 0) continue;
+            if (e.is_directory(ec) && !e.is_symlink(ec))
+                outputs.insert(name.substr(0, at));
+            else if (kind[1] == 't' && e.is_regular_file(ec) && !e.is_symlink(ec))
+                // A file written beside and renamed (file_write.h) has no owner file: which
+                // host made it is unknown, so it is never removed.
+                log << "left " << e.path().string()
+                    << " as it is: a temporary file, which names no host (delete it by hand "
+                       "once no specula-cook writes "
+                    << folder << ")\n";
+        }
+    }
+    for (const std::string& x : outputs)
+        removeStaleProbeTemporaries((fs::path(folder) / x).string(), log);
 }
 
 void writeProbeFolder(const std::string& dir, const std::string& sourceScene,
@@ -247,10 +290,12 @@ void writeProbeFolder(const std::string& dir, const std::string& sourceScene,
     fs::remove_all(tmp, ec);
     fs::create_directories(tmp);
     try {
+        writeTemporaryOwner(tmp); // first: whoever finds it left knows whose it was
         const json manifest = fill(tmp);
         throwIfCancelled(dir);
         writeFileAtomically((tmp / "manifest.json").string(), manifest.dump(2) + "\n");
         pauseBeforeCommitForTests();
+        fs::remove(tmp / kTemporaryOwnerFile); // the probe folder holds only what it lists
         commit(tmp, target, dir, sourceScene);
     } catch (...) {
         fs::remove_all(tmp, ec);

@@ -1,7 +1,8 @@
 #pragma once
 // Writing a cooked probe folder so that nothing is ever half-written and nothing a user owns
-// is ever deleted. `fill` writes every file into a sibling temporary folder DIR.tmp-PID and
-// returns the manifest; the manifest goes last and the finished folder takes DIR's place in
+// is ever deleted. `fill` writes every file into a sibling temporary folder DIR.tmp-PID (its
+// owner file, temporary_owner.h, written first and removed before the commit) and returns the
+// manifest; the manifest goes last and the finished folder takes DIR's place in
 // one rename, the only commit point. On any failure, or a cancel requested before that
 // rename, DIR is left as it was and the temporary folder is removed.
 //
@@ -31,8 +32,13 @@ void checkProbeFolderReplaceable(const std::string& dir, const std::string& sour
 
 // Repairs what a killed bake (SIGKILL, power loss) left beside DIR: DIR.tmp-PID folders are
 // removed, a DIR.old-PID folder is moved back when DIR is missing (the previous probe, caught
-// mid-swap) and removed otherwise. Only PIDs that no longer run; one line on `log` each.
+// mid-swap) and removed otherwise. Only those whose owner file (temporary_owner.h) names this
+// host and a process that no longer runs; any other is left, saying why. One line on `log`
+// each. The caller holds DIR's output lock (no other writer of DIR runs).
 void removeStaleProbeTemporaries(const std::string& dir, std::ostream& log);
+// The same for every X.tmp-PID and X.old-PID folder in `folder` (what a killed merge or level
+// bake left beside the probe folders it was replacing).
+void removeStaleTemporariesIn(const std::string& folder, std::ostream& log);
 
 // sourceScene: the scene the probe was baked from (a path; need not exist, e.g. "analytic").
 void writeProbeFolder(const std::string& dir, const std::string& sourceScene,

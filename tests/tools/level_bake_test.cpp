@@ -279,6 +279,34 @@ TEST_F(LevelBake, BakesEveryProbeThenOnlyWhatChangedAndSaysWhy) {
     }
 }
 
+// Verify, never trust (issue 34): the manifest's checksum alone says nothing of the layer
+// files it lists. An edited layer and a deleted one re-bake their probes, saying which file.
+TEST_F(LevelBake, AnEditedOrDeletedLayerFileReBakesItsProbeSayingWhy) {
+    ProbeScene scene(kTwoRooms, "");
+    cookLevel(scene, options(), nullptr);
+    const fs::path edited = root_ / "level/room_a_probe/layer_00.exr";
+    const fs::path deleted = root_ / "level/room_b_probe/layer_00.exr";
+    ASSERT_TRUE(fs::exists(edited) && fs::exists(deleted));
+    {
+        std::fstream f(edited, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(std::streamoff(fs::file_size(edited) / 2));
+        f.put('X');
+    }
+    fs::remove(deleted);
+    std::ostringstream log;
+    const LevelCookResult again = cookLevel(scene, options(), &log);
+    ASSERT_EQ(again.probes.size(), 2u);
+    EXPECT_TRUE(again.probes[0].baked);
+    EXPECT_EQ(again.probes[0].reason, "file layer_00.exr altered on disk");
+    EXPECT_TRUE(again.probes[1].baked);
+    EXPECT_EQ(again.probes[1].reason, "file layer_00.exr missing");
+    EXPECT_NE(log.str().find("probe room_b_probe: baked in"), std::string::npos) << log.str();
+    EXPECT_TRUE(fs::exists(deleted));
+    // Re-baked, the level is whole again: a further run finds everything up to date.
+    for (const LevelProbeOutcome& p : cookLevel(scene, options(), nullptr).probes)
+        EXPECT_EQ(p.reason, "up to date") << p.name;
+}
+
 TEST_F(LevelBake, AFailureHalfWayLeavesTheProbesBakedBeforeItIndexed) {
     ProbeScene scene(kTwoRooms, "");
     // Room B's folder is taken by a file of the user's: its bake must refuse it, after room

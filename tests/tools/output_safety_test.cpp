@@ -4,7 +4,10 @@
 // before the final rename leave the previous probe, exit 130 and no temporary folder; what a
 // killed bake left beside DIR is cleaned by the next bake with a line; a write past a
 // file-size limit (a full disk) fails the bake and leaves DIR as it was; a signal to
-// bake-shard (scancel) leaves its shard store as it was.
+// bake-shard (scancel) leaves its shard store as it was. A temporary folder is removed only
+// when its owner file names this host and a process that no longer runs (issue 34); what a
+// SIGKILLed merge left is removed by the next merge.
+#include "engine/core/host_name.h"
 #include "tests/support/child_process.h"
 #include "tests/support/scratch_dir_test.h"
 
@@ -189,16 +192,29 @@ TEST_F(OutputSafety, SignalWhileLayersAreWrittenLeavesThePreviousProbe) {
     EXPECT_TRUE(temporariesBeside(probe).empty());
 }
 
+// The owner file a writer puts in its temporary folder first (temporary_owner.h).
+static void writeOwner(const fs::path& folder, const std::string& host, long long pid) {
+    std::ofstream(folder / ".specula-owner") << "host " << host << "\npid " << pid << "\n";
+}
+
 TEST_F(OutputSafety, TemporariesOfDeadProcessesAreCleanedWithALine) {
     const fs::path probe = bakedProbe("probe");
-    const pid_t dead = specula::test::deadPid();
+    const pid_t dead = specula::test::deadPid(), dead2 = specula::test::deadPid(),
+                dead3 = specula::test::deadPid();
     const fs::path staleTmp = probe.string() + ".tmp-" + std::to_string(dead);
     const fs::path staleOld = probe.string() + ".old-" + std::to_string(dead);
     const fs::path live = probe.string() + ".tmp-" + std::to_string(::getpid());
-    for (const fs::path& p : {staleTmp, staleOld, live}) {
+    // A dead pid here, but another machine's folder (a shared disk), and one with no owner.
+    const fs::path foreign = probe.string() + ".tmp-" + std::to_string(dead2);
+    const fs::path unowned = probe.string() + ".tmp-" + std::to_string(dead3);
+    for (const fs::path& p : {staleTmp, staleOld, live, foreign, unowned}) {
         fs::create_directories(p);
         std::ofstream(p / "layer_00.exr") << std::string(4096, 'x');
     }
+    writeOwner(staleTmp, specula::hostName(), dead);
+    writeOwner(staleOld, specula::hostName(), dead);
+    writeOwner(live, specula::hostName(), ::getpid());
+    writeOwner(foreign, "other-node-7", dead2);
     std::ofstream(probe.string() + ".tmp-" + std::to_string(dead) + "x") << "not ours";
     const ChildResult r = bake(kRoom, probe);
     EXPECT_EQ(r.status, 0) << r.err;
@@ -208,11 +224,22 @@ TEST_F(OutputSafety, TemporariesOfDeadProcessesAreCleanedWithALine) {
     EXPECT_NE(r.out.find("removed stale " + staleOld.string()), std::string::npos) << r.out;
     EXPECT_TRUE(fs::exists(live / "layer_00.exr")) << "a live process's folder is never touched";
     EXPECT_TRUE(fs::exists(probe.string() + ".tmp-" + std::to_string(dead) + "x"));
-    fs::remove_all(live);
+    EXPECT_TRUE(fs::exists(foreign / "layer_00.exr")) << "another host's folder is never touched";
+    EXPECT_NE(r.out.find("left " + foreign.string() + " as it is: it belongs to process " +
+                         std::to_string(dead2) + " on host other-node-7"),
+              std::string::npos)
+        << r.out;
+    EXPECT_TRUE(fs::exists(unowned / "layer_00.exr")) << "a folder of unknown owner is left";
+    EXPECT_NE(r.out.find("left " + unowned.string() + " as it is: it has no owner file"),
+              std::string::npos)
+        << r.out;
+    for (const fs::path& p : {live, foreign, unowned})
+        fs::remove_all(p);
 
     // Killed between the two renames of the fallback swap: DIR is missing and DIR.old-PID
     // holds the previous probe; the next bake puts it back before it starts.
     fs::rename(probe, staleOld);
+    writeOwner(staleOld, specula::hostName(), dead);
     const ChildResult again = bake(kRoom, probe);
     EXPECT_EQ(again.status, 0) << again.err;
     EXPECT_NE(again.out.find("restored " + probe.string()), std::string::npos) << again.out;
@@ -282,5 +309,39 @@ TEST_F(OutputSafety, SignalToABakeShardLeavesTheStoreAsItWas) {
     r = specula::test::runChild(kCook, {"bake-shard", level.string(), "--shard", "0"},
                                 root_ / "scratch");
     EXPECT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(storeNames().size(), before.size() + 2) << "the shard and its time";
+    EXPECT_EQ(storeNames().size(), before.size() + 3) << "the shard, its checksums and its time";
+}
+
+TEST_F(OutputSafety, WhatAKilledMergeLeftIsRemovedByTheNextMerge) {
+    // SIGKILL (no handler runs) while the merge holds a staged probe folder: its temporary
+    // stays beside the probe's place, owned by a process that no longer runs.
+    const fs::path twoRooms =
+        fs::path(SPECULA_SOURCE_DIR) / "assets" / "two_rooms" / "two_rooms.gltf";
+    const fs::path level = root_ / "level";
+    ASSERT_EQ(specula::test::runChild(
+                  kCook, {"shards", twoRooms.string(), "--out", level.string(), "--face-res", "8"},
+                  root_ / "scratch")
+                  .status,
+              0);
+    for (const char* shard : {"0", "1"})
+        ASSERT_EQ(specula::test::runChild(kCook, {"bake-shard", level.string(), "--shard", shard},
+                                          root_ / "scratch")
+                      .status,
+                  0);
+    Child merge(kCook, {"merge", level.string()}, root_ / "scratch",
+                {{"SPECULA_TEST_PAUSE_BEFORE_COMMIT=60"}});
+    const fs::path staged = level / ("room_a_probe.tmp-" + std::to_string(merge.pid()));
+    ASSERT_TRUE(merge.waitFor([&] { return fs::exists(staged / "manifest.json"); }, 120))
+        << "the merge never staged room_a_probe";
+    merge.signal(SIGKILL);
+    EXPECT_EQ(merge.wait().status, 128 + SIGKILL);
+    ASSERT_TRUE(fs::exists(staged)) << "SIGKILL left the staged folder";
+    EXPECT_FALSE(fs::exists(level / "level.json"));
+    const ChildResult r =
+        specula::test::runChild(kCook, {"merge", level.string()}, root_ / "scratch");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("removed stale " + staged.string()), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(staged));
+    EXPECT_TRUE(fs::exists(level / "level.json"));
+    EXPECT_TRUE(temporariesBeside(level / "level.json").empty());
 }

@@ -7,6 +7,7 @@
 // of range is refused naming it. Also prints the shards' overhead (not asserted).
 #include "assetcooker/lib/cli.h"
 #include "assetcooker/lib/shard_bake.h"
+#include "assetcooker/lib/shard_checksum.h"
 #include "engine/core/error.h"
 #include "support/scratch_dir_test.h"
 #include "tools/level_files.h"
@@ -205,6 +206,66 @@ TEST_F(ShardBake, ATruncatedOrMislabelledPartIsRefusedNamingItsFileAndNothingIsM
     }
 }
 
+// Verify, never trust (issue 34): a probe shard edited, truncated, swapped with another's or
+// without its checksums is refused by the merge naming the shard and the file, and nothing is
+// written; bake-shard bakes a shard without checksums again.
+TEST_F(ShardBake, ATamperedTruncatedOrSwappedShardIsRefusedNamingTheShardAndFile) {
+    ProbeScene scene(kTwoRooms, "");
+    const ShardList list = writeShardList(scene, options("level", distance()), nullptr);
+    const std::string dir = (root_ / "level").string();
+    const auto bakeBoth = [&] {
+        for (int i = 0; i < 2; ++i) {
+            fs::remove_all(shardOutputPath(dir, list.shards[std::size_t(i)]));
+            bakeShard(dir, i, nullptr);
+        }
+    };
+    const fs::path layer = fs::path(shardOutputPath(dir, list.shards[0])) / "layer_00.exr";
+    const auto expectRefused = [&](const fs::path& file, const std::string& why) {
+        try {
+            mergeShards(dir, nullptr);
+            ADD_FAILURE() << "merged a broken store (" << why << ")";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.file(), file.string()) << e.what();
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("shard 0 (probe room_a_probe, " +
+                                                 list.shards[0].hash + ")"),
+                      std::string::npos)
+                << e.what();
+        }
+        for (const auto& e : fs::directory_iterator(dir))
+            EXPECT_EQ(e.path().filename(), ".shards") << e.path() << " written by a failed merge";
+    };
+    bakeBoth();
+    {
+        std::fstream f(layer, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(std::streamoff(fs::file_size(layer) / 2));
+        f.put('X');
+    }
+    expectRefused(layer, "altered or truncated");
+    bakeBoth();
+    fs::resize_file(layer, fs::file_size(layer) / 2);
+    expectRefused(layer, "altered or truncated");
+    bakeBoth();
+    // Shard 0's folder and checksums under shard 1's name and back: each is whole, but not
+    // the shard its name says.
+    const fs::path a = shardOutputPath(dir, list.shards[0]),
+                   b = shardOutputPath(dir, list.shards[1]);
+    const fs::path sa = shardSumPath(dir, list.shards[0]), sb = shardSumPath(dir, list.shards[1]);
+    for (const auto& [from, to] : {std::pair{a, root_ / "x"},
+                                   {b, a},
+                                   {root_ / "x", b},
+                                   {sa, root_ / "y"},
+                                   {sb, sa},
+                                   {root_ / "y", sb}})
+        fs::rename(from, to);
+    expectRefused(sa, "swapped with another shard's");
+    bakeBoth();
+    fs::remove(sa);
+    expectRefused(sa, "missing");
+    EXPECT_FALSE(bakeShard(dir, 0, nullptr).skipped) << "a shard without checksums is re-baked";
+    EXPECT_EQ(mergeShards(dir, nullptr).probes.size(), 2u);
+}
+
 TEST_F(ShardBake, ABakedShardIsSkippedTheSecondTime) {
     ProbeScene scene(kTwoRooms, "");
     writeShardList(scene, options("level", distance()), nullptr);
@@ -218,12 +279,13 @@ TEST_F(ShardBake, ABakedShardIsSkippedTheSecondTime) {
     EXPECT_TRUE(again.skipped);
     EXPECT_EQ(again.folder, first.folder);
     EXPECT_EQ(fs::last_write_time(manifest), stamp);
-    // Nothing but the list, the one shard and its recorded time in the store: no temporaries
-    // left beside it.
+    // Nothing but the list, the one shard, its checksums and its recorded time in the store:
+    // no temporaries left beside it.
     std::size_t entries = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(shardStore(dir)))
         ++entries;
-    EXPECT_EQ(entries, 3u);
+    EXPECT_EQ(entries, 4u);
+    EXPECT_TRUE(fs::is_regular_file(shardSumPath(dir, readShardList(dir).shards[1])));
     EXPECT_TRUE(fs::is_regular_file(shardTimePath(dir, readShardList(dir).shards[1])));
 }
 

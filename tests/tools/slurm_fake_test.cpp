@@ -7,14 +7,23 @@
 // the merge's; a failing part is reported by index, probe and part. The dependent shards
 // (light-field probes, PEM samples) go in a second array after the first succeeded
 // (--dependency=afterok), the merge after that; a job whose dependency failed never runs.
+// A signal to the submitter (issue 34) cancels every job it submitted, the merge with them,
+// waits for them and writes nothing: in-process, and `bake --slurm` against fake sbatch,
+// squeue and scancel scripts in PATH (exit 130, scancel given the job ids).
 #include "assetcooker/lib/shard_bake.h"
 #include "assetcooker/lib/slurm_bake.h"
+#include "components/reflection_probe/probe_folder.h"
+#include "engine/core/error.h"
+#include "support/child_process.h"
 #include "support/scratch_dir_test.h"
 #include "tools/level_files.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <set>
@@ -33,13 +42,23 @@ public:
 
     std::map<int, int> failuresLeft; // shard -> how many more times it fails
     std::vector<std::string> cancelled;
+    std::vector<std::vector<std::string>> scancels; // each scancel's job ids
     int pauses = 0;
+    bool hold = false;      // tasks run until cancelled
+    int cancelAtPause = -1; // a signal (requestCancel) arrives during this pause
 
     ProcessResult run(const std::vector<std::string>& argv) override {
         if (argv[0] == "sbatch") return sbatch(argv);
         if (argv[0] == "scancel") {
-            cancelled.push_back(argv[1]);
-            jobs_[argv[1]] = "CANCELLED";
+            scancels.emplace_back(argv.begin() + 1, argv.end());
+            for (std::size_t k = 1; k < argv.size(); ++k) {
+                cancelled.push_back(argv[k]);
+                for (auto& [id, state] : jobs_)
+                    if (id.rfind(argv[k] + "_", 0) == 0 &&
+                        (state == "PENDING" || state == "RUNNING"))
+                        state = "CANCELLED";
+                jobs_[argv[k]] = "CANCELLED";
+            }
             return {};
         }
         EXPECT_EQ(argv[0], "squeue");
@@ -47,12 +66,16 @@ public:
         for (const auto& [id, state] : jobs_)
             out += id + "|" + state + "\n";
         // Each look moves every pending job whose dependency succeeded to its end (a job's
-        // dependency has a smaller id: it moved first).
+        // dependency has a smaller id: it moved first), or a task to RUNNING when held.
         for (auto& [id, state] : jobs_)
-            if (state == "PENDING" && dependencyMet(id)) state = finish(id);
+            if (state == "PENDING" && dependencyMet(id))
+                state = hold && id.find('_') != std::string::npos ? "RUNNING" : finish(id);
         return {0, out};
     }
-    void pause(double) override { ++pauses; }
+    void pause(double) override {
+        if (++pauses == cancelAtPause) requestCancel();
+        if (pauses > 1000) throw std::runtime_error("the bake never stopped polling");
+    }
 
     std::map<std::string, std::vector<std::string>> submitted; // job id -> its argv
 
@@ -294,6 +317,85 @@ TEST_F(SlurmFake, AFailingPemSampleIsReportedAndOnlyItIsResubmitted) {
     const std::string report = slurmFailureReport(r);
     EXPECT_NE(report.find("shard 3 (PEM sample 1: maps): FAILED"), std::string::npos) << report;
     EXPECT_FALSE(fs::exists(fs::path(dir_) / "pem"));
+}
+
+// A signal while the shards run: every job submitted (the array and the merge) is cancelled
+// in one scancel and waited for; Cancelled names them; the merge never ran, nothing is written.
+TEST_F(SlurmFake, ACancelRequestCancelsEveryJobWaitsAndMergesNothing) {
+    FakeSlurm slurm(dir_);
+    slurm.hold = true;
+    slurm.cancelAtPause = 3;
+    try {
+        bakeOnSlurm(dir_, options(2), slurm, nullptr);
+        ADD_FAILURE() << "the bake was not cancelled";
+    } catch (const Cancelled& e) {
+        EXPECT_NE(std::string(e.what()).find("cancelled jobs 100, 101"), std::string::npos)
+            << e.what();
+    }
+    clearCancelRequest();
+    EXPECT_EQ(slurm.scancels, (std::vector<std::vector<std::string>>{{"100", "101"}}));
+    EXPECT_FALSE(fs::exists(fs::path(dir_) / "level.json"));
+    const ShardList list = readShardList(dir_);
+    for (const Shard& s : list.shards)
+        EXPECT_FALSE(shardPresent(dir_, s));
+}
+
+// `bake --slurm` as a user runs it, against a scheduler of three scripts whose tasks run until
+// scancel: SIGINT or SIGTERM exits 130 at once, scancel got both job ids, no level is written.
+TEST_F(SlurmFake, ASignalToBakeSlurmCancelsItsJobsAndExits130) {
+    const fs::path bin = root_ / "bin";
+    fs::create_directories(bin);
+    const auto script = [&](const std::string& name, const std::string& body) {
+        std::ofstream(bin / name) << "#!/bin/bash\nd=\"$FAKE_SLURM_DIR\"\n" << body;
+        fs::permissions(bin / name, fs::perms::owner_all);
+    };
+    script("sbatch", "id=$(cat \"$d/next\" 2>/dev/null || echo 100)\n"
+                     "echo $((id + 1)) > \"$d/next\"\necho \"$id $*\" >> \"$d/sbatch.log\"\n"
+                     "for a in \"$@\"; do case \"$a\" in --array=*) s=\"${a#--array=}\"\n"
+                     "  echo \"${s%%\\%*}\" > \"$d/$id.array\";; esac; done\necho \"$id\"\n");
+    script("squeue",
+           "for a in \"$@\"; do case \"$a\" in --jobs=*) j=\"${a#--jobs=}\";; esac; done\n"
+           "s=RUNNING; [ -e \"$d/cancelled-$j\" ] && s=CANCELLED\n"
+           "if [ -e \"$d/$j.array\" ]; then\n"
+           "  for i in $(tr ',' ' ' < \"$d/$j.array\"); do echo \"${j}_$i|$s\"; done\n"
+           "else echo \"$j|$s\"; fi\n");
+    script("scancel", "echo \"$*\" >> \"$d/scancel.log\"\n"
+                      "for j in \"$@\"; do touch \"$d/cancelled-$j\"; done\n");
+    const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "/usr/bin:/bin";
+    for (const int sig : {SIGINT, SIGTERM}) {
+        const fs::path fake = root_ / ("fake-" + std::to_string(sig));
+        const fs::path level = root_ / ("level-" + std::to_string(sig));
+        fs::create_directories(fake);
+        ::setenv("PATH", (bin.string() + ":" + path).c_str(), 1);
+        ::setenv("FAKE_SLURM_DIR", fake.c_str(), 1);
+        test::Child c(
+            fs::path(SPECULA_BIN_DIR) / "specula-cook",
+            {"bake", test::kTwoRooms, "--out", level.string(), "--face-res", "8", "--slurm"},
+            root_ / "scratch");
+        ::setenv("PATH", path.c_str(), 1);
+        ::unsetenv("FAKE_SLURM_DIR");
+        const auto submitted = [&] {
+            std::ifstream log(fake / "sbatch.log");
+            int lines = 0;
+            for (std::string line; std::getline(log, line);)
+                ++lines;
+            return lines >= 2; // the array and the merge
+        };
+        ASSERT_TRUE(c.waitFor(submitted, 120)) << "bake --slurm never submitted its jobs";
+        const auto start = std::chrono::steady_clock::now();
+        c.signal(sig);
+        const test::ChildResult r = c.wait();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::printf("[slurm-fake] signal %d: exit %d %.3f s after it; stderr: %s", sig, r.status,
+                    seconds, r.err.c_str());
+        EXPECT_EQ(r.status, 130) << r.err;
+        EXPECT_LT(seconds, 5.0);
+        EXPECT_EQ(test::slurpFile(fake / "scancel.log"), "100 101\n");
+        EXPECT_NE(r.err.find("cancelled jobs 100, 101"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(level / "level.json"));
+        EXPECT_FALSE(fs::exists(level.string() + ".lock"));
+    }
 }
 
 } // namespace
