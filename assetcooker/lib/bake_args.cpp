@@ -190,8 +190,10 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
                     "\"influence\", \"blend_distance\", \"priority\", \"cell_size\"}]}): "
                     "bakes a level")
         ->check(CLI::ExistingFile);
-    sub->add_option("--sky", a.sky,
-                    "equirectangular panorama for the distant environment (default: black)");
+    tool.allowEmpty(
+        sub->add_option("--sky", a.sky,
+                        "equirectangular panorama for the distant environment (default and '': "
+                        "black)"));
 
     auto only = [&](CLI::Option* o, const char* flavour) {
         std::string group = flavour;

@@ -6,12 +6,12 @@
 #include "assetcooker/lib/slurm_command.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
+#include "engine/image/compare.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -140,29 +140,27 @@ void printPemSummary(const BakeArgs& a, const CookResult& r, double seconds, std
         << r.bakeSeconds << " s, total " << seconds << " s -> " << a.out << "/manifest.json\n";
     if (r.pemFits.empty()) return;
     // The cooker's own measurement against the ray tracer: what the maps are worth on the
-    // baked viewpoints and half-way between them, where the runtime blends two.
-    // An open path's last sample has nothing half-way past it (NaN).
-    double on = 0, off = 0, worstOff = 1e9, infer = 0, worstInfer = 0, rays = 0, copies = 0;
-    int halfWays = 0;
+    // baked viewpoints and half-way between them, where the runtime blends two. A sample
+    // without a PSNR (nothing measured, or an open path's last sample: nothing lies past it)
+    // is left out of the means; "none" when no sample has one.
+    std::vector<double> on, off;
+    double infer = 0, worstInfer = 0, rays = 0, copies = 0;
     for (const PemSampleFit& f : r.pemFits) {
-        on += f.psnrOn, infer += f.inferSeconds, rays += f.rays;
+        on.push_back(f.psnrOn), off.push_back(f.psnrOff);
+        infer += f.inferSeconds, rays += f.rays;
         copies += f.roundingRows;
-        if (std::isfinite(f.psnrOff)) {
-            off += f.psnrOff, ++halfWays;
-            worstOff = std::min(worstOff, f.psnrOff);
-        }
         worstInfer = std::max(worstInfer, f.inferSeconds);
     }
     const double n = double(r.pemFits.size());
-    if (halfWays == 0) off = worstOff = std::numeric_limits<double>::quiet_NaN();
     char line[320];
     std::snprintf(
         line, sizeof line,
         "fit against the ray tracer (%.0f reflector rays a sample, no Fresnel): on the samples "
-        "%.1f dB, half-way between them %.1f dB (worst %.1f); inference %.2f s per sample "
+        "%s dB, half-way between them %s dB (worst %s); inference %.2f s per sample "
         "(worst %.2f); rows where the display's rounding reaches (--rounding-reach) for "
         "%.1f%% of the rays\n",
-        rays / n, on / n, off / std::max(halfWays, 1), worstOff, infer / n, worstInfer,
+        rays / n, formatPsnr(meanPsnr(on), 1).c_str(), formatPsnr(meanPsnr(off), 1).c_str(),
+        formatPsnr(worstPsnr(off), 1).c_str(), infer / n, worstInfer,
         rays > 0 ? 100.0 * copies / rays : 0.0);
     out << line;
 }

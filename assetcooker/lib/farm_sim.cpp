@@ -1,5 +1,6 @@
 #include "farm_sim.h"
 
+#include "assetcooker/lib/output_file.h"
 #include "assetcooker/lib/shard_bake.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
@@ -8,10 +9,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <numeric>
 #include <queue>
+#include <sstream>
 
 namespace specula {
 
@@ -155,15 +156,14 @@ std::vector<FarmRow> simulateFarm(const FarmTimes& times, const std::vector<int>
 }
 
 void writeFarmCsv(const std::string& file, const std::vector<FarmLevel>& levels) {
-    std::ofstream out(file);
-    if (!out) throw Error(file, "", "cannot be written");
+    std::ostringstream out;
     out << "level,shards,dependents,total_s,merge_s,nodes,wall_s,ideal_s,ratio\n";
     for (const FarmLevel& l : levels)
         for (const FarmRow& r : l.rows)
             out << l.label << ',' << l.times.shards.size() << ',' << l.times.dependents.size()
                 << ',' << l.times.total() << ',' << l.times.mergeSeconds << ',' << r.nodes << ','
                 << r.wall << ',' << r.ideal << ',' << r.ratio << '\n';
-    if (!out) throw Error(file, "", "cannot be written");
+    writeOutputFile(file, out.str()); // every byte checked: a full disk is an Error
 }
 
 Image farmPlot(const std::vector<FarmLevel>& levels, double overhead, int w, int h) {

@@ -3,19 +3,30 @@
 #include "assetcooker/lib/probe_sanity.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
+#include "engine/core/glsl_host.h"
 #include "engine/raytrace/embree_scene.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
 #include <span>
+#include <sstream>
 #include <tuple>
 
 namespace specula {
+namespace glsl {
+#include "components/reflection_probe/distance/shaders/distance_level_params.glsl.h"
+} // namespace glsl
 
 using nlohmann::json;
 
 namespace {
+
+// ProbeVolume::priority is an int.
+constexpr std::int64_t kMaxPriority = std::numeric_limits<int>::max();
 
 // A probe being gathered, with the markup objects to apply onto it in order (later wins).
 struct PendingProbe {
@@ -23,11 +34,68 @@ struct PendingProbe {
     std::vector<std::tuple<json, std::string, std::string>> members; // (members, file, field)
 };
 
+// The members of a volume (probe_volume.h), as the markup and a probe list write them.
+constexpr std::array<const char*, 5> kVolumeMembers{"proxy", "influence", "blend_distance",
+                                                    "priority", "cell_size"};
+// What the effect plan reads from a probe node's markup besides (effect_plan.h, plan_budget.h).
+constexpr std::array<const char*, 6> kPlanMembers{"max_error", "max_error_deg", "motion_range",
+                                                  "flavour",   "fresnel",       "background"};
+
+// Throws Error naming `file` and `field`.KEY for a key of `o` not in `known`: a misspelt
+// member ("blend_distanse") would otherwise be ignored without a word.
+void refuseUnknownKeys(const json& o, std::span<const char* const> known, const std::string& file,
+                       const std::string& field) {
+    if (!o.is_object()) return;
+    for (const auto& [key, value] : o.items())
+        if (std::ranges::none_of(known, [&](const char* k) { return key == k; })) {
+            std::string expected;
+            for (const char* k : known)
+                expected += (expected.empty() ? "" : ", ") + std::string(k);
+            throw Error(file, field + "." + key,
+                        "unknown member (expected one of " + expected + ")");
+        }
+}
+
+// The members of one probe's markup or list entry checked before they are applied: no
+// unknown key at any depth, and a priority that fits the runtime's int (a larger one would
+// wrap around).
+void checkProbeMembers(const json& o, bool planMembers, const std::string& file,
+                       const std::string& field) {
+    std::vector<const char*> known(kVolumeMembers.begin(), kVolumeMembers.end());
+    if (planMembers) known.insert(known.end(), kPlanMembers.begin(), kPlanMembers.end());
+    refuseUnknownKeys(o, known, file, field);
+    static constexpr std::array<const char*, 2> kBox{"min", "max"};
+    static constexpr std::array<const char*, 2> kShapes{"box", "sphere"};
+    static constexpr std::array<const char*, 1> kSphere{"radius"};
+    if (o.contains("proxy")) refuseUnknownKeys(o["proxy"], kBox, file, field + ".proxy");
+    if (o.contains("influence") && o["influence"].is_object()) {
+        const json& inf = o["influence"];
+        refuseUnknownKeys(inf, kShapes, file, field + ".influence");
+        if (inf.contains("box"))
+            refuseUnknownKeys(inf["box"], kBox, file, field + ".influence.box");
+        if (inf.contains("sphere"))
+            refuseUnknownKeys(inf["sphere"], kSphere, file, field + ".influence.sphere");
+    }
+    if (o.contains("priority") && o["priority"].is_number_integer()) {
+        const json& p = o["priority"];
+        const bool fits = p.is_number_unsigned()
+                              ? p.get<std::uint64_t>() <= std::uint64_t(kMaxPriority)
+                              : p.get<std::int64_t>() >= -std::int64_t(kMaxPriority) - 1 &&
+                                    p.get<std::int64_t>() <= std::int64_t(kMaxPriority);
+        if (!fits)
+            throw Error(file, field + ".priority",
+                        "expected an integer in " +
+                            std::to_string(-std::int64_t(kMaxPriority) - 1) + " .. " +
+                            std::to_string(kMaxPriority) + ", got " + p.dump());
+    }
+}
+
 // The probe list file's entries merged into `probes` (see LevelProbeSources::file).
 void mergeProbeList(std::vector<PendingProbe>& probes, const std::string& file) {
     const json doc = parseManifestJson(readManifestText(file), file);
     const json& list = doc.is_object() && doc.contains("probes") ? doc["probes"] : doc;
     if (!list.is_array()) throw Error(file, "probes", "expected an array of probes");
+    std::map<std::string, std::string> listed; // name -> the entry that gave it
     for (std::size_t i = 0; i < list.size(); ++i) {
         const json& p = list[i];
         const std::string field = "probes[" + std::to_string(i) + "]";
@@ -38,6 +106,15 @@ void mergeProbeList(std::vector<PendingProbe>& probes, const std::string& file) 
                 throw Error(file, field + ".name", "expected a non-empty string");
             name = p["name"].get<std::string>();
         }
+        // Two entries of one name would be one probe, the first one's members overridden.
+        if (const auto [at, added] = listed.emplace(name, field); !added)
+            throw Error(file, field + ".name",
+                        "\"" + name + "\" is also the name of " + at->second +
+                            ": every probe of a list needs its own name");
+        json members = p;
+        members.erase("name");
+        members.erase("position");
+        checkProbeMembers(members, false, file, field);
         PendingProbe* target = nullptr;
         for (PendingProbe& q : probes)
             if (q.volume.name == name) target = &q;
@@ -50,9 +127,6 @@ void mergeProbeList(std::vector<PendingProbe>& probes, const std::string& file) 
         }
         if (p.contains("position"))
             target->volume.position = probeVec3(p["position"], file, field + ".position");
-        json members = p;
-        members.erase("name");
-        members.erase("position");
         target->members.emplace_back(std::move(members), file, field);
     }
 }
@@ -141,6 +215,12 @@ Aabb measuredProxy(const EmbreeScene& env, const Aabb& sceneBounds, glm::vec3 p)
     return box;
 }
 
+std::string pointText(glm::vec3 p) {
+    std::ostringstream s;
+    s << '(' << p.x << ", " << p.y << ", " << p.z << ')';
+    return s.str();
+}
+
 } // namespace
 
 GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sources) {
@@ -150,7 +230,9 @@ GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sou
         PendingProbe p;
         p.volume.name = m.node;
         p.volume.position = m.position;
-        p.members.emplace_back(m.options, file, "nodes[" + m.node + "].extras.specula_probe");
+        const std::string field = "nodes[" + m.node + "].extras.specula_probe";
+        checkProbeMembers(m.options, true, file, field);
+        p.members.emplace_back(m.options, file, field);
         pending.push_back(std::move(p));
     }
     for (std::size_t i = 0; i < sources.positions.size(); ++i) {
@@ -161,6 +243,13 @@ GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sou
         pending[i].volume.position = sources.positions[i];
     }
     if (!sources.file.empty()) mergeProbeList(pending, sources.file);
+    // The runtime draws a level's probes from one uniform block: a larger level would bake
+    // for nothing, then be refused by every view that loads it.
+    if (pending.size() > std::size_t(glsl::kMaxLevelProbes))
+        throw Error(sources.file.empty() ? file : sources.file, "probes",
+                    "the level has " + std::to_string(pending.size()) +
+                        " probes; the runtime draws at most " +
+                        std::to_string(glsl::kMaxLevelProbes) + " in one view: split the level");
     if (pending.empty()) {
         pending.push_back({});
         pending.back().volume.name = "probe";
@@ -177,8 +266,19 @@ GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sou
         ProbeVolume& v = p.volume;
         v.proxy = Aabb{};
         v.influence.box = Aabb{};
-        for (const auto& [members, from, field] : p.members)
+        std::string proxyFile = file, proxyField = "probe " + v.name + ".proxy";
+        for (const auto& [members, from, field] : p.members) {
             applyProbeMarkup(v, members, from, field);
+            if (members.is_object() && members.contains("proxy"))
+                proxyFile = from, proxyField = field + ".proxy";
+        }
+        // The lookup projects from the probe's position onto its proxy: from outside, a
+        // direction meets the box behind the probe or not at all.
+        if (!v.proxy.empty() && !v.proxy.contains(v.position))
+            throw Error(proxyFile, proxyField,
+                        "probe " + v.name + " at " + pointText(v.position) +
+                            " lies outside its proxy box " + pointText(v.proxy.min) + " .. " +
+                            pointText(v.proxy.max));
         if (v.proxy.empty()) v.proxy = measuredProxy(env, sceneBounds, v.position);
         influenceDefaulted.push_back(v.influence.shape == ProbeInfluence::Shape::Box &&
                                      v.influence.box.empty());

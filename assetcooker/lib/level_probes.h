@@ -36,9 +36,11 @@ struct GatheredProbes {
 // axis separating them most, reaching one blend distance past the half-way point: a row of
 // probes along one hall shares it out), the blend distance 0.5 m, the priority 0, the cell
 // 1.5 m. A scene with no probe anywhere gets one at markupProbeCentre named "probe". Throws
-// Error naming the file and field on bad input; warns (names both nodes) when two probes
-// have equal priority and identical volumes, and (names the node) when a probe lies inside
-// solid geometry.
+// Error naming the file and field on bad input: among others an unknown member (a misspelt
+// key), a priority outside int, two list entries of one name, a probe outside its own
+// proxy box, and more probes than the runtime draws in one view (kMaxLevelProbes); warns (names
+// both nodes) when two probes have equal priority and identical volumes, and (names the node) when
+// a probe lies inside solid geometry.
 GatheredProbes gatherLevelProbes(ProbeScene& scene, const LevelProbeSources& sources);
 
 } // namespace specula

@@ -216,7 +216,14 @@ void validatePemCookSettings(const PemCookSettings& s, const std::string& file) 
 
 double pemSamplesPsnr(const PemSamples& samples,
                       const std::function<glm::vec3(const PemSample&)>& radiance, PemRows rows) {
-    const double rms = pemRowsRms(samples, pemDataRows(samples, rows), rows, radiance);
+    const std::vector<std::vector<int>> dataRows = pemDataRows(samples, rows);
+    const double rms = pemRowsRms(samples, dataRows, rows, radiance);
+    // Nothing measured (no ray), or a black target met by black maps (a sky-only scene
+    // without a sky agrees with any black bake): no PSNR, as compareImages has it.
+    const bool signal =
+        std::ranges::any_of(samples, [](const PemSample& p) { return p.target != glm::vec3(0.f); });
+    if (dataRows.empty() || (rms == 0.0 && !signal))
+        return std::numeric_limits<double>::quiet_NaN();
     return 10.0 * std::log10(1.0 / std::max(rms * rms, 1e-12));
 }
 

@@ -123,7 +123,7 @@ struct PemSampleFit {
     int unseenTexels = 0;    // texels no ray reads: filled by the smoothness rows alone
     int roundingRows = 0;    // copies of rays the display's rounding can move (roundingReach)
     double inferSeconds = 0; // building the rendering matrix, solving, measuring
-    double psnrOn = 0;       // at its own viewpoint (on the manifold)
+    double psnrOn = 0;       // at its own viewpoint (on the manifold); NaN: no PSNR
     // Half-way to the next sample (across the wrap on the orbit): the blend of the two maps,
     // as the runtime draws it, against the tracer at that viewpoint (off the manifold). NaN
     // for the last sample of an open path (the camera path): nothing lies past it.
@@ -169,7 +169,9 @@ PemAsset cookPemAsset(ProbeScene& scene, const PemCookSettings& s, const PemCook
 
 // PSNR (peak 1, over RGB) of `radiance(sample)` against the samples' targets, over the data
 // rows `rows` makes of them (pemRowsRms: Pixel and Centre compare against each pixel's mean
-// over its sub-rays, the antialiased image); 120 dB when they agree exactly.
+// over its sub-rays, the antialiased image); 120 dB when they agree exactly; NaN (no PSNR,
+// print it with formatPsnr) when there is no row, or when the targets are all black and
+// the radiance agrees (nothing was measured: see ImageStats).
 double pemSamplesPsnr(const PemSamples& samples,
                       const std::function<glm::vec3(const PemSample&)>& radiance,
                       PemRows rows = PemRows::SubRay);

@@ -100,7 +100,8 @@ void addPlanCommand(cli::ToolCli& tool) {
     sub->add_option("SCENE", a->scene, "the glTF/GLB scene")->required();
     sub->add_option("--probe", a->probe, "probe centre (overrides the markup)")
         ->check(cli::vec3Text());
-    sub->add_option("--sky", a->sky, "equirectangular panorama (default: a black sky)");
+    tool.allowEmpty(
+        sub->add_option("--sky", a->sky, "equirectangular panorama (default and '': a black sky)"));
     sub->add_option("--plan", a->plan, "measured (default) or analytic")
         ->check(CLI::IsMember({"measured", "analytic"}));
     sub->add_option(

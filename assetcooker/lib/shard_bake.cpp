@@ -190,6 +190,34 @@ ShardList readShardList(const std::string& dir) {
             throw Error(file, field + "hash", "expected a content hash");
         list.shards.push_back(s);
     }
+    // A list without a probe, or a probe (a PEM sample) without its shards, would merge into
+    // a level whose entries have no asset and no checksums behind them.
+    if (list.level.probes.empty())
+        throw Error(file, "level.probes", "the level has no probe: nothing to bake or merge");
+    if (isPemList(list)) {
+        // Found by position: the traces, then the samples (pemShardIndex).
+        const int samples = pemListSamples(list);
+        for (int k = 0; k < 2 * samples; ++k) {
+            const char* kind = k < samples ? kPemTraceShard : kPemSampleShard;
+            if (std::size_t(k) >= list.shards.size() || list.shards[std::size_t(k)].kind != kind ||
+                list.shards[std::size_t(k)].part != k % samples)
+                throw Error(file, "shards[" + std::to_string(k) + "]",
+                            std::string("expected the ") + kind + " shard of sample " +
+                                std::to_string(k % samples) + " (run specula-cook shards again)");
+        }
+        if (list.shards.size() != std::size_t(2 * samples))
+            throw Error(file, "shards",
+                        "expected " + std::to_string(2 * samples) +
+                            " shards (run specula-cook "
+                            "shards again)");
+    }
+    for (std::size_t i = 0; i < list.level.probes.size(); ++i)
+        if (std::ranges::none_of(list.shards, [&](const Shard& s) {
+                return s.probe == int(i) && (s.kind == kProbeShard || isPemList(list));
+            }))
+            throw Error(file, "shards",
+                        "no shard bakes probe " + list.level.probes[i].volume.name +
+                            " (run specula-cook shards again)");
     return list;
 }
 

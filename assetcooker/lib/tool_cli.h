@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <ostream>
+#include <set>
 #include <span>
 #include <string>
 
@@ -34,17 +35,28 @@ public:
     // Library code names the field it read (Error("", "face_res", ...)); when such an error
     // reaches the tool, the message names the flag that set the field instead.
     void mapField(const std::string& field, const std::string& flag) { fieldFlags_[field] = flag; }
+    // Every value is checked before the subcommand's own validators see it: integers are
+    // decimal (010 is ten, never octal; 0x10 is refused), numbers finite (no nan or inf),
+    // and no value is empty, except that of an option allowed here (e.g. --sky '': a black
+    // sky). `--config FILE` must name a regular file.
+    CLI::Option* allowEmpty(CLI::Option* option) {
+        emptyAllowed_.insert(option);
+        return option;
+    }
 
     // Parses argv[1..] and runs the chosen subcommand. Never throws.
     int run(std::span<const std::string> args, std::ostream& out, std::ostream& err);
 
 private:
     int dispatch(std::span<const std::string> args, std::ostream& out);
+    void checkValues(); // adds the value checks above to every option, once
     std::string describe(const std::exception& e) const;
 
     CLI::App app_;
     std::map<const CLI::App*, Action> actions_;
     std::map<std::string, std::string> fieldFlags_;
+    std::set<const CLI::Option*> emptyAllowed_;
+    bool valuesChecked_ = false;
 };
 
 // Validators shared by the subcommands.
@@ -52,6 +64,9 @@ private:
 CLI::Validator finiteRange(double lo, double hi);
 // A non-empty value, e.g. a folder name.
 CLI::Validator nonEmpty(const std::string& what);
+// A decimal integer ('-' only when `isSigned`), leading zeros dropped ("010" becomes "10");
+// what ToolCli checks every integer option with.
+CLI::Validator decimalInteger(bool isSigned);
 // "x,y,z": three finite numbers of magnitude at most 1e7.
 CLI::Validator vec3Text();
 glm::vec3 parseVec3(const std::string& text);

@@ -133,6 +133,21 @@ std::string formatPsnr(double psnr, int decimals) {
     return buf;
 }
 
+double meanPsnr(std::span<const double> psnrs) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (const double p : psnrs)
+        if (!std::isnan(p)) sum += p, ++n;
+    return n ? sum / double(n) : std::numeric_limits<double>::quiet_NaN();
+}
+
+double worstPsnr(std::span<const double> psnrs) {
+    double worst = std::numeric_limits<double>::quiet_NaN();
+    for (const double p : psnrs)
+        if (!std::isnan(p) && !(p >= worst)) worst = p;
+    return worst;
+}
+
 Image errorHeatmap(const Image& a, const Image& b, const Image* mask, float maxError) {
     const int channels = comparedChannels(a, b);
     checkMask(a, mask);

@@ -4,6 +4,7 @@
 #include "engine/image/image.h"
 
 #include <cstddef>
+#include <span>
 #include <string>
 
 namespace specula {
@@ -39,6 +40,11 @@ ImageStats compareImages(const Image& a, const Image& b, const Image* mask = nul
 // A PSNR as the reports print it: "none" when there is none (NaN), "inf" for an exact match,
 // else fixed-point with `decimals` digits.
 std::string formatPsnr(double psnr, int decimals = 2);
+
+// The mean and the worst (lowest) of the PSNRs that exist: a NaN (nothing measured, see
+// ImageStats) is left out, never averaged in as some number of dB; NaN when none exists.
+double meanPsnr(std::span<const double> psnrs);
+double worstPsnr(std::span<const double> psnrs);
 
 // Per-pixel error (largest absolute RGB difference) mapped to a colour ramp from dark blue
 // (0) through green and yellow to red (>= maxError); masked-out pixels are grey. Returns

@@ -22,10 +22,12 @@ namespace {
 // Mean over the samples of what the cooker measured: on the viewpoints and half-way between.
 void logCookerFit(std::ostream& log, const std::string& sceneName, int samples,
                   const CookResult& cooked) {
-    double on = 0, off = 0, infer = 0, self = 0, halfWays = 0;
+    // A sample without a PSNR (NaN: nothing measured, or an open path's end) is left out.
+    std::vector<double> on, off;
+    double infer = 0, self = 0;
     for (const PemSampleFit& f : cooked.pemFits) {
-        on += f.psnrOn, infer += f.inferSeconds, self += f.selfHitFraction;
-        if (std::isfinite(f.psnrOff)) off += f.psnrOff, ++halfWays; // NaN: an open path's end
+        on.push_back(f.psnrOn), off.push_back(f.psnrOff);
+        infer += f.inferSeconds, self += f.selfHitFraction;
     }
     const double n = double(std::max<std::size_t>(cooked.pemFits.size(), 1));
     const PemAsset& asset = std::get<PemAsset>(cooked.asset);
@@ -36,11 +38,11 @@ void logCookerFit(std::ostream& log, const std::string& sceneName, int samples,
     char line[320];
     std::snprintf(line, sizeof line,
                   "%s: PEM N=%d (%s) baked in %.1f s; the cooker's fit on the reflector rays: "
-                  "%.1f dB on, %.1f dB half-way; inference %.2f s per sample; %.0f KiB per "
+                  "%s dB on, %s dB half-way; inference %.2f s per sample; %.0f KiB per "
                   "sample (float texels); %.1f%% of rays meet their reflector again\n",
                   sceneName.c_str(), samples, asset.localLayer ? "two layers" : "single map",
-                  cooked.bakeSeconds, on / n, off / std::max(halfWays, 1.0), infer / n, kib,
-                  100.0 * self / n);
+                  cooked.bakeSeconds, formatPsnr(meanPsnr(on), 1).c_str(),
+                  formatPsnr(meanPsnr(off), 1).c_str(), infer / n, kib, 100.0 * self / n);
     log << line << std::flush;
 }
 

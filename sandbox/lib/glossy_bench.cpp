@@ -31,8 +31,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// NaN (printed "none") when nothing was measured: no reflector pixel in view, or black
+// against black (ImageStats); never 0 dB, which would read as a dreadful score.
 double clampedPsnr(const ImageStats& s) {
-    return s.hasPsnr ? std::min(s.psnr, 99.0) : 0.0;
+    return s.hasPsnr ? std::min(s.psnr, 99.0) : std::numeric_limits<double>::quiet_NaN();
 }
 
 // A line a roughness (the rows hold one per method, in `methods` order), a column a method.

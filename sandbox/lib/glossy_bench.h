@@ -45,7 +45,7 @@ struct GlossyBenchOptions {
 struct GlossyBenchRow {
     float roughness = 0.f;
     std::string method;
-    double psnr = 0.0;
+    double psnr = 0.0;           // NaN ("none") when no reflector pixel is in view
     double noiseFloorPsnr = 0.0; // +inf at roughness 0 (the truth is exact there)
     double ratioToEnvmap = -1.0; // pass time / the mirror envmap's; < 0: not timed
     double memoryMiB = 0.0;      // texture memory the method holds (GlossyTextures)

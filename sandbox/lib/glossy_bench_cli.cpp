@@ -98,7 +98,8 @@ void addGlossyCommand(cli::ToolCli& tool) {
         ->check(CLI::Range(8, 2048));
     sub->add_option("--samples", o.samples, "GGX truth samples per pixel (default 256)")
         ->check(CLI::Range(1, 65536));
-    sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
+    tool.allowEmpty(sub->add_option(
+        "--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg; '': black)"));
     sub->add_flag("!--no-timing", o.timing, "skip the GPU pass timing (ratio_to_envmap: none)");
     sub->add_option("--rounds", o.timingRounds,
                     "interleaved timing rounds: the median of as many frames per method "

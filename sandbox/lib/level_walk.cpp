@@ -24,6 +24,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace specula {
@@ -105,6 +106,12 @@ std::string weightsText(const CpuDistanceLevel& level, const LevelSample& s) {
     return t.str();
 }
 
+// A frame's PSNR on the reflector pixels: NaN ("none") when there is none (no reflector
+// pixel in view, or black against black), never a number that reads as a score.
+double framePsnr(const ImageStats& st) {
+    return st.hasPsnr ? std::min(st.psnr, 99.0) : std::numeric_limits<double>::quiet_NaN();
+}
+
 struct FrameImages {
     Image truth, mask;
     std::array<Image, 3> blends;
@@ -145,15 +152,15 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
     settings.errorTolerance = o.tolerance;
     // A rough reflector reads every probe's chain (made here as the store makes it).
     const bool rough = o.roughness > 0.f;
-    const CpuDistanceLevel level((fs::path(levelDir) / "level.json").string(), settings, rough);
+    const std::string indexPath = (fs::path(levelDir) / "level.json").string();
+    const LevelIndex index = readLevelIndex(indexPath);
+    if (index.probes.empty()) throw Error(indexPath, "probes", "the level has no probe to walk");
+    const CpuDistanceLevel level(indexPath, settings, rough);
     {
         // What the level store holds on the GPU: the composites and the sky, plus a rough
         // reflector's chains (DistanceLevelStore::gpuBytesOf).
         const DistanceProbeAsset first = readDistanceProbe(
-            (fs::path(levelDir) /
-             readLevelIndex((fs::path(levelDir) / "level.json").string()).probes.front().folder /
-             "manifest.json")
-                .string());
+            (fs::path(levelDir) / index.probes.front().folder / "manifest.json").string());
         const int n = int(level.volumes().size());
         result.mirrorBytes =
             cubeArrayBytes(first.faceRes, n) + (first.sky.empty() ? 0 : skyTextureBytes(first.sky));
@@ -278,7 +285,7 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
         csv << f << ',' << centre.x << ',' << centre.y << ',' << centre.z;
         for (std::size_t b = 0; b < kBlends.size(); ++b) {
             const ImageStats st = compareImages(img.blends[b], img.truth, &img.mask);
-            const double p = st.hasPsnr ? std::min(st.psnr, 99.0) : 0.0;
+            const double p = framePsnr(st);
             psnr[b].push_back(p);
             if (overlap) overlapPsnr[b].push_back(p);
             csv << ',' << formatPsnr(p);
@@ -288,7 +295,7 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
             << mirrorPixels;
         {
             const ImageStats st = compareImages(mirrorLookup, img.truth, &img.mask);
-            mirrorLookupPsnr.push_back(st.hasPsnr ? std::min(st.psnr, 99.0) : 0.0);
+            mirrorLookupPsnr.push_back(framePsnr(st));
             csv << ',' << formatPsnr(mirrorLookupPsnr.back()) << '\n';
         }
         if (previous) {
@@ -306,8 +313,9 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
             }
         }
         // The picture: the frame where engine-style blending is worst.
-        if (psnr[1].back() < worstEngine) {
-            worstEngine = psnr[1].back();
+        // (A frame without a PSNR is drawn only when no frame has one.)
+        if (worstTiles.empty() || psnr[1].back() < worstEngine) {
+            worstEngine = std::isnan(psnr[1].back()) ? 1e9 : psnr[1].back();
             const std::string at = "frame " + std::to_string(f) + " ";
             worstTiles = {img.truth, img.blends[0], img.blends[1], img.blends[2], Image{}};
             worstLabels = {at + "truth", at + "nearest", at + "engine", at + "visibility", ""};
@@ -335,28 +343,29 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
     std::ostringstream summary;
     summary << "blend,psnr_mean,psnr_worst,overlap_psnr_mean,overlap_psnr_worst,pop_rms,"
                "truth_change_rms,pop_frame,pop_excess_rms\n";
-    const auto mean = [](const std::vector<double>& v) {
-        double s = 0;
-        for (double x : v)
-            s += x;
-        return v.empty() ? 0.0 : s / double(v.size());
-    };
-    const auto worst = [](const std::vector<double>& v) {
-        return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
+    // Frames without a PSNR are left out of the means and worsts ("none" when no frame has
+    // one), as every report of the tools has it.
+    const auto cell = [](double v) {
+        std::ostringstream c;
+        if (std::isnan(v))
+            c << "none";
+        else
+            c << v;
+        return c.str();
     };
     for (std::size_t b = 0; b < kBlends.size(); ++b) {
         LevelWalkBlendSummary s;
         s.blend = toString(kBlends[b]);
-        s.meanPsnr = mean(psnr[b]);
-        s.worstPsnr = worst(psnr[b]);
-        s.overlapMeanPsnr = mean(overlapPsnr[b]);
-        s.overlapWorst = worst(overlapPsnr[b]);
+        s.meanPsnr = meanPsnr(psnr[b]);
+        s.worstPsnr = worstPsnr(psnr[b]);
+        s.overlapMeanPsnr = meanPsnr(overlapPsnr[b]);
+        s.overlapWorst = worstPsnr(overlapPsnr[b]);
         s.pop = pop[b];
         s.truthPop = popTruth[b];
         s.popExcess = popExcess[b];
-        summary << s.blend << ',' << s.meanPsnr << ',' << s.worstPsnr << ',' << s.overlapMeanPsnr
-                << ',' << s.overlapWorst << ',' << s.pop << ',' << s.truthPop << ',' << popFrame[b]
-                << ',' << s.popExcess << '\n';
+        summary << s.blend << ',' << cell(s.meanPsnr) << ',' << cell(s.worstPsnr) << ','
+                << cell(s.overlapMeanPsnr) << ',' << cell(s.overlapWorst) << ',' << s.pop << ','
+                << s.truthPop << ',' << popFrame[b] << ',' << s.popExcess << '\n';
         log << std::left << std::setw(11) << s.blend << " PSNR mean " << formatPsnr(s.meanPsnr)
             << " worst " << formatPsnr(s.worstPsnr) << " | overlap frames mean "
             << formatPsnr(s.overlapMeanPsnr) << " worst " << formatPsnr(s.overlapWorst)
@@ -364,10 +373,10 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
             << "), worst excess over truth " << s.popExcess << '\n';
         result.blends.push_back(s);
     }
-    result.mirrorLookupMeanPsnr = mean(mirrorLookupPsnr);
-    result.mirrorLookupWorstPsnr = worst(mirrorLookupPsnr);
-    summary << "visibility (mirror lookup)," << result.mirrorLookupMeanPsnr << ','
-            << result.mirrorLookupWorstPsnr << ",,,,,,\n";
+    result.mirrorLookupMeanPsnr = meanPsnr(mirrorLookupPsnr);
+    result.mirrorLookupWorstPsnr = worstPsnr(mirrorLookupPsnr);
+    summary << "visibility (mirror lookup)," << cell(result.mirrorLookupMeanPsnr) << ','
+            << cell(result.mirrorLookupWorstPsnr) << ",,,,,,\n";
     if (rough)
         log << "visibility with the mirror lookup (what a rough reflector drew before): PSNR mean "
             << formatPsnr(result.mirrorLookupMeanPsnr) << " worst "

@@ -47,6 +47,7 @@ struct LevelWalkOptions {
 
 struct LevelWalkBlendSummary {
     std::string blend;
+    // Over the frames with a PSNR (meanPsnr, worstPsnr in compare.h); NaN when none has one.
     double meanPsnr = 0, worstPsnr = 0;           // every frame
     double overlapMeanPsnr = 0, overlapWorst = 0; // frames where 2+ probes have influence
     double pop = 0;       // largest frame-to-frame RMS change of the reflector pixels

@@ -1,11 +1,12 @@
 // specula-sandbox level: the command line of runLevelWalk (level_walk.h).
 #include "assetcooker/lib/tool_cli.h"
+#include "engine/core/error.h"
+#include "engine/core/regular_file.h"
 #include "sandbox/lib/added_reflector_flag.h"
 #include "sandbox/lib/created_output_folder.h"
 #include "sandbox/lib/level_walk.h"
 #include "sandbox/lib/reflection_scene.h"
 
-#include <fstream>
 #include <memory>
 #include <sstream>
 
@@ -59,6 +60,8 @@ struct LevelArgs {
     std::vector<std::string> probes, addedReflectors;
 };
 
+constexpr std::uint64_t kMaxPathFileBytes = 64 << 20;
+
 // "x,y,z;x,y,z;..." ("through" or nothing: every probe in order), or "@FILE" with one
 // x,y,z per line ('#' starts a comment line).
 std::vector<glm::vec3> parsePath(const std::string& text) {
@@ -67,9 +70,12 @@ std::vector<glm::vec3> parsePath(const std::string& text) {
     const bool file = text.front() == '@';
     std::stringstream in;
     if (file) {
-        std::ifstream f(text.substr(1));
-        if (!f) throw UsageError("--path", "cannot read the path file '" + text.substr(1) + "'");
-        in << f.rdbuf();
+        // A regular file only: a FIFO would block the read forever, a folder read as no point.
+        try {
+            in << readRegularFile(text.substr(1), kMaxPathFileBytes);
+        } catch (const Error& e) {
+            throw UsageError("--path", "cannot read the path file: " + std::string(e.what()));
+        }
     } else {
         in << text;
     }
@@ -127,7 +133,8 @@ void addLevelCommand(cli::ToolCli& tool) {
         ->check(CLI::IsMember({"envmap", "boxproj", "bisection", "secant", "march"}));
     sub->add_option("--de", o.tolerance, "rectification tolerance d_e in metres (default 0.01)")
         ->check(cli::finiteRange(1e-5, 10.0));
-    sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
+    tool.allowEmpty(sub->add_option(
+        "--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg; '': black)"));
     sub->add_option("--probe", a->probes,
                     "baking: a probe at x,y,z (repeatable; the i-th moves the markup's i-th)")
         ->check(cli::vec3Text());

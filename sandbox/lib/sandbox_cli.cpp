@@ -141,7 +141,8 @@ void addWalkCommand(cli::ToolCli& tool) {
     sub->add_option("--out", o.outDir, "output folder")->check(cli::nonEmpty("a folder"));
     sub->add_option("--size", a->size, "frame size (default 640x480)")->check(cli::sizeText());
     sub->add_option("--scene", o.scene, "the scene of a manifest (overrides its \"source\")");
-    sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
+    tool.allowEmpty(sub->add_option(
+        "--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg; '': black)"));
     sub->add_option("--face-res", o.faceRes, "cube face resolution when baking a scene")
         ->check(CLI::Range(8, 2048));
     sub->add_option("--roughness", o.roughness,
@@ -200,7 +201,8 @@ void addBenchCommand(cli::ToolCli& tool) {
     sub->add_option("--max-frames", a->maxFrames,
                     "timed frames per row at most (default 64, quick 12)")
         ->check(CLI::Range(4, 1000));
-    sub->add_option("--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg)");
+    tool.allowEmpty(sub->add_option(
+        "--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg; '': black)"));
     sub->add_option("--pem-supersample", o.pemSupersample,
                     "rays per pixel side of the PEM bakes (default 1)")
         ->check(CLI::Range(1, 16));
