@@ -7,9 +7,9 @@
 #include "assetcooker/lib/lightfield_bake.h"
 #include "assetcooker/lib/pem_samples.h"
 #include "assetcooker/lib/plan_budget.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
-#include "components/reflection_probe/probe_setup.h"
 #include "engine/image/ggx_prefilter.h"
 
 #include <functional>

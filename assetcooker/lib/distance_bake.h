@@ -3,8 +3,8 @@
 // the probe centre gives the radiance (house shading, same as the ground truth) and the
 // exact Euclidean distance. Layer 0 holds the whole environment with the sky where nothing
 // is hit; then one layer per environment object, sorted near to far.
+#include "assetcooker/lib/scene/scene_markup.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
-#include "components/reflection_probe/scene_markup.h"
 #include "engine/ecs/registry.h"
 #include "engine/image/ggx_prefilter.h"
 

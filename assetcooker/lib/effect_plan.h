@@ -10,7 +10,7 @@
 // ("specula_probe": {"max_error_deg", "motion_range", "flavour", "fresnel"}); the plan
 // honours them and says so.
 #include "assetcooker/lib/plan_glossy.h"
-#include "components/reflection_probe/scene_markup.h"
+#include "assetcooker/lib/scene/scene_markup.h"
 #include "engine/ecs/registry.h"
 
 #include <nlohmann/json.hpp>

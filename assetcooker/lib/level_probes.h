@@ -2,7 +2,7 @@
 // The probes of a level: gathered from the markup, `--probe` and a probe list file, with
 // their default volumes (a measured room for the proxy, an influence shared out between
 // probes in one room).
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/probe_volume.h"
 
 #include <glm/vec3.hpp>

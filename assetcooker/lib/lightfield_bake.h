@@ -8,8 +8,8 @@
 // start on the camera plane. The same tracer and shading as the ground truth, so the probe
 // can be exact where the light field's sampling allows.
 #include "assetcooker/lib/lightfield_rows.h"
+#include "assetcooker/lib/scene/scene_markup.h"
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
-#include "components/reflection_probe/scene_markup.h"
 #include "engine/ecs/registry.h"
 #include "engine/image/image.h"
 

@@ -1,4 +1,5 @@
 #include "pem_bake.h"
+#include "assetcooker/lib/scene/walk_amplitude.h"
 
 #include "assetcooker/lib/pem_geometry.h"
 #include "assetcooker/lib/pem_layers.h"

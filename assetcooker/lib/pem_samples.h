@@ -6,9 +6,9 @@
 // environment map cannot hold), and inferPemMap fits the map the lookup reproduces it best
 // with. The maps of all samples make one PemAsset.
 #include "assetcooker/lib/pem_infer.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_hull.h"
-#include "components/reflection_probe/probe_setup.h"
 
 #include <functional>
 #include <optional>

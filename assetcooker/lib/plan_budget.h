@@ -2,7 +2,7 @@
 // The error budget a measured plan must meet: a PSNR floor ("32dB") or an RMSE ceiling
 // ("rmse:0.03") over reflector rays, from `--max-error` or the probe node's markup member
 // "max_error" (the same text, or a number meaning dB).
-#include "components/reflection_probe/scene_markup.h"
+#include "assetcooker/lib/scene/scene_markup.h"
 
 #include <string>
 

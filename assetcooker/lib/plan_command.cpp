@@ -1,7 +1,7 @@
 #include "plan_command.h"
 
 #include "assetcooker/lib/plan_measure.h"
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/core/error.h"
 
 #include <chrono>

@@ -19,7 +19,7 @@
 // the blur (it is not zero: a blurred edge still moves by the parallax, by less than half
 // the blur's width). The lookup is compiled per probe, so it must serve the probe's sharpest
 // reflector: the narrowest lobe decides, and a mirror (r = 0) keeps the plan as it was.
-#include "components/reflection_probe/scene_markup.h"
+#include "assetcooker/lib/scene/scene_markup.h"
 
 #include <string>
 #include <vector>

@@ -1,7 +1,7 @@
 #include "plan_measure.h"
 
 #include "assetcooker/lib/distance_bake.h"
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/core/error.h"
 
 #include <algorithm>

@@ -17,7 +17,7 @@
 // Stratification: Latin hypercube over the eight dimensions (triangle, two barycentrics,
 // three of displacement, two of direction), strata permuted by a seeded generator of our own
 // (std::mt19937 bits, Fisher-Yates): the same seed gives the same rays on every platform.
-#include "components/reflection_probe/scene_markup.h"
+#include "assetcooker/lib/scene/scene_markup.h"
 #include "engine/ecs/registry.h"
 #include "engine/image/image.h"
 

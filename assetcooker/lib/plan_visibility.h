@@ -4,7 +4,7 @@
 // environment; each object traces only the texels inside the cone of its bounding sphere and
 // accepts hits on its own meshes. The work is O(objects x texels each covers) rays plus one
 // BVH build, where a cube baked per object was O(objects x whole cube) and a BVH per object.
-#include "components/reflection_probe/scene_markup.h"
+#include "assetcooker/lib/scene/scene_markup.h"
 #include "engine/ecs/registry.h"
 
 #include <cstdint>

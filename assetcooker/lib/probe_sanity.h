@@ -14,7 +14,7 @@
 //   - outside the bounds of all environment geometry and seeing it in under a quarter of the
 //     directions (looking at the scene from afar rather than sitting in it)      -> warned.
 // glTF doubleSided materials have legitimate back faces: they count as front.
-#include "components/reflection_probe/scene_markup.h"
+#include "assetcooker/lib/scene/scene_markup.h"
 #include "engine/ecs/registry.h"
 
 #include <string>

@@ -4,12 +4,10 @@
 // (glTF's metallicRoughnessTexture, linear). The CPU twin of the reflector shaders'
 // HAS_ROUGHNESS_MAP read (reflector_roughness.glsl.h): the map is sampled as the GL texture
 // is, GL_LINEAR without mipmaps and GL_REPEAT on both axes (sampleBilinear, Wrap::Repeat).
-#include "components/reflection_probe/scene_markup.h"
 #include "engine/ecs/registry.h"
 #include "engine/image/image.h"
 
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -36,28 +34,5 @@ struct MaterialRoughness {
 };
 MaterialRoughness materialRoughness(const ecs::Registry& registry,
                                     const std::vector<ecs::Entity>& meshes);
-
-// The reflector meshes' roughness maps (ReflectorMarkup::roughnessMap), for the sandbox's
-// per-pixel roughness (the glossy bench, the level walk), where --roughness sets every reflector's
-// factor; the truth reads it from many threads at once (const only).
-class ReflectorRoughnessMaps {
-public:
-    explicit ReflectorRoughnessMaps(const SceneMarkup& markup);
-    bool empty() const { return maps_.empty(); }
-    // The mesh's map, null where its reflector's roughness is uniform.
-    const Image* of(ecs::Entity mesh) const;
-    // factor x the mesh's map at uv (roughnessAt); the factor on a uniform reflector.
-    float at(float factor, ecs::Entity mesh, glm::vec2 uv) const;
-    // factor x the mean of the mesh's map (its G channel, as MaterialData::roughnessTextureMean
-    // is taken), clamped to [0, 1]; the factor on a uniform reflector.
-    float mean(float factor, ecs::Entity mesh) const;
-
-private:
-    struct Map {
-        std::shared_ptr<const Image> image;
-        float mean = 1.f;
-    };
-    std::unordered_map<ecs::Entity, Map> maps_;
-};
 
 } // namespace specula

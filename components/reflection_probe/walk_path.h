@@ -3,7 +3,6 @@
 // reflector's position): where the reflectors are at time t in [0, 1), as an offset from
 // where the scene authors them. Every path is a closed loop (t = 1 is t = 0 again) and stays
 // within the walk amplitude of the authored position on each axis.
-#include "components/reflection_probe/probe_setup.h"
 
 #include <string>
 
@@ -18,11 +17,5 @@ inline constexpr const char* kCameraPathName = "camera";
 bool parseWalkPath(const std::string& s, WalkPath& out);
 const char* toString(WalkPath p);
 glm::vec3 walkOffset(WalkPath path, float t, float amplitude);
-
-// How far the reflectors may move from where they were authored on every axis and stay
-// inside the probe's cell (markupProbeCentre, markupCellSize): at most a fifth of the cell,
-// never more than the room they have. `currentOffset`: how far they stand from their authored
-// position now (taken away from their current bounds).
-float walkAmplitude(const ProbeScene& scene, glm::vec3 currentOffset);
 
 } // namespace specula

@@ -1,7 +1,7 @@
 #pragma once
 // --add-reflector SPEC (repeatable), as walk, bench and level take it: the option with its
-// help and check, and the parsed list (components/reflection_probe/added_reflector.h).
-#include "components/reflection_probe/added_reflector.h"
+// help and check, and the parsed list (assetcooker/lib/scene/added_reflector.h).
+#include "assetcooker/lib/scene/added_reflector.h"
 
 #include <string>
 #include <vector>

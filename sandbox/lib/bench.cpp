@@ -141,7 +141,11 @@ void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePa
         for (const BenchRow& b : r.rows) {
             if (b.scene != name) continue;
             s << "| " << b.method << " | " << b.params << " | " << num(b.msMedian, "%.3f") << " | "
-              << num(b.ratioToEnvmap, "%.2f") << " | " << num(b.frameRatioToEnvmap, "%.2f") << " | "
+              << num(b.ratioToEnvmap, "%.2f") << " | "
+              // The ground truth has no raster frame: its frame ratio was never measured.
+              << (std::isnan(b.frameRatioToEnvmap) ? std::string("n/a")
+                                                   : num(b.frameRatioToEnvmap, "%.2f"))
+              << " | "
               << formatPsnr(b.psnr) << " | " << num(b.rmse, "%.4f") << " | "
               << formatPsnr(b.psnrFull) << " | " << num(b.rmseFull, "%.4f") << " | "
               << num(b.fetchesPerPixel, "%.2f") << " | "

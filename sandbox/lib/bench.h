@@ -3,7 +3,7 @@
 // one run against the Embree ground truth. Writes bench.csv, bench.md, accuracy_vs_time.png
 // and strip_<scene>.png into the output folder.
 #include "assetcooker/lib/pem_samples.h"
-#include "components/reflection_probe/added_reflector.h"
+#include "assetcooker/lib/scene/added_reflector.h"
 
 #include <limits>
 #include <ostream>

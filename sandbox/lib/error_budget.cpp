@@ -1,8 +1,8 @@
 #include "error_budget.h"
 
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
-#include "components/reflection_probe/probe_setup.h"
 #include "engine/raytrace/ground_truth.h"
 #include "sandbox/lib/reflection_scene.h"
 

@@ -1,10 +1,11 @@
 #include "glossy_bench.h"
+#include "assetcooker/lib/scene/reflector_roughness_maps.h"
 
 #include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
 #include "components/reflection_probe/distance/distance_store.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
-#include "components/reflection_probe/reflector_pixels.h"
 #include "components/reflection_probe/reflector_roughness.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"

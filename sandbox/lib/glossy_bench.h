@@ -14,8 +14,8 @@
 // --roughness is each reflector's roughness factor: a reflector with a roughness map
 // (ReflectorMarkup::roughnessMap) reads factor x the map at each pixel's TEXCOORD_0
 // (roughnessAt), in the truth and in every lookup, its GGX albedo included.
-#include "components/reflection_probe/added_reflector.h"
-#include "components/reflection_probe/scene_markup.h"
+#include "assetcooker/lib/scene/added_reflector.h"
+#include "assetcooker/lib/scene/scene_markup.h"
 
 #include <memory>
 #include <ostream>

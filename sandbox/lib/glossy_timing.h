@@ -7,10 +7,10 @@
 // shader's HAS_GLOSSY path with the envmap, boxproj and secant methods
 // (shaders/distance_glossy_lookup.glsl.h); light field glossy is the light-field shader's
 // GLOSSY path. rectified (roughness level) exists on the CPU only: it has no pass time.
+#include "assetcooker/lib/scene/scene_markup.h"
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
-#include "components/reflection_probe/scene_markup.h"
 #include "engine/image/ggx_prefilter.h"
 #include "engine/math/camera.h"
 

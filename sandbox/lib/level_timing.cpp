@@ -1,8 +1,8 @@
 #include "level_timing.h"
 
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/distance/distance_level.h"
 #include "components/reflection_probe/level_index.h"
-#include "components/reflection_probe/probe_setup.h"
 #include "engine/gpu/timer.h"
 #include "sandbox/lib/frame_renderer.h"
 #include "sandbox/lib/reflection_scene.h"

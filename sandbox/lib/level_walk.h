@@ -11,7 +11,8 @@
 // also drawn on the GPU (DistanceLevelStore) for every blend and K
 // = 1, 2, 4 at the frame where probes overlap with the most reflector pixels, and its
 // reflector pass timed against one probe's envmap (timing.csv).
-#include "components/reflection_probe/added_reflector.h"
+#include "assetcooker/lib/scene/added_reflector.h"
+#include "assetcooker/lib/scene/reflector_roughness_maps.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,4 +1,5 @@
 #include "reflection_scene.h"
+#include "assetcooker/lib/scene/walk_amplitude.h"
 
 #include "components/reflection_probe/reflection_probe.h"
 #include "components/reflection_probe/reflector_roughness.h"

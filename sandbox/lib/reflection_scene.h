@@ -2,7 +2,8 @@
 // A glTF scene set up for reflection work: loaded into a registry, its Specula markup read,
 // the sky panorama loaded, the camera found, and helpers to attach a probe, move the
 // reflectors and trace the ground truth. Shared by specula-sandbox and the tests.
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
+#include "assetcooker/lib/scene/walk_amplitude.h"
 #include "engine/math/camera.h"
 #include "engine/raytrace/ground_truth.h"
 

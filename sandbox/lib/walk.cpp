@@ -1,4 +1,5 @@
 #include "walk.h"
+#include "assetcooker/lib/scene/walk_amplitude.h"
 
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"

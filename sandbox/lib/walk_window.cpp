@@ -1,6 +1,7 @@
 // The interactive walkthrough: a GLFW window (works under Xvfb), the frame drawn offscreen by
 // FrameRenderer and shown as the background of a Dear ImGui panel that switches the method,
 // d_e and the layer method, and shows the reflector-pass time and the current frame's error.
+#include "assetcooker/lib/scene/walk_amplitude.h"
 #include "walk.h"
 
 #include "engine/core/error.h"

@@ -1,11 +1,11 @@
 // The two-layer PEM's shader (HAS_LOCAL_LAYER) against its CPU twin on the bowl room, pixel by
 // pixel, and the hull flags it reads from its storage buffer by gl_PrimitiveID against the
 // triangle Embree's primary ray hits (pemHullFlags of that reflector).
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_hull.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/pem/pem_store.h"
-#include "components/reflection_probe/probe_setup.h"
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"
 #include "engine/raytrace/ground_truth.h"

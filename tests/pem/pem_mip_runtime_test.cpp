@@ -3,11 +3,11 @@
 // the quad twin (reflector_pixels.h), and, at the shader's own level of detail (OUTPUT 4), the
 // twin's colour and the rendering matrix's row (weights times texels) against the GL colour
 // of a random multi-level map, with box and with distance geometry.
+#include "assetcooker/lib/scene/probe_setup.h"
+#include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/pem/pem_store.h"
-#include "components/reflection_probe/probe_setup.h"
-#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"
 #include "engine/raytrace/ground_truth.h"

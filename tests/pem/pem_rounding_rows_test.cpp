@@ -5,10 +5,10 @@
 // against the traced targets, beside the cooker's fit on the tracer's inputs.
 #include "assetcooker/lib/pem_rounding_rows.h"
 #include "assetcooker/lib/pem_samples.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/pem/pem_store.h"
-#include "components/reflection_probe/probe_setup.h"
 #include "engine/gpu/context.h"
 #include "pem_room.h"
 #include "support/probe_room.h"

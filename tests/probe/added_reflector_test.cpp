@@ -2,8 +2,8 @@
 // added mesh as Embree and the markup see it (mirror pixel counts against the closed-form
 // projected areas), and the default camera placed in free space where it sees the reflector,
 // on small glTF rooms written here (single-sided boxes, no camera node, no reflector).
-#include "components/reflection_probe/added_reflector.h"
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/added_reflector.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/core/error.h"
 #include "engine/scene/components.h"
 #include "support/scratch_dir_test.h"

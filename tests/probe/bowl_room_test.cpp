@@ -2,7 +2,7 @@
 // sphere in the default room. It is there to make what a probe cannot represent - mirrors
 // seeing mirrors, the bowl seeing itself - a large part of the picture. These tests hold the
 // scene to that with the Embree ground truth, and to the sandbox's room to move it.
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/image/image_io.h"
 #include "engine/raytrace/ground_truth.h"
 #include "engine/scene/mesh_bounds.h"

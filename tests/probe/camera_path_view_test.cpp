@@ -1,6 +1,6 @@
 // The PEM's "camera" path (cameraPathView): the scene camera's glTF animation, first key at
 // t = 0 and last at t = 1, against the keys scripts/make_room_camera_path.py wrote.
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/core/error.h"
 
 #include <gtest/gtest.h>

@@ -5,10 +5,10 @@
 // Links components and engine only: no sandbox code.
 #include "constant_flavour/constant_flavour.h"
 
+#include "assetcooker/lib/scene/probe_setup.h"
+#include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/distance/distance_probe.h"
-#include "components/reflection_probe/probe_setup.h"
 #include "components/reflection_probe/reflection_probe_system.h"
-#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/core/error.h"
 #include "engine/gpu/context.h"
 #include "engine/gpu/render_target.h"

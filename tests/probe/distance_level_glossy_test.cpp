@@ -4,8 +4,8 @@
 // joined by a doorway, one probe each): roughness 0 is the mirror level bit for bit, and a
 // rough reflector's level lookup is closer to the GGX Embree truth than the mirror level's.
 #include "assetcooker/lib/level_bake.h"
+#include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
-#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/image/compare.h"
 #include "engine/image/ggx_albedo.h"
 #include "engine/raytrace/ground_truth.h"

@@ -1,8 +1,8 @@
 // Glossy reflections from a distance probe (issue 14): the chain level from the lobe's
 // footprint at the hit distance (shaders/distance_glossy.glsl.h) against the level from
 // roughness alone, on the CPU twin (CpuGlossyDistanceProbe) and against the GGX ground truth.
+#include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
-#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/gpu/render_target.h"
 #include "engine/raytrace/ground_truth.h"
 #include "probe_fixture.h"

@@ -5,8 +5,8 @@
 // shader against the twin with the per-pixel K is LightFieldGlossyGpu in
 // lightfield_glossy_test.cpp.
 #include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
-#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/core/glsl_host.h"
 #include "engine/image/compare.h"
 #include "engine/raytrace/ground_truth.h"

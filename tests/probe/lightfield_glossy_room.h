@@ -4,9 +4,9 @@
 // baked once per suite through the cooking library, the CPU twin over it, and the reflector
 // pixels of a camera, cell-local. No GL: the twin and Embree.
 #include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/scene/probe_setup.h"
+#include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
-#include "components/reflection_probe/probe_setup.h"
-#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/raytrace/ground_truth.h"
 #include "support/probe_room.h"
 

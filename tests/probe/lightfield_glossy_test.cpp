@@ -4,11 +4,11 @@
 // fields known in closed form, and against the Embree GGX ground truth in the room beside the
 // mirror lookup (roughness ignored). Then the GLOSSY shader against the twin, pixel by pixel.
 #include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/scene/probe_setup.h"
+#include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/lightfield/lightfield_mips.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "components/reflection_probe/lightfield/lightfield_store.h"
-#include "components/reflection_probe/probe_setup.h"
-#include "components/reflection_probe/reflector_pixels.h"
 #include "engine/core/glsl_host.h"
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"

@@ -3,7 +3,7 @@
 // bakeLightFieldProbe; blocks that miss or overlap rows are refused naming them; the block
 // file round-trips and refuses a wrong header, a wrong shape and a truncated or overlong file.
 #include "assetcooker/lib/lightfield_bake.h"
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/core/error.h"
 #include "support/scratch_dir_test.h"
 

@@ -3,11 +3,11 @@
 // against its CPU twin on the default room (at a sample and between two), and a parameter edit that
 // uploads the parameter block only. Components, engine and cooker only: no sandbox code.
 #include "assetcooker/lib/pem_geometry.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_blend.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/pem/pem_store.h"
-#include "components/reflection_probe/probe_setup.h"
 #include "engine/core/error.h"
 #include "engine/gpu/context.h"
 #include "engine/image/compare.h"

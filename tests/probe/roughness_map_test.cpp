@@ -5,7 +5,7 @@
 // effect plan takes the sharpest texel; the truth reads the map per hit, and the footprint
 // twin reading it per pixel beats the twin given the map's mean (roughness_map_truth_test.cpp).
 #include "assetcooker/lib/plan_glossy.h"
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/reflection_probe.h"
 #include "components/reflection_probe/reflector_roughness.h"
 #include "engine/scene/components.h"

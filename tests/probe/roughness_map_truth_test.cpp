@@ -4,8 +4,8 @@
 // 61 / 255 (0.239). The truth reads the map at every hit; the footprint twin reading it per
 // pixel is what the feature buys, against the same twin given the map's mean.
 #include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
-#include "components/reflection_probe/reflector_pixels.h"
 #include "components/reflection_probe/reflector_roughness.h"
 #include "engine/image/compare.h"
 #include "engine/image/ggx_albedo.h"

@@ -1,4 +1,5 @@
 // The bench's pieces that need no GPU: the Pareto front, the plot, the method table.
+#include "assetcooker/lib/scene/walk_amplitude.h"
 #include "sandbox/lib/accuracy_plot.h"
 #include "sandbox/lib/bench_methods.h"
 #include "sandbox/lib/probe_source.h"

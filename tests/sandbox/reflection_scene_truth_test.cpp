@@ -2,7 +2,7 @@
 // scene traces the mirror truth exactly as before, a reflector made rough (walk --roughness)
 // is traced GGX-sampled at its roughness, and one with a roughness map at its map's value at
 // each hit. Each against a GroundTruthTracer given the same roughness explicitly, bit for bit.
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/reflection_probe.h"
 #include "components/reflection_probe/reflector_roughness.h"
 #include "sandbox/lib/reflection_scene.h"

@@ -367,6 +367,9 @@ TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
     EXPECT_NE(text.find("machine: "), std::string::npos);
     EXPECT_NE(text.find("| envmap |"), std::string::npos);
     EXPECT_NE(text.find("| groundtruth |"), std::string::npos);
+    // No cell of the table says nan: what was not measured (the truth's frame) says n/a.
+    EXPECT_EQ(text.find("| nan |"), std::string::npos);
+    EXPECT_NE(text.find("| n/a |"), std::string::npos);
     for (const char* png : {"accuracy_vs_time.png", "strip_room.png", "strip_truck_room.png",
                             "strip_bowl_room.png", "pem_room.png", "pem_bowl_room.png"}) {
         const specula::Image img = specula::readImage((out / png).string());

@@ -4,9 +4,9 @@
 // probe pointed at a cooked asset, the reflectors moved inside the cell, the Embree ground
 // truth. RoomRenderer: the environment through SceneRenderer and the reflectors through
 // ReflectionProbeSystem into an offscreen float target; needs a current GL context.
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
+#include "assetcooker/lib/scene/scene_markup.h"
 #include "components/reflection_probe/reflection_probe_system.h"
-#include "components/reflection_probe/scene_markup.h"
 #include "engine/gpu/render_target.h"
 #include "engine/render/scene_renderer.h"
 

@@ -2,7 +2,7 @@
 // manifest a loader reads once (readCookedProbeFacts), and the markup becomes components
 // without the sandbox (attachProbeComponents).
 #include "assetcooker/lib/cook.h"
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/core/error.h"
 #include "support/scratch_dir_test.h"
 

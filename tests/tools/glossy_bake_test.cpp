@@ -4,9 +4,9 @@
 // probe's, naming the manifest's glossy.levels[k]. A manifest without "glossy" reads as before.
 #include "assetcooker/lib/cook.h"
 #include "assetcooker/lib/distance_bake.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/manifest_fields.h"
-#include "components/reflection_probe/probe_setup.h"
 #include "engine/core/error.h"
 #include "engine/image/ggx_prefilter.h"
 #include "engine/image/image_io.h"

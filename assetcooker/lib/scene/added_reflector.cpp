@@ -1,6 +1,6 @@
 #include "added_reflector.h"
 
-#include "components/reflection_probe/probe_setup.h"
+#include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/core/error.h"
 #include "engine/scene/components.h"
 #include "engine/scene/transform_system.h"

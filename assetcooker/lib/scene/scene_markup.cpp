@@ -1,8 +1,8 @@
 #include "scene_markup.h"
 
+#include "components/reflection_probe/reflector_roughness.h"
 #include "engine/core/error.h"
 #include "engine/scene/components.h"
-#include "reflector_roughness.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,9 +5,9 @@
 // needs of a cooked manifest before it loads the asset. Also what the sandbox and the
 // tests share on such a scene: edit the probe's settings, camera views, reflector offsets,
 // the ray-traced ground truth.
-#include "components/reflection_probe/added_reflector.h"
+#include "assetcooker/lib/scene/added_reflector.h"
+#include "assetcooker/lib/scene/scene_markup.h"
 #include "components/reflection_probe/reflection_probe.h"
-#include "components/reflection_probe/scene_markup.h"
 #include "engine/core/error.h"
 #include "engine/ecs/registry.h"
 #include "engine/image/image.h"
