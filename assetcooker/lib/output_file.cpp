@@ -25,16 +25,9 @@ void writeOutputFile(const std::string& path, std::string_view bytes) {
     const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
     if (fd < 0) fail(errno, "");
     std::size_t done = 0;
-    while (done < bytes.size()) {
-        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            const int error = n < 0 ? errno : EIO;
-            ::close(fd);
-            fail(error, " (" + std::to_string(done) + " of " + std::to_string(bytes.size()) +
-                            " bytes written)");
-        }
-        done += std::size_t(n);
+    if (const int error = writeAll(fd, bytes, done)) {
+        ::close(fd);
+        fail(error, bytesWrittenNote(done, bytes.size()));
     }
     if (::close(fd) != 0) fail(errno, " (on close)");
 }

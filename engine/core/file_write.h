@@ -23,6 +23,24 @@ inline std::string temporaryNameFor(const std::string& path) {
     return path + ".tmp-" + std::to_string(::getpid());
 }
 
+// Writes every byte of `bytes` to `fd`, again after EINTR. Returns 0, or the errno of the
+// write that failed (EIO for one that wrote nothing); `done` says how many bytes went out.
+inline int writeAll(int fd, std::string_view bytes, std::size_t& done) {
+    done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return n < 0 ? errno : EIO;
+        done += std::size_t(n);
+    }
+    return 0;
+}
+
+// " (D of N bytes written)": what a failed write message adds.
+inline std::string bytesWrittenNote(std::size_t done, std::size_t total) {
+    return " (" + std::to_string(done) + " of " + std::to_string(total) + " bytes written)";
+}
+
 inline void writeFileAtomically(const std::string& path, std::string_view bytes) {
     const std::string tmp = temporaryNameFor(path);
     auto fail = [&](int error, const std::string& context) {
@@ -35,16 +53,9 @@ inline void writeFileAtomically(const std::string& path, std::string_view bytes)
         fail(error, "");
     }
     std::size_t done = 0;
-    while (done < bytes.size()) {
-        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            const int error = n < 0 ? errno : EIO;
-            ::close(fd);
-            fail(error, " (" + std::to_string(done) + " of " + std::to_string(bytes.size()) +
-                            " bytes written)");
-        }
-        done += std::size_t(n);
+    if (const int error = writeAll(fd, bytes, done)) {
+        ::close(fd);
+        fail(error, bytesWrittenNote(done, bytes.size()));
     }
     if (::close(fd) != 0) {
         const int error = errno;
