@@ -224,7 +224,7 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
          "distance");
     only(sub->add_option("--glossy", a.glossy,
                          "the composite's GGX prefiltered chain for glossy reflectors (5 levels, "
-                         "roughness 0.2 .. 1, layer_00_ggx_<i>.exr): auto (default) when a "
+                         "roughness 0.2 .. 1, layer_00_ggx_<i>.ktx2): auto (default) when a "
                          "reflector has roughness > 0, on, off"),
          "distance")
         ->check(CLI::IsMember({"auto", "on", "off"}));

@@ -6,7 +6,7 @@
 #include "assetcooker/lib/slurm_command.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
-#include "engine/image/compare.h"
+#include "engine/image_io/compare.h"
 
 #include <algorithm>
 #include <chrono>

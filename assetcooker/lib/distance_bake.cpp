@@ -7,7 +7,7 @@
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
 #include "engine/raytrace/embree_scene.h"
-#include "engine/scene/shading.h"
+#include "engine/math/shading.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

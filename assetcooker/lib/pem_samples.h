@@ -8,7 +8,7 @@
 #include "assetcooker/lib/pem_infer.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/pem/pem_asset.h"
-#include "components/reflection_probe/pem/pem_hull.h"
+#include "components/reflection_probe/pem/system/pem_hull.h"
 
 #include <functional>
 #include <optional>

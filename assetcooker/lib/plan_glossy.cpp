@@ -1,7 +1,7 @@
 #include "plan_glossy.h"
 
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
-#include "components/reflection_probe/reflector_roughness.h"
+#include "components/reflection_probe/system/reflector_roughness.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include "assetcooker/lib/shard_bake.h"
 #include "assetcooker/lib/signal_guard.h"
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 
 #include <algorithm>
 #include <cstdio>

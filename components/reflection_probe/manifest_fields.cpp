@@ -181,7 +181,12 @@ void ManifestFields::rethrowNamed(const std::string& field, const std::exception
 std::string ManifestFields::probeFlavour(const json& m, int version) const {
     if (string(m, "format", "") != "specula-probe")
         throw Error(file, "format", "expected \"specula-probe\"");
-    if (integer(m, "version", "", 0, 1000000) != version)
+    const int found = integer(m, "version", "", 0, 1000000);
+    if (found == 1 && version == 2)
+        throw Error(file, "version",
+                    "asset format 1 (OpenEXR textures) is older than this runtime (format 2, "
+                    "KTX2 textures): re-cook it with `specula-cook bake`");
+    if (found != version)
         throw Error(file, "version",
                     "unknown format version " + m["version"].dump() + " (this build reads " +
                         std::to_string(version) + ")");

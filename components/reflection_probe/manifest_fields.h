@@ -14,8 +14,9 @@
 
 namespace specula {
 
-// Version of the cooked-probe manifest format every flavour writes and reads.
-inline constexpr int kProbeFormatVersion = 1;
+// Version of the cooked-probe manifest format every flavour writes and reads. 2: every
+// texture is KTX 2.0 (engine/image/ktx2.h); 1 stored OpenEXR, which only the tools could read.
+inline constexpr int kProbeFormatVersion = 2;
 
 // A manifest is a few kB; an effect plan for a level of tens of thousands of nodes a few
 // MB. Anything larger is not a manifest.

@@ -15,8 +15,9 @@
 
 namespace specula::gpu {
 
-// Where relative shader paths and include paths are resolved: the repository root, given
-// by the SPECULA_SHADER_ROOT compile definition.
+// Where relative shader paths that no library embeds are looked for: the repository root in a
+// build with tests (their own shaders; the SPECULA_SHADER_ROOT compile definition), else empty.
+// Every shader the runtime and the tools use is embedded (shader_files.h).
 std::filesystem::path shaderRoot();
 
 struct ShaderSource {

@@ -1,5 +1,6 @@
 #include "engine/image/ggx_lobe_filter.h"
 
+#include "engine/core/parallel_for.h"
 #include "engine/math/cube_face.h"
 
 #include <algorithm>
@@ -9,8 +10,6 @@
 #include <cstring>
 
 #include <glm/geometric.hpp>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 namespace specula::ggx_filter {
 namespace {
@@ -201,9 +200,9 @@ CubeFaces filterLevel(const std::vector<PaddedCube>& mips, const std::vector<Lob
     CubeFaces out;
     for (Image& img : out)
         img = Image(m, m, 4);
-    tbb::parallel_for(tbb::blocked_range<int>(0, 6 * m), [&](const tbb::blocked_range<int>& r) {
+    parallelForRanges(0, 6 * m, [&](int begin, int end) {
         LobeScratch s(count);
-        for (int row = r.begin(); row < r.end(); ++row) {
+        for (int row = begin; row < end; ++row) {
             const int face = row / m, y = row % m;
             for (int x = 0; x < m; ++x) {
                 const glm::vec3 nrm =

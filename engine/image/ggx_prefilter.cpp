@@ -3,6 +3,7 @@
 #include "engine/image/ggx_lobe_filter.h"
 
 #include "engine/core/error.h"
+#include "engine/core/parallel_for.h"
 #include "engine/math/cube_face.h"
 
 #include <algorithm>
@@ -11,8 +12,6 @@
 #include <string>
 
 #include <glm/geometric.hpp>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 namespace specula {
 namespace glsl {
@@ -59,8 +58,8 @@ template <typename Texel> CubeFaces computeLevel(int m, int channels, const Texe
     CubeFaces out;
     for (Image& img : out)
         img = Image(m, m, channels);
-    tbb::parallel_for(tbb::blocked_range<int>(0, 6 * m), [&](const tbb::blocked_range<int>& r) {
-        for (int row = r.begin(); row < r.end(); ++row) {
+    parallelForRanges(0, 6 * m, [&](int begin, int end) {
+        for (int row = begin; row < end; ++row) {
             const int face = row / m, y = row % m;
             for (int x = 0; x < m; ++x)
                 texel(face, x, y, out[face].at(x, y));

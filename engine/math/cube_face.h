@@ -1,5 +1,5 @@
 #pragma once
-// C++ side of engine/math/cube_face.glsl.h (see engine/scene/shading.h for why this way).
+// C++ side of engine/math/cube_face.glsl.h (see engine/math/shading.h for why this way).
 #include "engine/core/glsl_host.h"
 
 namespace specula::glsl {

@@ -1,6 +1,6 @@
 #pragma once
 // Rasterises the environment of a scene: every entity with Mesh + Transform, shaded with
-// the house shading (engine/scene/shading.glsl.h), over an equirectangular sky. Output is
+// the house shading (engine/math/shading.glsl.h), over an equirectangular sky. Output is
 // linear float radiance, alpha 1. The same picture the probe bake and the ray tracer see.
 //
 // The renderer owns the GPU copies of meshes, textures and the sky; the components hold no

@@ -1,9 +1,9 @@
 #include "components/reflection_probe/pem/pem_probe.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "engine/core/error.h"
-#include "engine/image/compare.h"
-#include "engine/image/contact_sheet.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/compare.h"
+#include "engine/image_io/contact_sheet.h"
+#include "engine/image_io/image_io.h"
 #include "sandbox/lib/bench_internal.h"
 #include "sandbox/lib/probe_source.h"
 

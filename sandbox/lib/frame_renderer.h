@@ -1,7 +1,7 @@
 #pragma once
 // Draws a ReflectionScene with the rasteriser: environment through SceneRenderer, reflectors
 // through ReflectionProbeSystem, into an offscreen float target. Needs a current GL context.
-#include "components/reflection_probe/reflection_probe_system.h"
+#include "components/reflection_probe/system/reflection_probe_system.h"
 #include "engine/gpu/render_target.h"
 #include "engine/render/scene_renderer.h"
 #include "sandbox/lib/reflection_scene.h"

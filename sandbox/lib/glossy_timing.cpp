@@ -1,8 +1,8 @@
 #include "glossy_timing.h"
 
-#include "components/reflection_probe/distance/distance_store.h"
+#include "components/reflection_probe/distance/system/distance_store.h"
 #include "components/reflection_probe/distance/distance_textures.h"
-#include "components/reflection_probe/flavour_store_base.h"
+#include "components/reflection_probe/system/flavour_store_base.h"
 #include "components/reflection_probe/lightfield/lightfield_mips.h"
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
 #include "engine/gpu/timer.h"

@@ -1,8 +1,8 @@
 #include "reflection_scene.h"
 #include "assetcooker/lib/scene/walk_amplitude.h"
 
-#include "components/reflection_probe/reflection_probe.h"
-#include "components/reflection_probe/reflector_roughness.h"
+#include "components/reflection_probe/system/reflection_probe.h"
+#include "components/reflection_probe/system/reflector_roughness.h"
 #include "components/reflection_probe/walk_path.h"
 
 #include "engine/scene/mesh_bounds.h"

@@ -4,10 +4,10 @@
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/progress.h"
-#include "engine/gpu/context.h"
-#include "engine/image/compare.h"
-#include "engine/image/contact_sheet.h"
-#include "engine/image/image_io.h"
+#include "engine/context/context.h"
+#include "engine/image_io/compare.h"
+#include "engine/image_io/contact_sheet.h"
+#include "engine/image_io/image_io.h"
 #include "sandbox/lib/frame_renderer.h"
 
 #include <cmath>

@@ -6,7 +6,7 @@
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
 #include "components/reflection_probe/pem/pem_probe.h"
-#include "components/reflection_probe/reflection_probe.h"
+#include "components/reflection_probe/system/reflection_probe.h"
 #include "sandbox/lib/probe_source.h"
 
 #include <optional>

@@ -5,11 +5,11 @@
 #include "walk.h"
 
 #include "engine/core/error.h"
-#include "engine/gpu/context.h"
+#include "engine/context/context.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/gpu/timer.h"
-#include "engine/image/compare.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/compare.h"
+#include "engine/image_io/image_io.h"
 #include "sandbox/lib/frame_renderer.h"
 
 #include <epoxy/gl.h>

@@ -11,7 +11,7 @@
 // read with the seeds' face-res (2 x 12), refused before allocation when the header differs.
 // An allocation past these limits is a finding: it means a limit is not checked first.
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #include "engine/core/error.h"
-#include "engine/gpu/context.h"
+#include "engine/context/context.h"
 
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 #pragma once
 // One headless context per test suite: context creation costs more than most GPU tests.
-#include "engine/gpu/context.h"
+#include "engine/context/context.h"
 
 #include <gtest/gtest.h>
 

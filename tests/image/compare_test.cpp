@@ -1,5 +1,5 @@
 #include "engine/core/error.h"
-#include "engine/image/compare.h"
+#include "engine/image_io/compare.h"
 
 #include <cmath>
 #include <limits>

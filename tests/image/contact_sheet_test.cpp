@@ -1,4 +1,4 @@
-#include "engine/image/contact_sheet.h"
+#include "engine/image_io/contact_sheet.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 #include "numerics/bad_input_support.h"
 
 #include <cmath>

@@ -5,7 +5,8 @@
 #include "bad_input_support.h"
 
 #include "components/reflection_probe/distance/distance_probe_asset.h"
-#include "engine/image/image_io.h"
+#include "engine/image/ktx2.h"
+#include "engine/image_io/image_io.h"
 #include "probe/analytic_probe.h"
 
 #include <gtest/gtest.h>
@@ -87,9 +88,9 @@ protected:
     // Rewrites layer i's image through `edit` and stores its new checksum: only the content
     // is wrong, as a corrupted-then-recooked or hand-edited file would be.
     void tamperLayer(int i, const std::function<void(Image&)>& edit) {
-        Image img = readFloatExr(layer(i).string());
+        Image img = readKtx2(layer(i).string()).levels[0];
         edit(img);
-        writeImage(layer(i).string(), img);
+        writeKtx2Cube(layer(i).string(), img);
         json m = good_;
         m["layers"][std::size_t(i)]["checksum"] = fileChecksum(layer(i).string());
         writeManifest(m);
@@ -131,14 +132,14 @@ TEST_F(BadAssetContent, AllNanCompositeIsRefused) {
         for (float& v : img.pixels)
             v = std::numeric_limits<float>::quiet_NaN();
     });
-    expectNames(readError(), {"layer_00.exr", "radiance", "nan"});
+    expectNames(readError(), {"layer_00.ktx2", "radiance", "nan"});
 }
 
 TEST_F(BadAssetContent, RadianceBeyondHalfFloatIsRefused) {
     tamperLayer(1, [](Image& img) { img.at(3, 2)[1] = 1e38f; });
-    expectNames(readError(), {"layer_01.exr", "radiance", "1e+38", "texel (3, 2)", "channel G"});
+    expectNames(readError(), {"layer_01.ktx2", "radiance", "1e+38", "texel (3, 2)", "channel G"});
     tamperLayer(1, [](Image& img) { img.at(3, 2)[1] = -0.5f; });
-    expectNames(readError(), {"layer_01.exr", "radiance", "-0.5"});
+    expectNames(readError(), {"layer_01.ktx2", "radiance", "-0.5"});
 }
 
 TEST_F(BadAssetContent, DistancesOutsideZeroToDInfAreRefused) {
@@ -146,18 +147,18 @@ TEST_F(BadAssetContent, DistancesOutsideZeroToDInfAreRefused) {
                          std::numeric_limits<float>::quiet_NaN(), 1000.5f};
     for (const float d : bad) {
         tamperLayer(2, [&](Image& img) { img.at(5, 7 * kRes / 2)[3] = d; });
-        expectNames(readError(), {"layer_02.exr", "distance", "face -Y texel (5, 8)"});
+        expectNames(readError(), {"layer_02.ktx2", "distance", "face -Y texel (5, 8)"});
     }
 }
 
-TEST_F(BadAssetContent, PngRenamedExrIsRefused) {
-    Image img = readFloatExr(layer(1).string());
+TEST_F(BadAssetContent, PngRenamedKtx2IsRefused) {
+    Image img = readKtx2(layer(1).string()).levels[0];
     writeImage((dir_ / "fake.png").string(), img);
     fs::rename(dir_ / "fake.png", layer(1));
     json m = good_;
     m["layers"][1]["checksum"] = fileChecksum(layer(1).string());
     writeManifest(m);
-    expectNames(readError(), {"layer_01.exr", "format", "OpenEXR", "png"});
+    expectNames(readError(), {"layer_01.ktx2", "identifier", "not a KTX 2.0 file"});
 }
 
 TEST_F(BadAssetContent, ManifestNumbersAreRangeChecked) {
@@ -212,7 +213,7 @@ TEST_F(BadAssetContent, LayerFileThatIsAFifoIsRefusedWithoutBlocking) {
     // Layer 0: the child meets it before any image is decoded (see errorOfInChild).
     replaceLayerFile(0, [](const fs::path& p) { ASSERT_EQ(::mkfifo(p.c_str(), 0600), 0); });
     expectNames(errorOfInChild([&] { readDistanceProbe(manifest().string()); }),
-                {"manifest.json", "layers[0].file", "layer_00.exr", "FIFO"});
+                {"manifest.json", "layers[0].file", "layer_00.ktx2", "FIFO"});
 }
 
 TEST_F(BadAssetContent, LayerFileLinkedToDevZeroIsRefusedWithoutSpinning) {
@@ -248,7 +249,7 @@ TEST_F(BadAssetContent, WriterRefusesWhatTheReaderWould) {
     a.layers[1].faces[2].at(1, 1)[3] = -3.f;
     const fs::path out = dir_ / "never";
     expectNames(errorOf([&] { writeDistanceProbe(a, out.string(), "analytic"); }),
-                {"layer_01.exr", "distance", "-3"});
+                {"layer_01.ktx2", "distance", "-3"});
     EXPECT_FALSE(fs::exists(out));
     a = ballInBox();
     a.centre = glm::vec3(3e7f, 0.f, 0.f);

@@ -42,7 +42,7 @@ protected:
         mutate(m);
         const fs::path path = dir_ / "probe" / "manifest.json";
         std::ofstream(path) << m.dump(2);
-        const std::string before = slurp(dir_ / "probe" / "layer_00.exr");
+        const std::string before = slurp(dir_ / "probe" / "layer_00.ktx2");
         try {
             readDistanceProbe(path.string());
             ADD_FAILURE() << "accepted a manifest with a bad " << field;
@@ -53,7 +53,7 @@ protected:
             EXPECT_NE(what.find(file), std::string::npos) << what;
             EXPECT_NE(what.find(field), std::string::npos) << what;
         }
-        EXPECT_EQ(slurp(dir_ / "probe" / "layer_00.exr"), before);
+        EXPECT_EQ(slurp(dir_ / "probe" / "layer_00.ktx2"), before);
     }
 
     fs::path dir_;
@@ -78,7 +78,7 @@ TEST_F(BadManifest, EveryMalformedFieldIsNamed) {
     expectRefused([](json& m) { m["range_D"] = -1; }, "range_D");
     expectRefused([](json& m) { m["d_inf"] = nullptr; }, "d_inf");
     expectRefused([](json& m) { m["face_res"] = 1e9; }, "face_res");
-    expectRefused([](json& m) { m["face_res"] = 5; }, "size", "layer_00.exr");
+    expectRefused([](json& m) { m["face_res"] = 5; }, "pixelWidth", "layer_00.ktx2");
     expectRefused([](json& m) { m["centre"] = json::array({1, 2}); }, "centre");
     expectRefused([](json& m) { m["centre"] = json::array({1, "a", 2}); }, "centre");
     expectRefused([](json& m) { m["box"] = 7; }, "box.min");
@@ -97,12 +97,12 @@ TEST_F(BadManifest, EveryMalformedFieldIsNamed) {
                   "layers[0].solid_angle_sr");
     expectRefused([](json& m) { m["layers"][0]["file"] = "../etc/passwd"; }, "layers[0].file");
     expectRefused([](json& m) { m["layers"][0]["file"] = "/etc/passwd"; }, "layers[0].file");
-    expectRefused([](json& m) { m["layers"][0]["file"] = "missing.exr"; }, "layers[0].file");
+    expectRefused([](json& m) { m["layers"][0]["file"] = "missing.ktx2"; }, "layers[0].file");
     expectRefused([](json& m) { m["layers"][0]["checksum"] = "fnv1a64:0000000000000000"; },
                   "layers[0].checksum");
     expectRefused(
         [](json& m) {
-            m["sky"] = {{"file", "missing.exr"}, {"checksum", "x"}};
+            m["sky"] = {{"file", "missing.ktx2"}, {"checksum", "x"}};
         },
         "sky.file");
 }
@@ -121,9 +121,9 @@ TEST_F(BadManifest, NotJsonAndTruncatedFiles) {
             EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
         }
     }
-    // A truncated EXR whose checksum was updated to match: the image reader must refuse it.
+    // A truncated KTX2 whose checksum was updated to match: the image reader must refuse it.
     std::ofstream(path) << text;
-    const fs::path exr = dir_ / "probe" / "layer_00.exr";
+    const fs::path exr = dir_ / "probe" / "layer_00.ktx2";
     const std::string bytes = slurp(exr);
     std::ofstream(exr, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
     json m = json::parse(text);
@@ -131,9 +131,9 @@ TEST_F(BadManifest, NotJsonAndTruncatedFiles) {
     std::ofstream(path) << m.dump();
     try {
         readDistanceProbe(path.string());
-        ADD_FAILURE() << "accepted a truncated EXR";
+        ADD_FAILURE() << "accepted a truncated KTX2";
     } catch (const Error& e) {
-        std::printf("[bad-input] truncated EXR  -> %s\n", e.what());
-        EXPECT_NE(std::string(e.what()).find("layer_00.exr"), std::string::npos) << e.what();
+        std::printf("[bad-input] truncated KTX2  -> %s\n", e.what());
+        EXPECT_NE(std::string(e.what()).find("layer_00.ktx2"), std::string::npos) << e.what();
     }
 }

@@ -6,7 +6,7 @@
 // and bilinear filtering: the reference is the colour function at the ray's direction.
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>

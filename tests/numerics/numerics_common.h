@@ -4,8 +4,8 @@
 // real shared lookup (shaders/distance_lookup.glsl.h) over a list of rays on the GPU, so each
 // hard case drives both the C++ twin and the shader through exactly the same inputs.
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
-#include "components/reflection_probe/reflection_probe_system.h"
-#include "engine/gpu/context.h"
+#include "components/reflection_probe/system/reflection_probe_system.h"
+#include "engine/context/context.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/gpu/render_target.h"
 #include "probe/analytic_probe.h"
@@ -339,7 +339,7 @@ private:
     static constexpr const char* kFrag = R"(
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"
-#include "engine/scene/shading.glsl.h"
+#include "engine/math/shading.glsl.h"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
 
 #include "components/reflection_probe/distance/shaders/distance_lookup_types.glsl.h"

@@ -1,7 +1,7 @@
 // The hull flags of the two-layer PEM (issue 12): which triangles of a reflector can never see
 // the reflector again, against closed-form meshes whose hull is known. Each mesh is built here
 // from its parametric form, apart from any asset.
-#include "components/reflection_probe/pem/pem_hull.h"
+#include "components/reflection_probe/pem/system/pem_hull.h"
 
 #include <gtest/gtest.h>
 

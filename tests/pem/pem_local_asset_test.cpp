@@ -2,8 +2,9 @@
 // local-layer EXR that is missing, of the wrong size or without alpha, naming the file and the
 // field, while a manifest without "local_layer" reads as a single-map asset.
 #include "components/reflection_probe/pem/pem_asset.h"
+#include "engine/image/ktx2.h"
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 #include "pem_files_fixture.h"
 #include "pem_fixtures.h"
 
@@ -34,7 +35,7 @@ class PemLocalFiles : public test::PemFilesTest {
 protected:
     PemLocalFiles() : PemFilesTest("specula-pem-local") {}
 
-    std::string localFile(int k) const { return file("local_0" + std::to_string(k) + ".exr"); }
+    std::string localFile(int k) const { return file("local_0" + std::to_string(k) + ".ktx2"); }
 };
 
 } // namespace
@@ -52,11 +53,11 @@ TEST_F(PemLocalFiles, LayeredAssetRoundTrips) {
         EXPECT_EQ(m.local, a.localSphere);
         EXPECT_EQ(m.texels, a.samples[k].local.texels);
         EXPECT_EQ(m.alpha, a.samples[k].local.alpha);
-        EXPECT_EQ(b.samples[k].localFile, "local_0" + std::to_string(k) + ".exr");
+        EXPECT_EQ(b.samples[k].localFile, "local_0" + std::to_string(k) + ".ktx2");
         EXPECT_EQ(b.samples[k].localChecksum, fileChecksum(localFile(int(k))));
         EXPECT_EQ(b.samples[k].map.texels, a.samples[k].map.texels);
     }
-    const Image img = readFloatExr(localFile(1));
+    const Image img = readKtx2(localFile(1)).levels[0];
     EXPECT_EQ(img.width, 3);
     EXPECT_EQ(img.height, 18);
     EXPECT_EQ(img.channels, 4);
@@ -92,24 +93,24 @@ TEST_F(PemLocalFiles, ReaderRefusesABadLocalLayerNamingFileAndField) {
     expectRefused("manifest.json", "samples[0].local.file");
 
     rewrite(); // an image of the wrong size under a matching checksum
-    writeImage(localFile(0), Image(4, 24, 4));
+    writeKtx2Cube(localFile(0), Image(4, 24, 4));
     editManifest(
         [&](json& m) { m["samples"][0]["local"]["checksum"] = fileChecksum(localFile(0)); });
     expectRefused("manifest.json", "samples[0].local.file");
 
     rewrite(); // RGB only: no coverage
-    writeImage(localFile(1), Image(3, 18, 3));
+    writeKtx2Cube(localFile(1), Image(3, 18, 3));
     editManifest(
         [&](json& m) { m["samples"][1]["local"]["checksum"] = fileChecksum(localFile(1)); });
-    expectRefused("local_01.exr", "channels");
+    expectRefused("local_01.ktx2", "channels");
 
     rewrite(); // a coverage past 1
-    Image img = readFloatExr(localFile(0));
+    Image img = readKtx2(localFile(0)).levels[0];
     img.at(1, 7)[3] = 1.5f;
-    writeImage(localFile(0), img);
+    writeKtx2Cube(localFile(0), img);
     editManifest(
         [&](json& m) { m["samples"][0]["local"]["checksum"] = fileChecksum(localFile(0)); });
-    expectRefused("local_00.exr", "alpha");
+    expectRefused("local_00.ktx2", "alpha");
 
     rewrite();
     editManifest([](json& m) { m["samples"][1].erase("local"); });
@@ -127,7 +128,7 @@ TEST_F(PemLocalFiles, WriterRefusesWhatTheReaderWould) {
         writePemProbe(a, dir(), "analytic");
         ADD_FAILURE() << "expected alpha to be refused";
     } catch (const Error& e) {
-        EXPECT_TRUE(e.file().ends_with("local_01.exr")) << e.what();
+        EXPECT_TRUE(e.file().ends_with("local_01.ktx2")) << e.what();
         EXPECT_EQ(e.field(), "alpha") << e.what();
     }
     a.samples[1].local.alpha[4] = 0.25f;

@@ -2,8 +2,9 @@
 // names the manifest and the field when a level's file is missing or mis-sized, and a
 // single-level asset is written and read exactly as before ("mip_levels" and "mips" absent).
 #include "components/reflection_probe/pem/pem_asset.h"
+#include "engine/image/ktx2.h"
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 #include "pem_files_fixture.h"
 #include "pem_fixtures.h"
 
@@ -41,17 +42,17 @@ TEST_F(PemMipFiles, EveryLevelRoundTrips) {
     const json m = json::parse(std::ifstream(manifest()));
     EXPECT_EQ(m["mip_levels"], 3);
     ASSERT_EQ(m["samples"][1]["mips"].size(), 2u);
-    EXPECT_EQ(m["samples"][1]["mips"][0]["file"], "sample_01_mip1.exr");
+    EXPECT_EQ(m["samples"][1]["mips"][0]["file"], "sample_01_mip1.ktx2");
     const PemAsset b = readPemProbe(manifest());
     EXPECT_EQ(b.mipLevels, 3);
     for (std::size_t k = 0; k < 2; ++k) {
         EXPECT_EQ(b.samples[k].map.levels, 3);
         EXPECT_EQ(b.samples[k].map.texels, a.samples[k].map.texels);
     }
-    const Image level1 = readFloatExr(file("sample_00_mip1.exr"));
+    const Image level1 = readKtx2(file("sample_00_mip1.ktx2")).levels[0];
     EXPECT_EQ(level1.width, 3);
     EXPECT_EQ(level1.height, 18);
-    const Image level2 = readFloatExr(file("sample_01_mip2.exr"));
+    const Image level2 = readKtx2(file("sample_01_mip2.ktx2")).levels[0];
     EXPECT_EQ(level2.width, 1);
     EXPECT_EQ(level2.height, 6);
 }
@@ -61,7 +62,7 @@ TEST_F(PemMipFiles, SingleLevelAssetsAreWrittenAsBefore) {
     const json m = json::parse(std::ifstream(manifest()));
     EXPECT_FALSE(m.contains("mip_levels"));
     EXPECT_FALSE(m["samples"][0].contains("mips"));
-    EXPECT_FALSE(fs::exists(file("sample_00_mip1.exr")));
+    EXPECT_FALSE(fs::exists(file("sample_00_mip1.ktx2")));
     const PemAsset b = readPemProbe(manifest());
     EXPECT_EQ(b.mipLevels, 1);
     EXPECT_EQ(b.samples[0].map.levels, 1);
@@ -75,13 +76,13 @@ TEST_F(PemMipFiles, ReaderRefusesAMissingOrMisSizedLevelNamingFileAndField) {
         writePemProbe(a, dir(), "analytic");
     };
     rewrite();
-    fs::remove(file("sample_01_mip2.exr"));
+    fs::remove(file("sample_01_mip2.ktx2"));
     expectRefused("manifest.json", "samples[1].mips[1].file");
 
     rewrite(); // a level of the wrong size under a matching checksum
-    writeImage(file("sample_00_mip1.exr"), Image(2, 12, 3));
+    writeKtx2Cube(file("sample_00_mip1.ktx2"), Image(2, 12, 3));
     editManifest([&](json& m) {
-        m["samples"][0]["mips"][0]["checksum"] = fileChecksum(file("sample_00_mip1.exr"));
+        m["samples"][0]["mips"][0]["checksum"] = fileChecksum(file("sample_00_mip1.ktx2"));
     });
     expectRefused("manifest.json", "samples[0].mips[0].file");
 
@@ -98,13 +99,13 @@ TEST_F(PemMipFiles, ReaderRefusesAMissingOrMisSizedLevelNamingFileAndField) {
     expectRefused("manifest.json", "mip_levels");
 
     rewrite(); // a level's radiance out of range names its file's level
-    Image img = readFloatExr(file("sample_00_mip2.exr"));
+    Image img = readKtx2(file("sample_00_mip2.ktx2")).levels[0];
     img.at(0, 4)[1] = -1.f;
-    writeImage(file("sample_00_mip2.exr"), img);
+    writeKtx2Cube(file("sample_00_mip2.ktx2"), img);
     editManifest([&](json& m) {
-        m["samples"][0]["mips"][1]["checksum"] = fileChecksum(file("sample_00_mip2.exr"));
+        m["samples"][0]["mips"][1]["checksum"] = fileChecksum(file("sample_00_mip2.ktx2"));
     });
-    expectRefused("sample_00.exr (level 2)", "radiance");
+    expectRefused("sample_00.ktx2 (level 2)", "radiance");
 }
 
 TEST_F(PemMipFiles, WriterRefusesMapsUnlikeTheAssetsLevels) {

@@ -8,8 +8,8 @@
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
-#include "components/reflection_probe/pem/pem_store.h"
-#include "engine/gpu/context.h"
+#include "components/reflection_probe/pem/system/pem_store.h"
+#include "engine/context/context.h"
 #include "pem_room.h"
 #include "support/probe_room.h"
 

@@ -1,7 +1,7 @@
 // Reflectors found from the glTF materials (metallic and smooth), not only from the markup:
 // small glTF files written here, loaded by the real loader, read by readSceneMarkup.
 #include "assetcooker/lib/scene/scene_markup.h"
-#include "components/reflection_probe/reflector_roughness.h"
+#include "components/reflection_probe/system/reflector_roughness.h"
 #include "engine/core/error.h"
 #include "engine/scene/components.h"
 #include "engine/scene/gltf_loader.h"

@@ -3,7 +3,7 @@
 // seeing mirrors, the bowl seeing itself - a large part of the picture. These tests hold the
 // scene to that with the Embree ground truth, and to the sandbox's room to move it.
 #include "assetcooker/lib/scene/probe_setup.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 #include "engine/raytrace/ground_truth.h"
 #include "engine/scene/mesh_bounds.h"
 

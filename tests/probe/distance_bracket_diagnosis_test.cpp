@@ -18,7 +18,7 @@
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
 #include "engine/raytrace/ground_truth.h"
-#include "engine/scene/shading.h"
+#include "engine/math/shading.h"
 #include "support/composite_probe.h"
 #include "support/lookup_config.h"
 #include "support/mirror_rays.h"

@@ -1,7 +1,7 @@
 // The distance-cubemap shader against its CPU twin and against the Embree ground truth, on
 // the default room.
-#include "engine/image/compare.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/compare.h"
+#include "engine/image_io/image_io.h"
 #include "probe_fixture.h"
 #include "twin_agreement.h"
 

@@ -4,7 +4,7 @@
 // the real sizes of the textures it holds in layered mode.
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "components/reflection_probe/distance/distance_textures.h"
-#include "engine/gpu/context.h"
+#include "engine/context/context.h"
 #include "engine/gpu/render_target.h"
 #include "engine/math/cube_face.h"
 #include "probe_fixture.h"

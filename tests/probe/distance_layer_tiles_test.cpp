@@ -7,7 +7,7 @@
 // tile borders, face edges and cube corners.
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "components/reflection_probe/distance/distance_textures.h"
-#include "engine/gpu/context.h"
+#include "engine/context/context.h"
 #include "engine/gpu/render_target.h"
 #include "support/fullscreen_pass.h"
 

@@ -6,7 +6,7 @@
 #include "assetcooker/lib/level_bake.h"
 #include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
-#include "engine/image/compare.h"
+#include "engine/image_io/compare.h"
 #include "engine/image/ggx_albedo.h"
 #include "engine/raytrace/ground_truth.h"
 #include "support/probe_room.h"

@@ -8,7 +8,7 @@
 #include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "engine/core/glsl_host.h"
-#include "engine/image/compare.h"
+#include "engine/image_io/compare.h"
 #include "engine/raytrace/ground_truth.h"
 #include "lightfield_glossy_room.h"
 #include "support/probe_room.h"

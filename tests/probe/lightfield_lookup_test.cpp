@@ -4,7 +4,7 @@
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 #include "engine/math/cube_face.h"
 
 #include <gtest/gtest.h>

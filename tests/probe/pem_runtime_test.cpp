@@ -7,11 +7,12 @@
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_blend.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
-#include "components/reflection_probe/pem/pem_store.h"
+#include "components/reflection_probe/pem/system/pem_store.h"
+#include "engine/image/ktx2.h"
 #include "engine/core/error.h"
-#include "engine/gpu/context.h"
-#include "engine/image/compare.h"
-#include "engine/image/image_io.h"
+#include "engine/context/context.h"
+#include "engine/image_io/compare.h"
+#include "engine/image_io/image_io.h"
 #include "engine/raytrace/ground_truth.h"
 #include "engine/scene/mesh_bounds.h"
 #include "pem/pem_files_fixture.h"
@@ -82,7 +83,7 @@ class PemAssetFiles : public test::PemFilesTest {
 protected:
     PemAssetFiles() : PemFilesTest("specula-pem-asset") {}
 
-    std::string sampleFile(int k) const { return dir() + "/sample_0" + std::to_string(k) + ".exr"; }
+    std::string sampleFile(int k) const { return dir() + "/sample_0" + std::to_string(k) + ".ktx2"; }
 };
 
 } // namespace
@@ -107,7 +108,7 @@ TEST_F(PemAssetFiles, RoundTripKeepsEveryFieldAndTexel) {
         EXPECT_EQ(b.samples[k].map.faceRes, 4);
         EXPECT_EQ(b.samples[k].map.boxMin, a.boxMin);
         EXPECT_EQ(b.samples[k].map.texels, a.samples[k].map.texels) << "sample " << k;
-        EXPECT_EQ(b.samples[k].file, "sample_0" + std::to_string(k) + ".exr");
+        EXPECT_EQ(b.samples[k].file, "sample_0" + std::to_string(k) + ".ktx2");
         EXPECT_EQ(b.samples[k].checksum, fileChecksum(sampleFile(int(k))));
     }
 }
@@ -125,7 +126,7 @@ TEST_F(PemAssetFiles, WriterRefusesWhatTheReaderWould) {
         EXPECT_FALSE(fs::exists(dir())) << "nothing is written on failure";
     };
     a.samples[1].map.texels[5].g = NAN;
-    refused("sample_01.exr", "radiance");
+    refused("sample_01.ktx2", "radiance");
     a.samples[1].map.texels[5].g = 0.5f;
     a.samples[2].parameter = 0.5f; // equal to sample 1's
     refused("manifest.json", "samples[2].parameter");
@@ -152,11 +153,11 @@ TEST_F(PemAssetFiles, ReaderRefusesBadInputNamingFileAndField) {
     expectRefused("manifest.json", "samples[0].checksum");
 
     rewrite(); // a NaN texel, checksum updated so that the content check is reached
-    Image img = readFloatExr(sampleFile(2));
+    Image img = readKtx2(sampleFile(2)).levels[0];
     img.at(3, 9)[1] = NAN;
-    writeImage(sampleFile(2), img);
+    writeKtx2Cube(sampleFile(2), img);
     editManifest([&](json& m) { m["samples"][2]["checksum"] = fileChecksum(sampleFile(2)); });
-    expectRefused("sample_02.exr", "radiance");
+    expectRefused("sample_02.ktx2", "radiance");
 
     rewrite();
     editManifest([](json& m) { m["samples"][2]["parameter"] = 0.25; });
@@ -190,9 +191,9 @@ TEST_F(PemAssetFiles, DistanceGeometryRoundTrips) {
     EXPECT_EQ(b.geometry, "distance");
     ASSERT_NE(b.distance, nullptr);
     EXPECT_EQ(*b.distance, *a.distance); // distances, d_inf, range, tolerance, steps
-    EXPECT_EQ(b.distanceFile, "distance.exr");
-    EXPECT_EQ(b.distanceChecksum, fileChecksum(dir() + "/distance.exr"));
-    const Image img = readFloatExr(dir() + "/distance.exr");
+    EXPECT_EQ(b.distanceFile, "distance.ktx2");
+    EXPECT_EQ(b.distanceChecksum, fileChecksum(dir() + "/distance.ktx2"));
+    const Image img = readKtx2(dir() + "/distance.ktx2").levels[0];
     EXPECT_EQ(img.width, 6);
     EXPECT_EQ(img.height, 36);
     for (const PemSampleMap& s : b.samples)
@@ -219,20 +220,20 @@ TEST_F(PemAssetFiles, ReaderRefusesBadDistanceGeometryNamingFileAndField) {
         fs::remove_all(dir());
         writePemProbe(a, dir(), "analytic");
     };
-    const std::string distanceFile = dir() + "/distance.exr";
+    const std::string distanceFile = dir() + "/distance.ktx2";
     rewrite(); // tampered pixels: the checksum no longer matches
-    Image img = readFloatExr(distanceFile);
+    Image img = readKtx2(distanceFile).levels[0];
     img.at(2, 11)[0] += 1.f;
-    writeImage(distanceFile, img);
+    writeKtx2Cube(distanceFile, img);
     expectRefused("manifest.json", "distance.checksum");
 
     for (const float bad : {float(NAN), -1.f, 0.f, 2000.f}) {
         rewrite(); // checksum updated, so that the content check is reached
-        img = readFloatExr(distanceFile);
+        img = readKtx2(distanceFile).levels[0];
         img.at(2, 11)[0] = bad;
-        writeImage(distanceFile, img);
+        writeKtx2Cube(distanceFile, img);
         editManifest([&](json& m) { m["distance"]["checksum"] = fileChecksum(distanceFile); });
-        expectRefused("distance.exr", "distance");
+        expectRefused("distance.ktx2", "distance");
     }
 
     rewrite();

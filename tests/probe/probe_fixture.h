@@ -4,9 +4,9 @@
 // Components, engine and the cooking API only: no sandbox code.
 #include "assetcooker/lib/cook.h"
 #include "components/reflection_probe/distance/distance_probe.h"
-#include "components/reflection_probe/distance/distance_store.h"
-#include "engine/gpu/context.h"
-#include "engine/image/compare.h"
+#include "components/reflection_probe/distance/system/distance_store.h"
+#include "engine/context/context.h"
+#include "engine/image_io/compare.h"
 #include "support/probe_room.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // The rasteriser and the Embree tracer must draw the same picture of the environment: this
 // pins camera, handedness, texture orientation, sky mapping and shading conventions once for
 // everything built on them.
-#include "engine/image/compare.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/compare.h"
+#include "engine/image_io/image_io.h"
 #include "probe_fixture.h"
 
 #include <cstdio>

@@ -7,10 +7,10 @@
 // each band draws what its own uniform roughness draws, unlike the mean roughness.
 #include "assetcooker/lib/lightfield_bake.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
-#include "components/reflection_probe/distance/distance_level_store.h"
+#include "components/reflection_probe/distance/system/distance_level_store.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
-#include "components/reflection_probe/lightfield/lightfield_store.h"
-#include "components/reflection_probe/reflector_roughness.h"
+#include "components/reflection_probe/lightfield/system/lightfield_store.h"
+#include "components/reflection_probe/system/reflector_roughness.h"
 #include "engine/image/ggx_albedo.h"
 #include "probe_fixture.h"
 #include "twin_agreement.h"

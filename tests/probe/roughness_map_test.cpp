@@ -6,8 +6,8 @@
 // twin reading it per pixel beats the twin given the map's mean (roughness_map_truth_test.cpp).
 #include "assetcooker/lib/plan_glossy.h"
 #include "assetcooker/lib/scene/probe_setup.h"
-#include "components/reflection_probe/reflection_probe.h"
-#include "components/reflection_probe/reflector_roughness.h"
+#include "components/reflection_probe/system/reflection_probe.h"
+#include "components/reflection_probe/system/reflector_roughness.h"
 #include "engine/scene/components.h"
 
 #include <OpenImageIO/imageio.h>

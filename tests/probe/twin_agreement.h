@@ -5,7 +5,7 @@
 // float32), the twin runs on exactly those inputs with the configuration the system holds
 // now, and the two are compared on the mirror pixels of `mask`.
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
-#include "components/reflection_probe/distance/distance_store.h"
+#include "components/reflection_probe/distance/system/distance_store.h"
 #include "support/probe_room.h"
 
 #include <algorithm>

@@ -3,8 +3,8 @@
 // sky the integral of the lobe, both computed here by quadrature from the definitions;
 // seed-to-seed noise falls at least as 1/sqrt(samples); a seed fixes the image whatever the
 // threads; tint, bounce limit and environmentOnly hold for rough mirrors as for mirrors.
-#include "engine/image/compare.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/compare.h"
+#include "engine/image_io/image_io.h"
 #include "engine/raytrace/ground_truth.h"
 #include "engine/scene/components.h"
 #include "engine/scene/gltf_loader.h"

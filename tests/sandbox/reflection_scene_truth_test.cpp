@@ -3,8 +3,8 @@
 // is traced GGX-sampled at its roughness, and one with a roughness map at its map's value at
 // each hit. Each against a GroundTruthTracer given the same roughness explicitly, bit for bit.
 #include "assetcooker/lib/scene/probe_setup.h"
-#include "components/reflection_probe/reflection_probe.h"
-#include "components/reflection_probe/reflector_roughness.h"
+#include "components/reflection_probe/system/reflection_probe.h"
+#include "components/reflection_probe/system/reflector_roughness.h"
 #include "sandbox/lib/reflection_scene.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Drives the specula-sandbox executable through the shell on small frames: help, command-line
 // and input errors, a headless walk, a quick bench (files exist, parse and hold sane figures)
 // and the window walk under Xvfb.
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 
 #include "support/csv_table.h"
 #include "support/shell_tool.h"

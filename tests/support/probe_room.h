@@ -6,7 +6,7 @@
 // ReflectionProbeSystem into an offscreen float target; needs a current GL context.
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "assetcooker/lib/scene/scene_markup.h"
-#include "components/reflection_probe/reflection_probe_system.h"
+#include "components/reflection_probe/system/reflection_probe_system.h"
 #include "engine/gpu/render_target.h"
 #include "engine/render/scene_renderer.h"
 

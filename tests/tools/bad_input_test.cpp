@@ -116,7 +116,7 @@ protected:
             << R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 4000000000000}],)"
                R"( "scenes": [{"nodes": []}], "scene": 0})";
         std::ofstream(root_ / "notimage.exr") << "not an EXR";
-        const std::string exr = slurp(root_ / "work" / "probe" / "layer_00.exr");
+        const std::string exr = slurp(root_ / "work" / "probe" / "layer_00.ktx2");
         std::ofstream(root_ / "truncated.exr", std::ios::binary) << exr.substr(0, exr.size() / 3);
         std::ofstream(root_ / "afile") << "x";
         before_ = snapshot(root_ / "work" / "probe");

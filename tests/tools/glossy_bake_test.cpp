@@ -7,9 +7,10 @@
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/manifest_fields.h"
+#include "engine/image/ktx2.h"
 #include "engine/core/error.h"
 #include "engine/image/ggx_prefilter.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 #include "support/scratch_dir_test.h"
 #include "support/shell_tool.h"
 
@@ -109,9 +110,9 @@ void editLevel(const fs::path& manifest, std::size_t k, const std::function<void
     json m = readJson(manifest);
     json& entry = m["glossy"]["levels"][k];
     const fs::path file = manifest.parent_path() / entry["file"].get<std::string>();
-    Image img = readFloatExr(file.string());
+    Image img = readKtx2(file.string()).levels[0];
     edit(img);
-    writeImage(file.string(), img);
+    writeKtx2Cube(file.string(), img);
     entry["checksum"] = fileChecksum(file.string());
     writeJson(manifest, m);
 }
@@ -129,7 +130,7 @@ TEST_F(GlossyBakeTest, OnWritesTheCompositesChainAndTheReaderGivesItBackBitForBi
     ASSERT_EQ(entries.size(), glossy);
     for (std::size_t k = 0; k < glossy; ++k) {
         const int level = int(k) + 1;
-        EXPECT_EQ(entries[k]["file"], "layer_00_ggx_" + std::to_string(level) + ".exr");
+        EXPECT_EQ(entries[k]["file"], "layer_00_ggx_" + std::to_string(level) + ".ktx2");
         // The roughness the asset's comment states (i / L) is the chain's own.
         EXPECT_NEAR(entries[k]["roughness"].get<double>(), double(level) / double(glossy), 1e-12);
         EXPECT_FLOAT_EQ(float(entries[k]["roughness"].get<double>()),
@@ -198,7 +199,7 @@ TEST_F(GlossyBakeTest, AutoWritesTheLevelsWhenAReflectorIsRoughAndOffDoesNot) {
 
 TEST_F(GlossyBakeTest, AFlippedByteInALevelIsAChecksumErrorNamingTheLevel) {
     const fs::path manifest = glossyProbe();
-    const fs::path file = manifest.parent_path() / "layer_00_ggx_3.exr";
+    const fs::path file = manifest.parent_path() / "layer_00_ggx_3.ktx2";
     {
         std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
         f.seekg(-16, std::ios::end);
@@ -210,7 +211,7 @@ TEST_F(GlossyBakeTest, AFlippedByteInALevelIsAChecksumErrorNamingTheLevel) {
     const Error e = readError(manifest);
     EXPECT_EQ(e.file(), manifest.string()) << e.what();
     EXPECT_EQ(e.field(), "glossy.levels[2].checksum") << e.what();
-    EXPECT_NE(std::string(e.what()).find("layer_00_ggx_3.exr"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("layer_00_ggx_3.ktx2"), std::string::npos) << e.what();
 }
 
 TEST_F(GlossyBakeTest, ALevelOfTheWrongSizeIsRefusedNamingTheLevel) {
@@ -222,7 +223,7 @@ TEST_F(GlossyBakeTest, ALevelOfTheWrongSizeIsRefusedNamingTheLevel) {
     writeJson(manifest, m);
     const Error e = readError(manifest);
     EXPECT_EQ(e.field(), "glossy.levels[1].size") << e.what();
-    EXPECT_NE(std::string(e.what()).find("layer_00_ggx_3.exr"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("layer_00_ggx_3.ktx2"), std::string::npos) << e.what();
 }
 
 TEST_F(GlossyBakeTest, ContentAndFieldsALevelCannotHoldAreRefusedNamingTheLevel) {
@@ -257,12 +258,12 @@ TEST_F(GlossyBakeTest, ContentAndFieldsALevelCannotHoldAreRefusedNamingTheLevel)
          },
          "glossy.levels[1].roughness"},
         {"missing file",
-         [](const fs::path& m) { fs::remove(m.parent_path() / "layer_00_ggx_4.exr"); },
+         [](const fs::path& m) { fs::remove(m.parent_path() / "layer_00_ggx_4.ktx2"); },
          "glossy.levels[3].file"},
         {"file outside the folder",
          [](const fs::path& m) {
              json j = readJson(m);
-             j["glossy"]["levels"][0]["file"] = "../layer_00_ggx_1.exr";
+             j["glossy"]["levels"][0]["file"] = "../layer_00_ggx_1.ktx2";
              writeJson(m, j);
          },
          "glossy.levels[0].file"},
@@ -301,7 +302,7 @@ TEST_F(GlossyBakeTest, TheWriterRefusesLevelsItsReaderWouldRefuseAndWritesNothin
         FAIL() << "expected the swapped levels to be refused";
     } catch (const Error& e) {
         EXPECT_EQ(e.field(), "glossy.levels[1].size") << e.what();
-        EXPECT_NE(std::string(e.what()).find("layer_00_ggx_2.exr"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("layer_00_ggx_2.ktx2"), std::string::npos) << e.what();
     }
     EXPECT_FALSE(fs::exists(out));
 }
@@ -314,7 +315,7 @@ TEST_F(GlossyBakeTest, AManifestWithoutGlossyReadsAsBefore) {
     m.erase("glossy");
     writeJson(manifest, m);
     for (int i = 1; i <= 5; ++i)
-        fs::remove(manifest.parent_path() / ("layer_00_ggx_" + std::to_string(i) + ".exr"));
+        fs::remove(manifest.parent_path() / ("layer_00_ggx_" + std::to_string(i) + ".ktx2"));
     const DistanceProbeAsset without = readDistanceProbe(manifest.string());
     EXPECT_TRUE(without.glossyLevels.empty());
     ASSERT_EQ(without.layers.size(), with.layers.size());
@@ -345,7 +346,7 @@ TEST_F(GlossyBakeTest, TheCommandLineTakesGlossyAutoOnOff) {
         test::runShellTool(kCook, "bake " + test::shellQuote(kRoom) + " --out " +
                                       test::shellQuote(out) + " --face-res 16 --glossy off");
     ASSERT_EQ(off.status, 0) << off.err;
-    EXPECT_FALSE(fs::exists(fs::path(out) / "layer_00_ggx_1.exr"));
+    EXPECT_FALSE(fs::exists(fs::path(out) / "layer_00_ggx_1.ktx2"));
     EXPECT_FALSE(readJson(fs::path(out) / "manifest.json").contains("glossy"));
 
     const test::ToolRun bad =

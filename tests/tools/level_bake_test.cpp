@@ -284,8 +284,8 @@ TEST_F(LevelBake, BakesEveryProbeThenOnlyWhatChangedAndSaysWhy) {
 TEST_F(LevelBake, AnEditedOrDeletedLayerFileReBakesItsProbeSayingWhy) {
     ProbeScene scene(kTwoRooms, "");
     cookLevel(scene, options(), nullptr);
-    const fs::path edited = root_ / "level/room_a_probe/layer_00.exr";
-    const fs::path deleted = root_ / "level/room_b_probe/layer_00.exr";
+    const fs::path edited = root_ / "level/room_a_probe/layer_00.ktx2";
+    const fs::path deleted = root_ / "level/room_b_probe/layer_00.ktx2";
     ASSERT_TRUE(fs::exists(edited) && fs::exists(deleted));
     {
         std::fstream f(edited, std::ios::in | std::ios::out | std::ios::binary);
@@ -297,9 +297,9 @@ TEST_F(LevelBake, AnEditedOrDeletedLayerFileReBakesItsProbeSayingWhy) {
     const LevelCookResult again = cookLevel(scene, options(), &log);
     ASSERT_EQ(again.probes.size(), 2u);
     EXPECT_TRUE(again.probes[0].baked);
-    EXPECT_EQ(again.probes[0].reason, "file layer_00.exr altered on disk");
+    EXPECT_EQ(again.probes[0].reason, "file layer_00.ktx2 altered on disk");
     EXPECT_TRUE(again.probes[1].baked);
-    EXPECT_EQ(again.probes[1].reason, "file layer_00.exr missing");
+    EXPECT_EQ(again.probes[1].reason, "file layer_00.ktx2 missing");
     EXPECT_NE(log.str().find("probe room_b_probe: baked in"), std::string::npos) << log.str();
     EXPECT_TRUE(fs::exists(deleted));
     // Re-baked, the level is whole again: a further run finds everything up to date.

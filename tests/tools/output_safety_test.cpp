@@ -184,7 +184,7 @@ TEST_F(OutputSafety, SignalWhileLayersAreWrittenLeavesThePreviousProbe) {
     Child c(kCook, {"bake", kRoom.string(), "--out", probe.string(), "--face-res", "512"},
             root_ / "scratch");
     const fs::path staged = fs::path(probe.string() + ".tmp-" + std::to_string(c.pid()));
-    ASSERT_TRUE(c.waitFor([&] { return fs::exists(staged / "layer_00.exr"); }, 300));
+    ASSERT_TRUE(c.waitFor([&] { return fs::exists(staged / "layer_00.ktx2"); }, 300));
     c.signal(SIGTERM);
     const ChildResult r = c.wait();
     EXPECT_EQ(r.status, 130) << r.err;
@@ -209,7 +209,7 @@ TEST_F(OutputSafety, TemporariesOfDeadProcessesAreCleanedWithALine) {
     const fs::path unowned = probe.string() + ".tmp-" + std::to_string(dead3);
     for (const fs::path& p : {staleTmp, staleOld, live, foreign, unowned}) {
         fs::create_directories(p);
-        std::ofstream(p / "layer_00.exr") << std::string(4096, 'x');
+        std::ofstream(p / "layer_00.ktx2") << std::string(4096, 'x');
     }
     writeOwner(staleTmp, specula::hostName(), dead);
     writeOwner(staleOld, specula::hostName(), dead);
@@ -222,14 +222,14 @@ TEST_F(OutputSafety, TemporariesOfDeadProcessesAreCleanedWithALine) {
     EXPECT_FALSE(fs::exists(staleOld));
     EXPECT_NE(r.out.find("removed stale " + staleTmp.string()), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("removed stale " + staleOld.string()), std::string::npos) << r.out;
-    EXPECT_TRUE(fs::exists(live / "layer_00.exr")) << "a live process's folder is never touched";
+    EXPECT_TRUE(fs::exists(live / "layer_00.ktx2")) << "a live process's folder is never touched";
     EXPECT_TRUE(fs::exists(probe.string() + ".tmp-" + std::to_string(dead) + "x"));
-    EXPECT_TRUE(fs::exists(foreign / "layer_00.exr")) << "another host's folder is never touched";
+    EXPECT_TRUE(fs::exists(foreign / "layer_00.ktx2")) << "another host's folder is never touched";
     EXPECT_NE(r.out.find("left " + foreign.string() + " as it is: it belongs to process " +
                          std::to_string(dead2) + " on host other-node-7"),
               std::string::npos)
         << r.out;
-    EXPECT_TRUE(fs::exists(unowned / "layer_00.exr")) << "a folder of unknown owner is left";
+    EXPECT_TRUE(fs::exists(unowned / "layer_00.ktx2")) << "a folder of unknown owner is left";
     EXPECT_NE(r.out.find("left " + unowned.string() + " as it is: it has no owner file"),
               std::string::npos)
         << r.out;

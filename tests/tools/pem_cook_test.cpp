@@ -278,7 +278,7 @@ TEST_F(PemCook, BakeCommandLineTakesThePemFlagsAndRefusesBadOnes) {
         bake("--flavour pem --samples 1 --face-res 8 --image-size 64x48 --mip-levels 4", &err), 0)
         << err;
     EXPECT_EQ(readPemProbe((root_ / "cli" / "manifest.json").string()).mipLevels, 4);
-    EXPECT_TRUE(fs::exists(root_ / "cli" / "sample_00_mip3.exr"));
+    EXPECT_TRUE(fs::exists(root_ / "cli" / "sample_00_mip3.ktx2"));
 }
 
 // The cooker measures what its maps are worth: at each sample's own viewpoint (on the

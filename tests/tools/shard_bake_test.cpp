@@ -219,7 +219,7 @@ TEST_F(ShardBake, ATamperedTruncatedOrSwappedShardIsRefusedNamingTheShardAndFile
             bakeShard(dir, i, nullptr);
         }
     };
-    const fs::path layer = fs::path(shardOutputPath(dir, list.shards[0])) / "layer_00.exr";
+    const fs::path layer = fs::path(shardOutputPath(dir, list.shards[0])) / "layer_00.ktx2";
     const auto expectRefused = [&](const fs::path& file, const std::string& why) {
         try {
             mergeShards(dir, nullptr);

@@ -3,7 +3,7 @@
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 #include "engine/raytrace/embree_scene.h"
 #include "engine/scene/animation.h"
 #include "engine/scene/components.h"

@@ -7,7 +7,7 @@
 // the ray-traced ground truth.
 #include "assetcooker/lib/scene/added_reflector.h"
 #include "assetcooker/lib/scene/scene_markup.h"
-#include "components/reflection_probe/reflection_probe.h"
+#include "components/reflection_probe/system/reflection_probe.h"
 #include "engine/core/error.h"
 #include "engine/ecs/registry.h"
 #include "engine/image/image.h"

@@ -2,7 +2,7 @@
 // Per-mesh roughness maps of a scene's reflectors, from its markup: the tools' side of
 // reflector_roughness.h (the runtime's twin of the shaders' roughness read).
 #include "assetcooker/lib/scene/scene_markup.h"
-#include "components/reflection_probe/reflector_roughness.h"
+#include "components/reflection_probe/system/reflector_roughness.h"
 
 #include <memory>
 #include <unordered_map>

@@ -1,6 +1,6 @@
 #include "scene_markup.h"
 
-#include "components/reflection_probe/reflector_roughness.h"
+#include "components/reflection_probe/system/reflector_roughness.h"
 #include "engine/core/error.h"
 #include "engine/scene/components.h"
 

@@ -18,7 +18,7 @@ namespace specula::distance_asset {
 
 // --- shared with the layers (distance_probe_asset.cpp) ---------------------------------------
 
-// Largest file a probe layer of face resolution n can be: an N x 6N float RGBA EXR is 96 N^2
+// Largest file a probe layer of face resolution n can be: an N x 6N float RGBA KTX2 is 96 N^2
 // bytes of pixels; the rest (header, offset tables, chunk headers) is far below the margin.
 std::uint64_t maxLayerFileBytes(int n);
 
@@ -55,7 +55,7 @@ std::vector<std::string> glossyFilePaths(const DistanceProbeAsset& asset, const 
 nlohmann::json writeGlossyLevels(const DistanceProbeAsset& asset, const std::filesystem::path& tmp,
                                  const std::string& dir);
 
-// The manifest's "glossy" member: each level's file (checksum, a float EXR of the level's
+// The manifest's "glossy" member: each level's file (checksum, a float KTX2 cube of the level's
 // size) into a.glossyLevels, its path into `files`; its content is checked with the layers'
 // (checkGlossy).
 void readGlossyLevels(const ManifestFields& r, const nlohmann::json& glossy,

@@ -1,12 +1,12 @@
 // The glossy levels of a cooked distance probe (the composite's GGX chain,
-// layer_00_ggx_<i>.exr): their content checks, writer and reader. The manifest, the layers
+// layer_00_ggx_<i>.ktx2): their content checks, writer and reader. The manifest, the layers
 // and the sky are distance_probe_asset.cpp's.
 #include "distance_asset_internal.h"
 
 #include "components/reflection_probe/probe_folder.h"
 
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
+#include "engine/image/ktx2.h"
 
 #include <algorithm>
 #include <cmath>
@@ -75,7 +75,7 @@ void checkGlossyDistance(const std::array<Image, 6>& level, const std::array<Ima
 
 // Glossy level i (1 ..): the composite's (layer 0's) chain.
 std::string glossyFileName(std::size_t i) {
-    return "layer_00_ggx_" + std::to_string(i) + ".exr";
+    return "layer_00_ggx_" + std::to_string(i) + ".ktx2";
 }
 
 } // namespace
@@ -117,7 +117,7 @@ json writeGlossyLevels(const DistanceProbeAsset& asset, const fs::path& tmp,
         throwIfCancelled(dir);
         const std::string name = glossyFileName(k + 1);
         const std::string path = (tmp / name).string();
-        writeImage(path, stackFaces(asset.glossyLevels[k]));
+        writeKtx2Cube(path, stackFaces(asset.glossyLevels[k]));
         levels.push_back({{"file", name},
                           {"checksum", fileChecksum(path)},
                           {"roughness", double(k + 1) / double(count)}});
@@ -147,7 +147,7 @@ void readGlossyLevels(const ManifestFields& r, const json& glossy, const fs::pat
         const int n = glossyFaceRes(a.faceRes, k + 1);
         const ManifestFields::CheckedFile file = r.checkedFile(j, path, dir, maxLayerFileBytes(n));
         namedGlossy(k, [&] {
-            const Image stacked = readFloatExr(file.path, {.width = n, .height = 6 * n});
+            const Image stacked = readKtx2Cube(file.path, n);
             if (stacked.width != n || stacked.height != 6 * n || stacked.channels < 4)
                 throw Error(file.path, "size",
                             "expected " + std::to_string(n) + " x " + std::to_string(6 * n) +

@@ -6,7 +6,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/regular_file.h"
-#include "engine/image/image_io.h"
+#include "engine/image/ktx2.h"
 
 #include <nlohmann/json.hpp>
 
@@ -243,7 +243,7 @@ DistanceLayerContent measureDistanceLayer(const std::array<Image, 6>& faces, flo
 namespace {
 std::string layerFileName(std::size_t i) {
     char name[64];
-    std::snprintf(name, sizeof name, "layer_%02zu.exr", i);
+    std::snprintf(name, sizeof name, "layer_%02zu.ktx2", i);
     return name;
 }
 } // namespace
@@ -261,7 +261,7 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
     for (std::size_t i = 0; i < asset.layers.size(); ++i)
         files.push_back((fs::path(dir) / layerFileName(i)).string());
     checkContent(asset, (fs::path(dir) / "manifest.json").string(), files,
-                 glossyFilePaths(asset, dir), (fs::path(dir) / "sky.exr").string());
+                 glossyFilePaths(asset, dir), (fs::path(dir) / "sky.ktx2").string());
 
     writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
         json layers = json::array();
@@ -270,7 +270,7 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
             const DistanceProbeLayer& L = asset.layers[i];
             const std::string name = layerFileName(i);
             const std::string path = (tmp / name).string();
-            writeImage(path, stackFaces(L.faces));
+            writeKtx2Cube(path, stackFaces(L.faces));
             layers.push_back({{"name", L.name},
                               {"order", i},
                               {"objects", L.objects},
@@ -294,15 +294,15 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
             {"d_inf", asset.dInf},
             {"face_res", asset.faceRes},
             {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
-            {"face_layout", "N x 6N EXR, faces +X -X +Y -Y +Z -Z top to bottom, "
+            {"face_layout", "KTX2 cube map (faceCount 6, float RGBA), faces +X -X +Y -Y +Z -Z, "
                             "RGB radiance, A distance from the centre"},
             {"layers", layers}};
         if (!asset.effectPlan.empty()) manifest["effect_plan"] = json::parse(asset.effectPlan);
         if (!asset.glossyLevels.empty()) manifest["glossy"] = writeGlossyLevels(asset, tmp, dir);
         if (!asset.sky.empty()) {
-            const std::string path = (tmp / "sky.exr").string();
-            writeImage(path, asset.sky);
-            manifest["sky"] = {{"file", "sky.exr"}, {"checksum", fileChecksum(path)}};
+            const std::string path = (tmp / "sky.ktx2").string();
+            writeKtx2Image(path, asset.sky);
+            manifest["sky"] = {{"file", "sky.ktx2"}, {"checksum", fileChecksum(path)}};
         }
         return manifest;
     });
@@ -359,7 +359,7 @@ DistanceProbeAsset readDistanceProbe(const ProbeManifest& manifest) {
         }));
         // The manifest's face_res is the size the header must declare, checked before the
         // pixels are allocated (a forged header could otherwise ask for gigabytes).
-        const Image stacked = readFloatExr(file, {.width = a.faceRes, .height = 6 * a.faceRes});
+        const Image stacked = readKtx2Cube(file, a.faceRes);
         if (stacked.width != a.faceRes || stacked.height != 6 * a.faceRes || stacked.channels < 4)
             throw Error(file, "size",
                         "expected " + std::to_string(a.faceRes) + " x " +
@@ -384,7 +384,7 @@ DistanceProbeAsset readDistanceProbe(const ProbeManifest& manifest) {
         a.skyChecksum = r.checksum(m["sky"], "sky.", r.namedFile("sky.", [&] {
             return fileChecksum(skyFile, kMaxSkyFileBytes);
         }));
-        a.sky = readFloatExr(skyFile);
+        a.sky = readKtx2Image(skyFile);
     }
     checkContent(a, manifestPath, files, glossyFiles, skyFile);
     return a;

@@ -1,6 +1,6 @@
 #pragma once
 // A cooked distance-cubemap probe: the manifest plus one cube map per layer. On disk each
-// layer is a float EXR of N x 6N pixels, the six faces stacked top to bottom in OpenGL order
+// layer is a float KTX2 cube of N x 6N pixels, the six faces stacked top to bottom in OpenGL order
 // (+X -X +Y -Y +Z -Z, each face's row 0 first), RGB radiance and A the Euclidean distance
 // from the probe centre (d_inf where the layer sees nothing).
 #include "components/reflection_probe/manifest_fields.h"
@@ -54,7 +54,7 @@ struct DistanceProbeAsset {
     // (the finite distances of the composite's texels on the same face that overlap the
     // texel; d_inf where none hits). Empty when the bake made none (no glossy reflector); a
     // glossy lookup then prefilters the composite when it loads. On disk: one N_i x 6 N_i
-    // float EXR per level beside the layers (layer_00_ggx_<i>.exr, faces stacked as a
+    // float KTX2 cube per level beside the layers (layer_00_ggx_<i>.ktx2, faces stacked as a
     // layer's), listed in the manifest's "glossy": {"levels": [{"file", "checksum",
     // "roughness"}, ...]} (absent when empty).
     std::vector<std::array<Image, 6>> glossyLevels;
@@ -79,7 +79,7 @@ struct DistanceLayerContent {
 DistanceLayerContent measureDistanceLayer(const std::array<Image, 6>& faces, float dInf,
                                           const std::string& file);
 
-// Writes DIR/manifest.json, the layer EXRs and the glossy levels' EXRs. Everything goes to a
+// Writes DIR/manifest.json, the layer KTX2s and the glossy levels' KTX2s. Everything goes to a
 // sibling temporary folder first and replaces DIR by rename, so an interrupted or failed
 // write leaves DIR as it was.
 void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
@@ -87,9 +87,9 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
 
 // Reads and validates a manifest and its images: format version, every field's type and
 // range (centres within kMaxCoordinate, face_res an integer), file checksums, and the
-// images' content: float OpenEXR, every texel valid (measureDistanceLayer), each layer's
+// images' content: float KTX2 cube, every texel valid (measureDistanceLayer), each layer's
 // min/max distance and solid angle as the manifest states them, and layer 0 per texel the
-// nearest of the object layers; the glossy levels likewise (checksum, float OpenEXR of
+// nearest of the object layers; the glossy levels likewise (checksum, float KTX2 cube of
 // their size, every texel valid, "roughness" i / L, A the min over the composite under each
 // texel), errors naming the image and the field glossy.levels[k] (level k + 1); a manifest
 // without "glossy" reads with no glossy levels. Files are read only when regular (no FIFO,

@@ -8,7 +8,7 @@
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
-#include "engine/scene/shading.h"
+#include "engine/math/shading.h"
 
 namespace specula {
 namespace glsl {

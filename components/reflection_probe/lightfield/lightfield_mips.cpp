@@ -1,6 +1,7 @@
 #include "lightfield_mips.h"
 
-#include "engine/image/image_io.h"
+#include "engine/image/srgb.h"
+
 
 #include <algorithm>
 #include <cmath>

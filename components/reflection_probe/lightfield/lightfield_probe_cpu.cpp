@@ -3,7 +3,7 @@
 #include "components/reflection_probe/lightfield/lightfield_mips.h"
 #include "engine/core/glsl_host.h"
 #include "engine/image/ggx_albedo.h"
-#include "engine/image/image_io.h"
+#include "engine/image/srgb.h"
 
 #include <cmath>
 #include <mutex>

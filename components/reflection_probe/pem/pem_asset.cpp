@@ -5,7 +5,7 @@
 #include "components/reflection_probe/distance/distance_probe_asset.h" // kMaxRadiance
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
+#include "engine/image/ktx2.h"
 
 #include <nlohmann/json.hpp>
 
@@ -23,20 +23,20 @@ namespace {
 
 constexpr int kMaxPemFaceRes = 4096;
 
-// An N x 6N float RGB EXR is 72 N^2 bytes of pixels; header and offset tables fit the margin.
+// An N x 6N float RGB KTX2 is 72 N^2 bytes of pixels; header and offset tables fit the margin.
 std::uint64_t maxSampleFileBytes(int n) {
     return 100ull * std::uint64_t(n) * std::uint64_t(n) + (1ull << 20);
 }
 
 std::string sampleFileName(std::size_t k) {
     char name[64];
-    std::snprintf(name, sizeof name, "sample_%02zu.exr", k);
+    std::snprintf(name, sizeof name, "sample_%02zu.ktx2", k);
     return name;
 }
 
 std::string localFileName(std::size_t k) {
     char name[64];
-    std::snprintf(name, sizeof name, "local_%02zu.exr", k);
+    std::snprintf(name, sizeof name, "local_%02zu.ktx2", k);
     return name;
 }
 
@@ -97,7 +97,7 @@ PemMap unstackLocal(const Image& img, const PemAsset& a) {
     return m;
 }
 
-constexpr const char* kDistanceFile = "distance.exr";
+constexpr const char* kDistanceFile = "distance.ktx2";
 
 // The distance cube's faces stacked as the maps' are, one channel.
 Image stackDistances(const PemDistanceGeometry& g) {
@@ -252,7 +252,7 @@ void readPemLevels(const ManifestFields& r, const json& sample, const std::strin
         const ManifestFields::CheckedFile file =
             r.checkedFile(mips[std::size_t(level - 1)], field, dir, maxSampleFileBytes(n));
         const Image img = r.namedFile(
-            field, [&] { return readFloatExr(file.path, {.width = n, .height = 6 * n}); });
+            field, [&] { return readKtx2Cube(file.path, n); });
         if (img.channels < 3)
             throw Error(file.path, "channels",
                         "expected RGB, got " + std::to_string(img.channels) + " channel(s)");
@@ -277,20 +277,20 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
             throwIfCancelled(dir); // a signal between files wins; nothing is committed
             const std::string name = sampleFileName(k);
             const std::string path = (tmp / name).string();
-            writeImage(path, stackMap(asset.samples[k].map));
+            writeKtx2Cube(path, stackMap(asset.samples[k].map));
             json sample = {{"parameter", asset.samples[k].parameter},
                            {"file", name},
                            {"checksum", fileChecksum(path)}};
             for (int level = 1; level < asset.mipLevels; ++level) {
                 const std::string mip = pemLevelFileName(k, level);
                 const std::string mipPath = (tmp / mip).string();
-                writeImage(mipPath, pemStackLevel(asset.samples[k].map, level));
+                writeKtx2Cube(mipPath, pemStackLevel(asset.samples[k].map, level));
                 sample["mips"].push_back({{"file", mip}, {"checksum", fileChecksum(mipPath)}});
             }
             if (asset.localLayer) {
                 const std::string local = localFileName(k);
                 const std::string localPath = (tmp / local).string();
-                writeImage(localPath, stackLocal(asset.samples[k].local));
+                writeKtx2Cube(localPath, stackLocal(asset.samples[k].local));
                 sample["local"] = {{"file", local}, {"checksum", fileChecksum(localPath)}};
             }
             samples.push_back(std::move(sample));
@@ -309,7 +309,7 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
         manifest["sky_source"] = asset.skySource;
         if (const PemDistanceGeometry* g = asset.distance.get()) {
             const std::string path = (tmp / kDistanceFile).string();
-            writeImage(path, stackDistances(*g));
+            writeKtx2Cube(path, stackDistances(*g));
             manifest["distance"] = {{"face_res", g->faceRes},
                                     {"d_inf", g->dInf},
                                     {"range", g->range},
@@ -324,8 +324,8 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
              {"path", asset.path},
              {"face_res", asset.faceRes},
              {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
-             {"face_layout", "N x 6N EXR per sample, faces +X -X +Y -Y +Z -Z top to "
-                             "bottom, RGB radiance"},
+             {"face_layout", "KTX2 cube map per sample (faceCount 6, float RGB), faces +X -X "
+                             "+Y -Y +Z -Z, RGB radiance"},
              {"samples", samples}});
         return manifest;
     });
@@ -377,7 +377,7 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
         a.distanceChecksum = file.checksum;
         distanceFile = file.path;
         const Image img = r.namedFile("distance.", [&] {
-            return readFloatExr(file.path, {.width = g->faceRes, .height = 6 * g->faceRes});
+            return readKtx2Cube(file.path, g->faceRes);
         });
         g->distances.resize(std::size_t(PemMap::texelCount(g->faceRes)));
         for (std::size_t t = 0; t < g->distances.size(); ++t)
@@ -411,7 +411,7 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
         s.checksum = file.checksum;
         // The header must declare exactly N x 6N, checked before the pixels are allocated.
         const Image img = r.namedFile(path, [&] {
-            return readFloatExr(file.path, {.width = a.faceRes, .height = 6 * a.faceRes});
+            return readKtx2Cube(file.path, a.faceRes);
         });
         if (img.channels < 3)
             throw Error(file.path, "channels",
@@ -425,8 +425,7 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
             s.localFile = local.name;
             s.localChecksum = local.checksum;
             const Image limg = r.namedFile(localPath, [&] {
-                return readFloatExr(local.path,
-                                    {.width = a.localFaceRes, .height = 6 * a.localFaceRes});
+                return readKtx2Cube(local.path, a.localFaceRes);
             });
             if (limg.channels < 4)
                 throw Error(local.path, "channels",

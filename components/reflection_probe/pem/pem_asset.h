@@ -5,14 +5,14 @@
 // ray-traced reflection at that sample. At run time the two samples nearest the current parameter
 // are blended (pem_blend.h).
 //
-// On disk: manifest.json ("flavour": "pem") plus one float EXR per sample, N x 6N, faces
+// On disk: manifest.json ("flavour": "pem") plus one float KTX2 cube per sample, N x 6N, faces
 // +X -X +Y -Y +Z -Z top to bottom (OpenGL face orientation, each face's row 0 first), RGB
 // linear radiance: texel (face, i, j) of the PemMap is pixel (i, face * N + j). A map of
-// distance geometry ("geometry": "distance") adds distance.exr, M x 6M in the same layout,
+// distance geometry ("geometry": "distance") adds distance.ktx2, M x 6M in the same layout,
 // one channel: the environment's distance from the centre per texel of its own cube. An asset
-// with a local layer ("local_layer": face resolution, sphere) adds local_NN.exr per sample,
+// with a local layer ("local_layer": face resolution, sphere) adds local_NN.ktx2 per sample,
 // L x 6L in the same layout, RGBA: premultiplied local radiance and coverage alpha. An asset
-// with MIP levels ("mip_levels": L > 1) adds sample_NN_mipK.exr per sample and level k >= 1,
+// with MIP levels ("mip_levels": L > 1) adds sample_NN_mipK.ktx2 per sample and level k >= 1,
 // max(N >> k, 1) x 6 max(N >> k, 1) in the same layout, listed in the sample's "mips".
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/pem/pem_lookup_cpu.h"
@@ -69,11 +69,11 @@ struct PemAsset {
 // Most samples a manifest may list (each is a full cube map).
 inline constexpr int kMaxPemSamples = 1024;
 
-// Writes DIR/manifest.json, sample_NN.exr (and distance.exr) through writeProbeFolder (atomic: DIR
+// Writes DIR/manifest.json, sample_NN.ktx2 (and distance.ktx2) through writeProbeFolder (atomic: DIR
 // is replaced by one rename or left as it was). The reader's checks run first, so a probe the
 // reader would refuse is never written; they throw Error naming DIR's manifest (or a sample's file)
 // and the field: "centre", "parameter_kind", "path", "face_res", "box", "geometry", "distance.*"
-// (checkPemDistanceGeometry; distance.exr for the distances), "samples",
+// (checkPemDistanceGeometry; distance.ktx2 for the distances), "samples",
 // "samples[k].parameter", "samples[k].map" (size, box or geometry unlike the asset's),
 // "radiance", "mip_levels", "local_layer.*" (face_res, centre, radius), "samples[k].local" (the
 // local map unlike the asset's layer), "alpha" (a local map's coverage outside [0, 1]).
@@ -81,10 +81,10 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
 
 // Reads and validates a manifest and its images: format, version and flavour, every field's
 // type and range, parameters in [0, 1] strictly increasing, each file a plain name inside the
-// folder with a matching checksum, each image a float EXR of exactly N x 6N whose RGB is
-// finite in [0, kMaxRadiance]; distance geometry: its parameters, distance.exr a float EXR of
+// folder with a matching checksum, each image a float KTX2 cube of exactly N x 6N whose RGB is
+// finite in [0, kMaxRadiance]; distance geometry: its parameters, distance.ktx2 a float KTX2 cube of
 // exactly M x 6M with a matching checksum whose first channel lies in (0, d_inf]; a local
-// layer: every sample's "local" file an RGBA float EXR of exactly L x 6L with a matching
+// layer: every sample's "local" file an RGBA float KTX2 cube of exactly L x 6L with a matching
 // checksum (a missing or wrong-sized one names the manifest and "samples[k].local.file"),
 // RGB as the maps', alpha in [0, 1]; MIP levels: every sample's "mips" lists one file per
 // level past 0, each exactly its level's size (a missing one names the manifest and

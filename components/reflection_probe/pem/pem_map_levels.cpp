@@ -47,7 +47,7 @@ void pemUnstackLevel(const Image& img, int level, PemMap& map) {
 
 std::string pemLevelFileName(std::size_t sample, int level) {
     char name[64];
-    std::snprintf(name, sizeof name, "sample_%02zu_mip%d.exr", sample, level);
+    std::snprintf(name, sizeof name, "sample_%02zu_mip%d.ktx2", sample, level);
     return name;
 }
 

@@ -49,7 +49,7 @@ PemMap pemFilteredMips(const PemMap& map, int levels);
 Image pemStackLevel(const PemMap& map, int level);
 void pemUnstackLevel(const Image& img, int level, PemMap& map);
 
-// sample_NN_mipK.exr: level k >= 1 of sample NN (level 0 is sample_NN.exr).
+// sample_NN_mipK.ktx2: level k >= 1 of sample NN (level 0 is sample_NN.ktx2).
 std::string pemLevelFileName(std::size_t sample, int level);
 
 } // namespace specula

@@ -1,5 +1,5 @@
 // House shading, the same function the bake and the ray tracer call on the CPU.
-#include "engine/scene/shading.glsl.h"
+#include "engine/math/shading.glsl.h"
 
 in vec3 vNormal;
 in vec2 vUv;

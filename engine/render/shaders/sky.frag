@@ -1,5 +1,5 @@
 // Distant environment looked up by direction alone, through each pixel's centre.
-#include "engine/scene/shading.glsl.h"
+#include "engine/math/shading.glsl.h"
 
 uniform mat4 uInvViewProjRot; // inverse(proj * mat4(mat3(view))): eye-relative directions
 uniform vec4 uViewport;       // x, y, width, height, as glViewport

@@ -9,7 +9,7 @@
 // HAS_ROUGHNESS_MAP (reflector_roughness.glsl.h), uRoughness alone without.
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"
-#include "engine/scene/shading.glsl.h"
+#include "engine/math/shading.glsl.h"
 #include "components/reflection_probe/shaders/reflector_common.glsl.h"
 
 #include "components/reflection_probe/distance/shaders/distance_lookup_types.glsl.h"

@@ -3,7 +3,7 @@
 #include "components/reflection_probe/lightfield/lightfield_mips.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "engine/core/error.h"
-#include "engine/core/log.h"
+#include "engine/log/log.h"
 #include "engine/gpu/ggx_albedo_texture.h"
 #include "engine/gpu/shader.h"
 #include "engine/scene/components.h"

@@ -1,7 +1,7 @@
-#include "engine/image/compare.h"
+#include "engine/image_io/compare.h"
 
 #include "engine/core/error.h"
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 
 #include <algorithm>
 #include <array>

@@ -1,11 +1,11 @@
 #include "reflection_probe_system.h"
 
-#include "components/reflection_probe/distance/distance_level_store.h"
-#include "components/reflection_probe/distance/distance_store.h"
+#include "components/reflection_probe/distance/system/distance_level_store.h"
+#include "components/reflection_probe/distance/system/distance_store.h"
 #include "components/reflection_probe/level_index.h"
-#include "components/reflection_probe/lightfield/lightfield_store.h"
+#include "components/reflection_probe/lightfield/system/lightfield_store.h"
 #include "components/reflection_probe/manifest_fields.h"
-#include "components/reflection_probe/pem/pem_store.h"
+#include "components/reflection_probe/pem/system/pem_store.h"
 #include "engine/core/error.h"
 
 #include <algorithm>

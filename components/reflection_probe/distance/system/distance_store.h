@@ -4,7 +4,7 @@
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/distance/distance_textures.h"
-#include "components/reflection_probe/flavour_store_base.h"
+#include "components/reflection_probe/system/flavour_store_base.h"
 #include "components/reflection_probe/shader_variants.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/image/ggx_prefilter.h"

@@ -2,6 +2,7 @@
 // Image files through OpenImageIO. Images in memory are always linear float; the 8-bit
 // formats (PNG, JPG) are sRGB-encoded on disk, so reading decodes and writing encodes.
 #include "engine/image/image.h"
+#include "engine/image/srgb.h" // the transfer function every 8-bit read and write applies
 
 #include <cstddef>
 #include <cstdint>
@@ -52,8 +53,5 @@ std::optional<Image> decodeImageFromMemory(const void* data, std::size_t size,
                                            const std::string& formatHint = "",
                                            std::optional<bool> srgbToLinear = std::nullopt);
 
-// The sRGB transfer function (IEC 61966-2-1), exposed so tests and tools agree with I/O.
-float srgbToLinearValue(float encoded);
-float linearToSrgbValue(float linear);
 
 } // namespace specula

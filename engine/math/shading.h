@@ -1,5 +1,5 @@
 #pragma once
-// C++ side of engine/scene/shading.glsl.h: the shared functions in specula::glsl with
+// C++ side of engine/math/shading.glsl.h: the shared functions in specula::glsl with
 // internal linkage, so any number of translation units may include them.
 #include "engine/core/glsl_host.h"
 
@@ -7,7 +7,7 @@ namespace specula::glsl {
 namespace {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
-#include "engine/scene/shading.glsl.h"
+#include "engine/math/shading.glsl.h"
 #pragma GCC diagnostic pop
 } // namespace
 } // namespace specula::glsl

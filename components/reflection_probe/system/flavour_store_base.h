@@ -3,7 +3,7 @@
 // holding the flavour's GPU state (`Probe`) and the settings it was last built from. A
 // flavour implements three things: loadProbe (asset -> GPU state), applySettings (settings
 // -> parameters) and drawReflector; edits are found by comparing settings here.
-#include "components/reflection_probe/probe_flavour.h"
+#include "components/reflection_probe/system/probe_flavour.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/gpu/shader.h"
 

@@ -5,8 +5,8 @@
 // makes what the reflectors need (syncReflectors: a rough reflector's glossy chain).
 // render() lets each store draw its background, then draws every Reflector through the store
 // of its probe. Nothing here knows a flavour: each registers itself with addFlavour().
-#include "components/reflection_probe/probe_flavour.h"
-#include "components/reflection_probe/reflection_probe.h"
+#include "components/reflection_probe/system/probe_flavour.h"
+#include "components/reflection_probe/system/reflection_probe.h"
 #include "engine/ecs/registry.h"
 #include "engine/gpu/render_target.h"
 #include "engine/gpu/timer.h"

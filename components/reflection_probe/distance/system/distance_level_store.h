@@ -7,7 +7,7 @@
 // probe's GGX chain: made and uploaded by the first sync that finds one, never otherwise.
 #include "components/reflection_probe/distance/distance_level.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
-#include "components/reflection_probe/flavour_store_base.h"
+#include "components/reflection_probe/system/flavour_store_base.h"
 #include "components/reflection_probe/probe_volume.h"
 #include "components/reflection_probe/shader_variants.h"
 #include "engine/core/glsl_host.h"

@@ -1,7 +1,7 @@
-#include "engine/gpu/context.h"
+#include "engine/context/context.h"
 
 #include "engine/core/error.h"
-#include "engine/core/log.h"
+#include "engine/log/log.h"
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>

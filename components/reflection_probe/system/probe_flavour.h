@@ -5,7 +5,7 @@
 // switches on a flavour. A flavour is one folder (distance/, lightfield/, or one a test
 // defines) holding its settings component, asset reader, shaders, CPU twin and store.
 #include "components/reflection_probe/manifest_fields.h"
-#include "components/reflection_probe/reflection_probe.h"
+#include "components/reflection_probe/system/reflection_probe.h"
 #include "engine/ecs/registry.h"
 #include "engine/math/camera.h"
 #include "engine/render/scene_renderer.h"

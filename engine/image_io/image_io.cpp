@@ -1,4 +1,4 @@
-#include "engine/image/image_io.h"
+#include "engine/image_io/image_io.h"
 
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
@@ -109,16 +109,6 @@ OIIO::ImageSpec readConfig() {
 }
 
 } // namespace
-
-float srgbToLinearValue(float s) {
-    if (!(s > 0.f)) return 0.f;
-    return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f);
-}
-
-float linearToSrgbValue(float l) {
-    if (!(l > 0.f)) return 0.f;
-    return l <= 0.0031308f ? l * 12.92f : 1.055f * std::pow(l, 1.f / 2.4f) - 0.055f;
-}
 
 namespace {
 
