@@ -6,8 +6,8 @@
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"
-#include "engine/raytrace/embree_scene.h"
 #include "engine/math/shading.h"
+#include "engine/raytrace/embree_scene.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -3,10 +3,10 @@
 #include "assetcooker/lib/probe_sanity.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
-#include "engine/image_io/image_io.h"
 #include "engine/image/sampling.h"
-#include "engine/raytrace/embree_scene.h"
+#include "engine/image_io/image_io.h"
 #include "engine/math/shading.h"
+#include "engine/raytrace/embree_scene.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -15,9 +15,11 @@
 namespace specula {
 namespace {
 
-static_assert(std::endian::native == std::endian::little, "KTX2 is little-endian; so is this reader");
+static_assert(std::endian::native == std::endian::little,
+              "KTX2 is little-endian; so is this reader");
 
-constexpr unsigned char kIdentifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+constexpr unsigned char kIdentifier[12] = {0xAB, 'K',  'T',  'X',  ' ',  '2',
+                                           '0',  0xBB, '\r', '\n', 0x1A, '\n'};
 constexpr std::size_t kHeaderBytes = 80; // identifier, 9 header words, the index
 constexpr std::size_t kLevelIndexBytes = 24;
 // Larger than any GL implementation's texture size, small enough that sizes never overflow.
@@ -40,7 +42,9 @@ struct Layout {
     std::uint32_t vkFormat() const { return (half ? kHalfFormats : kFloatFormats)[channels - 1]; }
 };
 
-std::size_t alignUp(std::size_t n, std::size_t a) { return (n + a - 1) / a * a; }
+std::size_t alignUp(std::size_t n, std::size_t a) {
+    return (n + a - 1) / a * a;
+}
 
 // The one-block DFD of a layout, words after dfdTotalSize included.
 std::vector<std::uint32_t> dataFormatDescriptor(const Layout& l) {
@@ -48,8 +52,9 @@ std::vector<std::uint32_t> dataFormatDescriptor(const Layout& l) {
     std::vector<std::uint32_t> w = {4 + blockBytes,
                                     0,                     // vendor Khronos, type basic
                                     2u | blockBytes << 16, // version 2
-                                    1u | 1u << 8 | 1u << 16, // RGBSDA, BT.709, linear, straight alpha
-                                    0,                     // 1x1x1x1 texel block
+                                    1u | 1u << 8 |
+                                        1u << 16, // RGBSDA, BT.709, linear, straight alpha
+                                    0,            // 1x1x1x1 texel block
                                     std::uint32_t(l.texelBytes()),
                                     0};
     const std::uint32_t bits = l.half ? 16 : 32;
@@ -73,7 +78,9 @@ template <typename T> T get(const std::string& bytes, std::size_t at) {
     return v;
 }
 
-int faceCount(const Ktx2Texture& t) { return t.cube ? 6 : 1; }
+int faceCount(const Ktx2Texture& t) {
+    return t.cube ? 6 : 1;
+}
 
 void appendLevel(std::string& out, const Image& image, bool half) {
     if (!half) {
@@ -95,8 +102,8 @@ Header readHeader(const std::string& b, const std::string& name) {
     if (b.size() < kHeaderBytes || std::memcmp(b.data(), kIdentifier, sizeof kIdentifier) != 0)
         throw Error(name, "identifier", "not a KTX 2.0 file");
     Header h{};
-    std::uint32_t* words[] = {&h.vkFormat, &h.typeSize, &h.width,     &h.height,    &h.depth,
-                              &h.layers,   &h.faces,    &h.levels,    &h.scheme,    &h.dfdOffset,
+    std::uint32_t* words[] = {&h.vkFormat,  &h.typeSize,  &h.width,    &h.height, &h.depth,
+                              &h.layers,    &h.faces,     &h.levels,   &h.scheme, &h.dfdOffset,
                               &h.dfdLength, &h.kvdOffset, &h.kvdLength};
     for (std::size_t i = 0; i < std::size(words); ++i)
         *words[i] = get<std::uint32_t>(b, 12 + 4 * i);
@@ -125,8 +132,9 @@ void checkRange(std::uint64_t offset, std::uint64_t length, std::size_t fileSize
 void checkDfd(const std::string& b, const Header& h, const Layout& l, const std::string& name) {
     const std::vector<std::uint32_t> want = dataFormatDescriptor(l);
     if (h.dfdLength != want.size() * 4 || get<std::uint32_t>(b, h.dfdOffset) != h.dfdLength)
-        throw Error(name, "dfd", "expected one basic descriptor block of " +
-                                     std::to_string(l.channels) + " samples");
+        throw Error(name, "dfd",
+                    "expected one basic descriptor block of " + std::to_string(l.channels) +
+                        " samples");
     auto word = [&](std::size_t i) { return get<std::uint32_t>(b, h.dfdOffset + 4 * i); };
     // Vendor, type, version, model, primaries, transfer, block size, bytes per plane, and
     // per sample its bits, channel and float qualifier: what decoding depends on. The
@@ -171,8 +179,9 @@ Ktx2Texture parseKtx2(const std::string& b, const std::string& name, const Ktx2R
         throw Error(name, "typeSize", "expected " + std::to_string(l.half ? 2 : 4));
     if (h.width == 0 || h.height == 0) throw Error(name, "pixelHeight", "a 2D image has a height");
     if (h.width > kMaxDimension || h.height > kMaxDimension)
-        throw Error(name, "pixelWidth", std::to_string(h.width) + " x " + std::to_string(h.height) +
-                                            " is over " + std::to_string(kMaxDimension) + " a side");
+        throw Error(name, "pixelWidth",
+                    std::to_string(h.width) + " x " + std::to_string(h.height) + " is over " +
+                        std::to_string(kMaxDimension) + " a side");
     if (h.depth != 0) throw Error(name, "pixelDepth", "3D textures are not supported");
     if (h.layers != 0) throw Error(name, "layerCount", "array textures are not supported");
     if (h.faces != 1 && h.faces != 6) throw Error(name, "faceCount", "expected 1 or 6");
@@ -181,10 +190,11 @@ Ktx2Texture parseKtx2(const std::string& b, const std::string& name, const Ktx2R
     if (h.scheme != 0) throw Error(name, "supercompressionScheme", "expected 0 (none)");
     const std::uint32_t maxLevels = std::uint32_t(std::bit_width(std::max(h.width, h.height)));
     if (h.levels == 0 || h.levels > maxLevels)
-        throw Error(name, "levelCount", std::to_string(h.levels) + " levels for " +
-                                            std::to_string(h.width) + " x " + std::to_string(h.height) +
-                                            " (1 to " + std::to_string(maxLevels) + ")");
-    if (limits.width > 0 && (h.width != std::uint32_t(limits.width) || h.height != std::uint32_t(limits.height)))
+        throw Error(name, "levelCount",
+                    std::to_string(h.levels) + " levels for " + std::to_string(h.width) + " x " +
+                        std::to_string(h.height) + " (1 to " + std::to_string(maxLevels) + ")");
+    if (limits.width > 0 &&
+        (h.width != std::uint32_t(limits.width) || h.height != std::uint32_t(limits.height)))
         throw Error(name, "pixelWidth",
                     std::to_string(h.width) + " x " + std::to_string(h.height) + ", expected " +
                         std::to_string(limits.width) + " x " + std::to_string(limits.height));
@@ -211,19 +221,24 @@ Ktx2Texture parseKtx2(const std::string& b, const std::string& name, const Ktx2R
         values += w * hh * h.faces * std::uint64_t(l.channels);
     }
     if (values > limits.maxValues)
-        throw Error(name, "pixelWidth", "holds " + std::to_string(values) + " values, more than the " +
-                                            std::to_string(limits.maxValues) + " allowed");
+        throw Error(name, "pixelWidth",
+                    "holds " + std::to_string(values) + " values, more than the " +
+                        std::to_string(limits.maxValues) + " allowed");
     for (std::uint32_t k = 0; k < h.levels; ++k) {
         const std::string field = "level " + std::to_string(k);
         const std::size_t at = kHeaderBytes + kLevelIndexBytes * k;
-        const std::uint64_t offset = get<std::uint64_t>(b, at), length = get<std::uint64_t>(b, at + 8);
-        const int w = int(std::max(1u, h.width >> k)), hh = int(std::max(1u, h.height >> k)) * int(h.faces);
+        const std::uint64_t offset = get<std::uint64_t>(b, at),
+                            length = get<std::uint64_t>(b, at + 8);
+        const int w = int(std::max(1u, h.width >> k)),
+                  hh = int(std::max(1u, h.height >> k)) * int(h.faces);
         const std::uint64_t expected = std::uint64_t(w) * std::uint64_t(hh) * l.texelBytes();
         if (length != expected || get<std::uint64_t>(b, at + 16) != expected)
-            throw Error(name, field, std::to_string(length) + " bytes, expected " + std::to_string(expected));
+            throw Error(name, field,
+                        std::to_string(length) + " bytes, expected " + std::to_string(expected));
         if (offset % l.alignment() != 0)
-            throw Error(name, field, "offset " + std::to_string(offset) + " is not a multiple of " +
-                                         std::to_string(l.alignment()));
+            throw Error(name, field,
+                        "offset " + std::to_string(offset) + " is not a multiple of " +
+                            std::to_string(l.alignment()));
         checkRange(offset, length, b.size(), name, field);
         Image image(w, hh, l.channels);
         if (l.half) {
@@ -255,7 +270,8 @@ std::string encodeKtx2(const Ktx2Texture& t, const std::string& name, const std:
     const Layout l{base.channels, t.halfFloat};
     for (std::size_t k = 0; k < t.levels.size(); ++k) {
         const Image& m = t.levels[k];
-        const int w = std::max(1, base.width >> k), h = std::max(1, base.height / faces >> k) * faces;
+        const int w = std::max(1, base.width >> k),
+                  h = std::max(1, base.height / faces >> k) * faces;
         if (m.width != w || m.height != h || m.channels != l.channels ||
             m.pixels.size() != std::size_t(w) * h * l.channels)
             throw Error(name, "level " + std::to_string(k),
@@ -290,11 +306,11 @@ std::string encodeKtx2(const Ktx2Texture& t, const std::string& name, const std:
         at = aligned + (data.size() - before);
     }
     std::string out(reinterpret_cast<const char*>(kIdentifier), sizeof kIdentifier);
-    for (std::uint32_t v : {l.vkFormat(), std::uint32_t(l.half ? 2 : 4), std::uint32_t(base.width),
-                            std::uint32_t(base.height / faces), 0u, 0u, std::uint32_t(faces),
-                            std::uint32_t(t.levels.size()), 0u, std::uint32_t(dfdOffset),
-                            std::uint32_t(dfd.size() * 4), std::uint32_t(kvdOffset),
-                            std::uint32_t(kvd.size())})
+    for (std::uint32_t v :
+         {l.vkFormat(), std::uint32_t(l.half ? 2 : 4), std::uint32_t(base.width),
+          std::uint32_t(base.height / faces), 0u, 0u, std::uint32_t(faces),
+          std::uint32_t(t.levels.size()), 0u, std::uint32_t(dfdOffset),
+          std::uint32_t(dfd.size() * 4), std::uint32_t(kvdOffset), std::uint32_t(kvd.size())})
         put(out, v);
     put(out, std::uint64_t(0));
     put(out, std::uint64_t(0));
@@ -324,12 +340,14 @@ void writeKtx2Image(const std::string& path, const Image& image) {
 }
 
 Image readKtx2Cube(const std::string& path, int faceRes, int channels) {
-    Ktx2Texture t = readKtx2(path, {.width = faceRes, .height = faceRes, .faces = 6, .channels = channels});
+    Ktx2Texture t =
+        readKtx2(path, {.width = faceRes, .height = faceRes, .faces = 6, .channels = channels});
     return std::move(t.levels[0]);
 }
 
 Image readKtx2Image(const std::string& path, int width, int height, int channels) {
-    Ktx2Texture t = readKtx2(path, {.width = width, .height = height, .faces = 1, .channels = channels});
+    Ktx2Texture t =
+        readKtx2(path, {.width = width, .height = height, .faces = 1, .channels = channels});
     return std::move(t.levels[0]);
 }
 

@@ -53,5 +53,4 @@ std::optional<Image> decodeImageFromMemory(const void* data, std::size_t size,
                                            const std::string& formatHint = "",
                                            std::optional<bool> srgbToLinear = std::nullopt);
 
-
 } // namespace specula

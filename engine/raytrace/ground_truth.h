@@ -28,8 +28,8 @@
 // v is the view direction about the shading normal turned towards the viewer; where an
 // interpolated normal faces away from the eye (n.v <= 1e-4), v is bent to n.v = 1e-4.
 #include "engine/ecs/registry.h"
-#include "engine/image_io/compare.h"
 #include "engine/image/image.h"
+#include "engine/image_io/compare.h"
 #include "engine/math/camera.h"
 #include "engine/raytrace/embree_scene.h"
 

@@ -3,9 +3,9 @@
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "components/reflection_probe/distance/system/distance_store.h"
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
+#include "engine/context/context.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
-#include "engine/context/context.h"
 #include "engine/gpu/timer.h"
 #include "engine/image_io/compare.h"
 #include "engine/image_io/contact_sheet.h"
@@ -141,12 +141,12 @@ void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePa
         for (const BenchRow& b : r.rows) {
             if (b.scene != name) continue;
             s << "| " << b.method << " | " << b.params << " | " << num(b.msMedian, "%.3f") << " | "
-              << num(b.ratioToEnvmap, "%.2f") << " | "
+              << num(b.ratioToEnvmap, "%.2f")
+              << " | "
               // The ground truth has no raster frame: its frame ratio was never measured.
               << (std::isnan(b.frameRatioToEnvmap) ? std::string("n/a")
                                                    : num(b.frameRatioToEnvmap, "%.2f"))
-              << " | "
-              << formatPsnr(b.psnr) << " | " << num(b.rmse, "%.4f") << " | "
+              << " | " << formatPsnr(b.psnr) << " | " << num(b.rmse, "%.4f") << " | "
               << formatPsnr(b.psnrFull) << " | " << num(b.rmseFull, "%.4f") << " | "
               << num(b.fetchesPerPixel, "%.2f") << " | "
               << num(double(b.gpuBytes) / (1024.0 * 1024.0), "%.1f") << " | "

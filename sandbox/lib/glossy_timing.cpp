@@ -1,10 +1,10 @@
 #include "glossy_timing.h"
 
-#include "components/reflection_probe/distance/system/distance_store.h"
 #include "components/reflection_probe/distance/distance_textures.h"
-#include "components/reflection_probe/system/flavour_store_base.h"
+#include "components/reflection_probe/distance/system/distance_store.h"
 #include "components/reflection_probe/lightfield/lightfield_mips.h"
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
+#include "components/reflection_probe/system/flavour_store_base.h"
 #include "engine/gpu/timer.h"
 #include "engine/image/ggx_albedo.h"
 #include "sandbox/lib/frame_renderer.h"

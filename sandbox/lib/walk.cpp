@@ -1,10 +1,10 @@
 #include "walk.h"
 #include "assetcooker/lib/scene/walk_amplitude.h"
 
+#include "engine/context/context.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/progress.h"
-#include "engine/context/context.h"
 #include "engine/image_io/compare.h"
 #include "engine/image_io/contact_sheet.h"
 #include "engine/image_io/image_io.h"

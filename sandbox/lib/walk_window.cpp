@@ -4,8 +4,8 @@
 #include "assetcooker/lib/scene/walk_amplitude.h"
 #include "walk.h"
 
-#include "engine/core/error.h"
 #include "engine/context/context.h"
+#include "engine/core/error.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/gpu/timer.h"
 #include "engine/image_io/compare.h"

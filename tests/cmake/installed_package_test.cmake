@@ -72,6 +72,27 @@ if(NOT at EQUAL -1)
 endif()
 specula_check_needed(${WORK}/host/read_probe needed)
 specula_run_read_probe(${WORK}/host/read_probe ${SPECULA_ROOT})
+
+# examples/minimal as its README builds it: a separate project against the prefix, run headless
+# on the committed probe (tests/probe/host_example_test.cpp holds its image to the twin).
+execute_process(
+  COMMAND ${CMAKE_COMMAND} -S ${SPECULA_ROOT}/examples/minimal -B ${WORK}/minimal -G Ninja
+          -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0)
+  execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK}/minimal RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err)
+endif()
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "examples/minimal does not build against the installed package:\n${out}\n${err}")
+endif()
+execute_process(COMMAND ${WORK}/minimal/minimal ${SPECULA_ROOT}/tests/fuzz/data/probe/manifest.json
+                        --headless --out ${WORK}/minimal.ppm --size 64 48
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/minimal.ppm)
+  message(FATAL_ERROR "examples/minimal (installed) did not render: status ${rc}\n${out}${err}")
+endif()
+specula_check_needed(${WORK}/minimal/minimal example_needed glfw) # its window is its own
 file(REMOVE_RECURSE "${WORK}")
 message(STATUS "installed package: found as 0.3, refused as 0.4 and 1.0; the host's program "
-               "needs ${needed}")
+               "needs ${needed}; examples/minimal needs ${example_needed}")

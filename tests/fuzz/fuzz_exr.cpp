@@ -7,9 +7,10 @@
 //
 // Memory and time: a header may declare any size and the fuzzer runs under -rss_limit_mb=2048
 // with ASan, where decoding 2^26 values takes ~12 s; so the harness reads with a limit of
-// 2^22 values (a 1024^2 RGBA image) and lowers OIIO's own uncompressed-size limit to match; the probe loader's path is the exact-size
-// read with the seeds' face-res (2 x 12), refused before allocation when the header differs.
-// An allocation past these limits is a finding: it means a limit is not checked first.
+// 2^22 values (a 1024^2 RGBA image) and lowers OIIO's own uncompressed-size limit to match; the
+// probe loader's path is the exact-size read with the seeds' face-res (2 x 12), refused before
+// allocation when the header differs. An allocation past these limits is a finding: it means a
+// limit is not checked first.
 #include "engine/core/error.h"
 #include "engine/image_io/image_io.h"
 
@@ -23,9 +24,7 @@
 #include <OpenImageIO/imageio.h>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    static const bool limited = [] {
-        return OIIO::attribute("limits:imagesize_MB", 32);
-    }();
+    static const bool limited = [] { return OIIO::attribute("limits:imagesize_MB", 32); }();
     (void)limited;
     static const std::filesystem::path path = [] {
         const auto dir = std::filesystem::temp_directory_path() /

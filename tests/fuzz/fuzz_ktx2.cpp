@@ -20,7 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } catch (const specula::Error&) {
     }
     try {
-        (void)specula::parseKtx2(bytes, "input.ktx2", {.width = 2, .height = 2, .faces = 6, .channels = 4});
+        (void)specula::parseKtx2(bytes, "input.ktx2",
+                                 {.width = 2, .height = 2, .faces = 6, .channels = 4});
     } catch (const specula::Error&) {
     }
     return 0;

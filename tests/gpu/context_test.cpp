@@ -1,5 +1,5 @@
-#include "engine/core/error.h"
 #include "engine/context/context.h"
+#include "engine/core/error.h"
 
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>

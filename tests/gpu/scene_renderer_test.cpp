@@ -1,8 +1,8 @@
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"
-#include "engine/render/scene_renderer.h"
 #include "engine/math/shading.h"
+#include "engine/render/scene_renderer.h"
 #include "engine/scene/transform_system.h"
 #include "gl_test_context.h"
 

@@ -27,8 +27,12 @@ std::uint64_t u64(const std::string& b, std::size_t at) {
     std::memcpy(&v, b.data() + at, 8);
     return v;
 }
-void setU32(std::string& b, std::size_t at, std::uint32_t v) { std::memcpy(b.data() + at, &v, 4); }
-void setU64(std::string& b, std::size_t at, std::uint64_t v) { std::memcpy(b.data() + at, &v, 8); }
+void setU32(std::string& b, std::size_t at, std::uint32_t v) {
+    std::memcpy(b.data() + at, &v, 4);
+}
+void setU64(std::string& b, std::size_t at, std::uint64_t v) {
+    std::memcpy(b.data() + at, &v, 8);
+}
 
 Image ramp(int w, int h, int c, float scale = 1.f) {
     Image im(w, h, c);
@@ -61,16 +65,16 @@ TEST(Ktx2, HeaderDfdAndKeyValuesAreTheSpecsBytes) {
     const std::string b = encodeKtx2(t, "x", "Specula test");
     const unsigned char id[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
     ASSERT_EQ(std::memcmp(b.data(), id, 12), 0);
-    EXPECT_EQ(u32(b, 12), 109u);           // VK_FORMAT_R32G32B32A32_SFLOAT
-    EXPECT_EQ(u32(b, 16), 4u);             // typeSize
-    EXPECT_EQ(u32(b, 20), 4u);             // pixelWidth
-    EXPECT_EQ(u32(b, 24), 4u);             // pixelHeight: one face
-    EXPECT_EQ(u32(b, 28), 0u);             // pixelDepth
-    EXPECT_EQ(u32(b, 32), 0u);             // layerCount: not an array
-    EXPECT_EQ(u32(b, 36), 6u);             // faceCount
-    EXPECT_EQ(u32(b, 40), 1u);             // levelCount
-    EXPECT_EQ(u32(b, 44), 0u);             // no supercompression
-    EXPECT_EQ(u32(b, 48), 80u + 24u);      // DFD right after the one-level index
+    EXPECT_EQ(u32(b, 12), 109u);             // VK_FORMAT_R32G32B32A32_SFLOAT
+    EXPECT_EQ(u32(b, 16), 4u);               // typeSize
+    EXPECT_EQ(u32(b, 20), 4u);               // pixelWidth
+    EXPECT_EQ(u32(b, 24), 4u);               // pixelHeight: one face
+    EXPECT_EQ(u32(b, 28), 0u);               // pixelDepth
+    EXPECT_EQ(u32(b, 32), 0u);               // layerCount: not an array
+    EXPECT_EQ(u32(b, 36), 6u);               // faceCount
+    EXPECT_EQ(u32(b, 40), 1u);               // levelCount
+    EXPECT_EQ(u32(b, 44), 0u);               // no supercompression
+    EXPECT_EQ(u32(b, 48), 80u + 24u);        // DFD right after the one-level index
     EXPECT_EQ(u32(b, 52), 4u + 24 + 16 * 4); // dfdTotalSize + basic block of four samples
     // DFD (KDF 1.3 section 5): total size, vendor/type 0, version 2 and block size 88,
     // RGBSDA(1) BT709(1) linear(1), 1x1x1x1 block, 16 bytes in plane 0.
@@ -127,7 +131,9 @@ TEST(Ktx2, FloatCubeWithMipsRoundTripsExactly) {
 
 TEST(Ktx2, HalfFloatKeepsElevenSignificantBits) {
     for (int channels = 1; channels <= 4; ++channels) {
-        Ktx2Texture t{.halfFloat = true, .levels = {ramp(5, 3, channels)}, .keyValues = {{"settings", "abc"}}};
+        Ktx2Texture t{.halfFloat = true,
+                      .levels = {ramp(5, 3, channels)},
+                      .keyValues = {{"settings", "abc"}}};
         const std::string b = encodeKtx2(t, "x");
         const std::uint32_t vk[4] = {76, 83, 90, 97}; // R16..R16G16B16A16_SFLOAT
         EXPECT_EQ(u32(b, 12), vk[channels - 1]);
@@ -201,9 +207,9 @@ TEST(Ktx2, FilesThatLieAreRefusedWithTheirField) {
 }
 
 TEST(Ktx2, WritesAtomicallyAndRefusesABadChain) {
-    const std::string dir = (std::filesystem::temp_directory_path() /
-                             ("ktx2_test_" + std::to_string(::getpid())))
-                                .string();
+    const std::string dir =
+        (std::filesystem::temp_directory_path() / ("ktx2_test_" + std::to_string(::getpid())))
+            .string();
     std::filesystem::create_directories(dir);
     const Image faces = ramp(4, 24, 3);
     writeKtx2Cube(dir + "/c.ktx2", faces);

@@ -68,7 +68,8 @@ TEST_F(BadManifest, GoodOneReads) {
 }
 
 TEST_F(BadManifest, EveryMalformedFieldIsNamed) {
-    expectRefused([](json& m) { m["version"] = 2; }, "version");
+    expectRefused([](json& m) { m["version"] = 3; }, "version");
+    expectRefused([](json& m) { m["version"] = 1; }, "version"); // format 1: OpenEXR, re-cook
     expectRefused([](json& m) { m["version"] = 1.5; }, "version");
     expectRefused([](json& m) { m["version"] = "1"; }, "version");
     expectRefused([](json& m) { m.erase("version"); }, "version");

@@ -2,8 +2,8 @@
 // local-layer EXR that is missing, of the wrong size or without alpha, naming the file and the
 // field, while a manifest without "local_layer" reads as a single-map asset.
 #include "components/reflection_probe/pem/pem_asset.h"
-#include "engine/image/ktx2.h"
 #include "engine/core/error.h"
+#include "engine/image/ktx2.h"
 #include "engine/image_io/image_io.h"
 #include "pem_files_fixture.h"
 #include "pem_fixtures.h"

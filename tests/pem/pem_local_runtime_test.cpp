@@ -3,8 +3,8 @@
 // triangle Embree's primary ray hits (pemHullFlags of that reflector).
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/pem/pem_asset.h"
-#include "components/reflection_probe/pem/system/pem_hull.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
+#include "components/reflection_probe/pem/system/pem_hull.h"
 #include "components/reflection_probe/pem/system/pem_store.h"
 #include "engine/context/context.h"
 #include "engine/image_io/compare.h"

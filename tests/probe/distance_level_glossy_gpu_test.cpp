@@ -6,11 +6,11 @@
 // doorway where both probes have influence.
 #include "assetcooker/lib/level_bake.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
-#include "components/reflection_probe/distance/system/distance_level_store.h"
 #include "components/reflection_probe/distance/distance_textures.h"
+#include "components/reflection_probe/distance/system/distance_level_store.h"
 #include "engine/context/context.h"
-#include "engine/image_io/compare.h"
 #include "engine/image/ggx_albedo.h"
+#include "engine/image_io/compare.h"
 #include "support/probe_room.h"
 #include "support/scratch_dir_test.h"
 #include "twin_agreement.h"

@@ -8,9 +8,9 @@
 #include "components/reflection_probe/pem/pem_blend.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/pem/system/pem_store.h"
-#include "engine/image/ktx2.h"
-#include "engine/core/error.h"
 #include "engine/context/context.h"
+#include "engine/core/error.h"
+#include "engine/image/ktx2.h"
 #include "engine/image_io/compare.h"
 #include "engine/image_io/image_io.h"
 #include "engine/raytrace/ground_truth.h"
@@ -83,7 +83,9 @@ class PemAssetFiles : public test::PemFilesTest {
 protected:
     PemAssetFiles() : PemFilesTest("specula-pem-asset") {}
 
-    std::string sampleFile(int k) const { return dir() + "/sample_0" + std::to_string(k) + ".ktx2"; }
+    std::string sampleFile(int k) const {
+        return dir() + "/sample_0" + std::to_string(k) + ".ktx2";
+    }
 };
 
 } // namespace

@@ -7,8 +7,8 @@
 #include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
 #include "components/reflection_probe/system/reflector_roughness.h"
-#include "engine/image_io/compare.h"
 #include "engine/image/ggx_albedo.h"
+#include "engine/image_io/compare.h"
 #include "engine/raytrace/ground_truth.h"
 #include "support/probe_room.h"
 

@@ -1,5 +1,5 @@
-#include "engine/raytrace/ground_truth.h"
 #include "engine/math/shading.h"
+#include "engine/raytrace/ground_truth.h"
 
 #include "engine/core/glsl_host.h"
 #include "engine/image/sampling.h"

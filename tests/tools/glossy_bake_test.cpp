@@ -7,9 +7,9 @@
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/manifest_fields.h"
-#include "engine/image/ktx2.h"
 #include "engine/core/error.h"
 #include "engine/image/ggx_prefilter.h"
+#include "engine/image/ktx2.h"
 #include "engine/image_io/image_io.h"
 #include "support/scratch_dir_test.h"
 #include "support/shell_tool.h"
@@ -222,7 +222,7 @@ TEST_F(GlossyBakeTest, ALevelOfTheWrongSizeIsRefusedNamingTheLevel) {
     m["glossy"]["levels"][1]["checksum"] = m["glossy"]["levels"][2]["checksum"];
     writeJson(manifest, m);
     const Error e = readError(manifest);
-    EXPECT_EQ(e.field(), "glossy.levels[1].size") << e.what();
+    EXPECT_EQ(e.field(), "glossy.levels[1].pixelWidth") << e.what();
     EXPECT_NE(std::string(e.what()).find("layer_00_ggx_3.ktx2"), std::string::npos) << e.what();
 }
 

@@ -3,6 +3,7 @@
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
+#include "engine/image/ktx2.h"
 #include "engine/image_io/image_io.h"
 #include "engine/raytrace/embree_scene.h"
 #include "engine/scene/animation.h"
@@ -50,7 +51,11 @@ ProbeScene::ProbeScene(const std::string& gltfPath, const std::string& skyPath,
     markup = readSceneMarkup(registry, loaded, gltfPath);
     for (const AddedReflector& r : added)
         addReflector(*this, r);
-    if (!skyPath.empty()) sky = readImage(skyPath);
+    // A cooked probe's own sky is KTX2 (the sandbox replays a probe with it); a user's is
+    // any image file OpenImageIO reads.
+    if (!skyPath.empty())
+        sky = std::filesystem::path(skyPath).extension() == ".ktx2" ? readKtx2Image(skyPath)
+                                                                      : readImage(skyPath);
 }
 
 ecs::Entity attachProbeComponents(ecs::Registry& registry, const SceneMarkup& markup,

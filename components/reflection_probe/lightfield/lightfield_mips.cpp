@@ -2,7 +2,6 @@
 
 #include "engine/image/srgb.h"
 
-
 #include <algorithm>
 #include <cmath>
 

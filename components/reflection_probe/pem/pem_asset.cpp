@@ -251,8 +251,7 @@ void readPemLevels(const ManifestFields& r, const json& sample, const std::strin
         const int n = PemMap::levelRes(map.faceRes, level);
         const ManifestFields::CheckedFile file =
             r.checkedFile(mips[std::size_t(level - 1)], field, dir, maxSampleFileBytes(n));
-        const Image img = r.namedFile(
-            field, [&] { return readKtx2Cube(file.path, n); });
+        const Image img = r.namedFile(field, [&] { return readKtx2Cube(file.path, n); });
         if (img.channels < 3)
             throw Error(file.path, "channels",
                         "expected RGB, got " + std::to_string(img.channels) + " channel(s)");
@@ -376,9 +375,8 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
         a.distanceFile = file.name;
         a.distanceChecksum = file.checksum;
         distanceFile = file.path;
-        const Image img = r.namedFile("distance.", [&] {
-            return readKtx2Cube(file.path, g->faceRes);
-        });
+        const Image img =
+            r.namedFile("distance.", [&] { return readKtx2Cube(file.path, g->faceRes); });
         g->distances.resize(std::size_t(PemMap::texelCount(g->faceRes)));
         for (std::size_t t = 0; t < g->distances.size(); ++t)
             g->distances[t] = img.pixels[t * std::size_t(img.channels)];
@@ -410,9 +408,7 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
         s.file = file.name;
         s.checksum = file.checksum;
         // The header must declare exactly N x 6N, checked before the pixels are allocated.
-        const Image img = r.namedFile(path, [&] {
-            return readKtx2Cube(file.path, a.faceRes);
-        });
+        const Image img = r.namedFile(path, [&] { return readKtx2Cube(file.path, a.faceRes); });
         if (img.channels < 3)
             throw Error(file.path, "channels",
                         "expected RGB, got " + std::to_string(img.channels) + " channel(s)");
@@ -424,9 +420,8 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
                 r.member(j, "local", path), localPath, dir, maxSampleFileBytes(a.localFaceRes));
             s.localFile = local.name;
             s.localChecksum = local.checksum;
-            const Image limg = r.namedFile(localPath, [&] {
-                return readKtx2Cube(local.path, a.localFaceRes);
-            });
+            const Image limg =
+                r.namedFile(localPath, [&] { return readKtx2Cube(local.path, a.localFaceRes); });
             if (limg.channels < 4)
                 throw Error(local.path, "channels",
                             "expected RGBA (premultiplied radiance, coverage), got " +

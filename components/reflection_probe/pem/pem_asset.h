@@ -69,8 +69,8 @@ struct PemAsset {
 // Most samples a manifest may list (each is a full cube map).
 inline constexpr int kMaxPemSamples = 1024;
 
-// Writes DIR/manifest.json, sample_NN.ktx2 (and distance.ktx2) through writeProbeFolder (atomic: DIR
-// is replaced by one rename or left as it was). The reader's checks run first, so a probe the
+// Writes DIR/manifest.json, sample_NN.ktx2 (and distance.ktx2) through writeProbeFolder (atomic:
+// DIR is replaced by one rename or left as it was). The reader's checks run first, so a probe the
 // reader would refuse is never written; they throw Error naming DIR's manifest (or a sample's file)
 // and the field: "centre", "parameter_kind", "path", "face_res", "box", "geometry", "distance.*"
 // (checkPemDistanceGeometry; distance.ktx2 for the distances), "samples",
@@ -82,13 +82,13 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
 // Reads and validates a manifest and its images: format, version and flavour, every field's
 // type and range, parameters in [0, 1] strictly increasing, each file a plain name inside the
 // folder with a matching checksum, each image a float KTX2 cube of exactly N x 6N whose RGB is
-// finite in [0, kMaxRadiance]; distance geometry: its parameters, distance.ktx2 a float KTX2 cube of
-// exactly M x 6M with a matching checksum whose first channel lies in (0, d_inf]; a local
-// layer: every sample's "local" file an RGBA float KTX2 cube of exactly L x 6L with a matching
-// checksum (a missing or wrong-sized one names the manifest and "samples[k].local.file"),
-// RGB as the maps', alpha in [0, 1]; MIP levels: every sample's "mips" lists one file per
-// level past 0, each exactly its level's size (a missing one names the manifest and
-// "samples[k].mips[i].file", a mis-sized one its file). Errors name the file and the field.
+// finite in [0, kMaxRadiance]; distance geometry: its parameters, distance.ktx2 a float KTX2 cube
+// of exactly M x 6M with a matching checksum whose first channel lies in (0, d_inf]; a local layer:
+// every sample's "local" file an RGBA float KTX2 cube of exactly L x 6L with a matching checksum (a
+// missing or wrong-sized one names the manifest and "samples[k].local.file"), RGB as the maps',
+// alpha in [0, 1]; MIP levels: every sample's "mips" lists one file per level past 0, each exactly
+// its level's size (a missing one names the manifest and "samples[k].mips[i].file", a mis-sized one
+// its file). Errors name the file and the field.
 PemAsset readPemProbe(const ProbeManifest& manifest);
 PemAsset readPemProbe(const std::string& manifestPath);
 

@@ -5,9 +5,9 @@
 #include "components/reflection_probe/distance/distance_textures.h"
 #include "components/reflection_probe/level_index.h"
 #include "engine/core/error.h"
-#include "engine/log/log.h"
 #include "engine/gpu/ggx_albedo_texture.h"
 #include "engine/gpu/shader.h"
+#include "engine/log/log.h"
 #include "engine/scene/mesh_bounds.h"
 
 #include <algorithm>

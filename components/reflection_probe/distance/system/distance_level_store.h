@@ -7,9 +7,9 @@
 // probe's GGX chain: made and uploaded by the first sync that finds one, never otherwise.
 #include "components/reflection_probe/distance/distance_level.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
-#include "components/reflection_probe/system/flavour_store_base.h"
 #include "components/reflection_probe/probe_volume.h"
 #include "components/reflection_probe/shader_variants.h"
+#include "components/reflection_probe/system/flavour_store_base.h"
 #include "engine/core/glsl_host.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/image/ggx_prefilter.h"

@@ -1,11 +1,11 @@
 #pragma once
 // The GPU side of distance-cubemap probes: the cooked cube layers and sky as textures, the
 // lookup parameters as one uniform block, one shader variant per feature set.
+#include "components/reflection_probe/distance/distance_gpu_probe.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "components/reflection_probe/distance/distance_probe.h"
-#include "components/reflection_probe/distance/distance_textures.h"
-#include "components/reflection_probe/system/flavour_store_base.h"
 #include "components/reflection_probe/shader_variants.h"
+#include "components/reflection_probe/system/flavour_store_base.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/image/ggx_prefilter.h"
 
@@ -15,34 +15,9 @@
 
 namespace specula {
 
-struct DistanceProbeGpu {
-    std::shared_ptr<const DistanceProbeAsset> asset;
-    DistanceLookupConfig config;
-    gpu::UniformBuffer<glsl::DistanceParamsBlock> params; // config's block, as the shader reads it
-    gpu::Texture layers;                                  // the composite's cube (layer 0)
-    int layersUploaded = 0; // layers on the GPU: the composite, or every layer
-    // The object layers (1..) as tiles (distance_layer_tiles.h), once layered lookups need
-    // them: tile size and tiles per face side.
-    LayerTileTextures tiles;
-    glm::ivec2 tileGrid{0};
-    std::size_t tileBytes = 0;
-    gpu::Texture sky;
-    // The composite's GGX prefiltered chain (glossyChainOf) and its levels 1.. on the GPU
-    // (uploadChainArray): made by the first sync that finds a rough reflector of this probe,
-    // since only rough reflectors read it (mutable: the store's hooks get the probe const).
-    mutable std::shared_ptr<const CubeChain> glossyChain;
-    mutable gpu::Texture glossyTexture;
-};
+// Specula's own store holds the runtime's GPU probe, as a host's DistanceHostProbe does.
+using DistanceProbeGpu = DistanceGpuProbe;
 
-// The asset as a distance store holds it: the object layers rounded to half floats when they
-// fit (their atlas is then RGBA16F), so that the CPU twin reads what the GPU does.
-DistanceProbeAsset storedDistanceAsset(DistanceProbeAsset asset);
-// The object layers' tiles as the store uploads them for a layered lookup, of an asset as
-// storedDistanceAsset gives it.
-LayerTiles storedLayerTiles(const DistanceProbeAsset& stored);
-
-// A compiled feature set: the methods' bits, layers, glossy and Fresnel, whether a glossy
-// reflector reads a roughness map (HAS_ROUGHNESS_MAP; usesRoughnessMap), and the output.
 struct DistanceVariant {
     std::uint32_t features = 0;
     int output = 0;

@@ -3,9 +3,9 @@
 #include "components/reflection_probe/lightfield/lightfield_mips.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "engine/core/error.h"
-#include "engine/log/log.h"
 #include "engine/gpu/ggx_albedo_texture.h"
 #include "engine/gpu/shader.h"
+#include "engine/log/log.h"
 #include "engine/scene/components.h"
 #include "engine/scene/mesh_bounds.h"
 

@@ -2,10 +2,10 @@
 // The GPU side of light-field-slab probes: the six slab atlases as one texture array, the
 // per-slab disparities as uniforms, the environment drawn from the slabs on request, and a
 // warning when a reflector leaves the cell the light field is exact in.
-#include "components/reflection_probe/system/flavour_store_base.h"
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
 #include "components/reflection_probe/shader_variants.h"
+#include "components/reflection_probe/system/flavour_store_base.h"
 #include "engine/gpu/gl_objects.h"
 
 #include <array>

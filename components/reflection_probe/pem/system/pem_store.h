@@ -5,10 +5,10 @@
 // distance-geometry asset's distance cube as six R32F layers, and the blend of the two
 // samples nearest the parameter as one uniform block. A parameter edit rewrites the block
 // only; the textures are uploaded once per probe.
-#include "components/reflection_probe/system/flavour_store_base.h"
-#include "components/reflection_probe/pem/system/pem_hull.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
+#include "components/reflection_probe/pem/system/pem_hull.h"
 #include "components/reflection_probe/shader_variants.h"
+#include "components/reflection_probe/system/flavour_store_base.h"
 #include "engine/gpu/gl_objects.h"
 
 #include <memory>

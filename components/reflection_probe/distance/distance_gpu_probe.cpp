@@ -1,0 +1,116 @@
+#include "distance_gpu_probe.h"
+
+#include "components/reflection_probe/distance/shaders/distance_params.glsl.h"
+
+namespace specula {
+
+namespace {
+
+constexpr bool kHalfObjectLayers = true;
+
+void pointSampler(GLuint program, const char* name, GLuint unit) {
+    glProgramUniform1i(program, glGetUniformLocation(program, name), GLint(unit));
+}
+
+} // namespace
+
+DistanceProbeAsset storedDistanceAsset(DistanceProbeAsset asset) {
+    if (kHalfObjectLayers && objectLayersFitHalf(asset)) roundObjectLayersToHalf(asset);
+    return asset;
+}
+
+LayerTiles storedLayerTiles(const DistanceProbeAsset& stored) {
+    return tileObjectLayers(stored, kLayerTileSize,
+                            kHalfObjectLayers && objectLayersFitHalf(stored));
+}
+
+std::vector<std::string> distanceDefines(std::uint32_t features, bool roughnessMap) {
+    auto bit = [&](std::uint32_t b) { return (features & b) ? "1" : "0"; };
+    std::vector<std::string> defines;
+    for (const DistanceMethodInfo& row : kDistanceMethods)
+        if (row.define) defines.push_back(std::string(row.define) + "=" + bit(row.feature));
+    defines.push_back(std::string("HAS_LAYERS=") + bit(kFeatureLayers));
+    // The GPU probe keeps the object layers as tiles (uploadLayerTiles).
+    defines.push_back(std::string("LAYER_TILES=") + bit(kFeatureLayers));
+    defines.push_back(std::string("HAS_GLOSSY=") + bit(kFeatureGlossy));
+    defines.push_back(std::string("HAS_ROUGHNESS_MAP=") + (roughnessMap ? "1" : "0"));
+    defines.push_back(std::string("HAS_FRESNEL=") + bit(kFeatureFresnel));
+    return defines;
+}
+
+DistanceGpuProbe DistanceGpuProbe::load(std::shared_ptr<const DistanceProbeAsset> stored) {
+    DistanceGpuProbe g;
+    g.asset = std::move(stored);
+    if (!g.asset->sky.empty()) g.sky = uploadSkyTexture(g.asset->sky);
+    return g;
+}
+
+bool DistanceGpuProbe::applySettings(const DistanceProbe& settings) {
+    const DistanceProbeAsset& a = *asset;
+    DistanceLookupConfig made = makeLookupConfig(settings, a); // throws before any change
+    // Only the layers the method reads go to the GPU. A texture that already holds them is
+    // kept, so a method edit re-uploads only to grow.
+    const int needed = (made.features & kFeatureLayers) ? int(a.layers.size()) : 1;
+    const bool upload = needed > layersUploaded;
+    if (upload) {
+        if (layersUploaded == 0) {
+            layers = createCubeArray(a.faceRes, 1);
+            uploadCube(layers, 0, a.layers.front());
+        }
+        if (needed > 1) {
+            const LayerTiles t = storedLayerTiles(a);
+            tiles = uploadLayerTiles(t);
+            tileGrid = glm::ivec2(t.tileSize, t.tilesPerFace);
+            tileBytes = layerTileBytes(t);
+        }
+        layersUploaded = needed;
+    }
+    config = std::move(made);
+    params.upload(config);
+    return upload;
+}
+
+void DistanceGpuProbe::setGlossyChain(std::shared_ptr<const CubeChain> chain) const {
+    if (glossyChain) return;
+    glossyTexture = uploadChainArray(*chain);
+    glossyChain = std::move(chain);
+}
+
+std::size_t DistanceGpuProbe::gpuBytes() const {
+    const DistanceProbeAsset& a = *asset;
+    return (layersUploaded > 0 ? cubeArrayBytes(a.faceRes, 1) : 0) + tileBytes +
+           (a.sky.empty() ? 0 : skyTextureBytes(a.sky)) +
+           (glossyChain ? chainArrayBytes(*glossyChain) : 0);
+}
+
+void DistanceGpuProbe::bindTo(GLuint program, const DistanceBindings& b, bool glossy,
+                              const gpu::Texture* ggxAlbedo) const {
+    glBindTextureUnit(b.layers, layers.id());
+    glBindTextureUnit(b.sky, sky.id());
+    pointSampler(program, "uLayers", b.layers);
+    pointSampler(program, "uSky", b.sky);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uHasSky"), sky.id() != 0 ? 1 : 0);
+    if (config.features & kFeatureLayers) {
+        glBindTextureUnit(b.tileAtlas, tiles.atlas.id());
+        glBindTextureUnit(b.tileTable, tiles.table.id());
+        pointSampler(program, "uTileAtlas", b.tileAtlas);
+        pointSampler(program, "uTileTable", b.tileTable);
+        glProgramUniform2i(program, glGetUniformLocation(program, "uTileGrid"), tileGrid.x,
+                           tileGrid.y);
+    }
+    params.bind(b.params);
+    const GLuint block = glGetUniformBlockIndex(program, "DistanceParamsUniforms");
+    if (block != GL_INVALID_INDEX) glUniformBlockBinding(program, block, b.params);
+    if (glossy && glossyChain) {
+        glBindTextureUnit(b.chain, glossyTexture.id());
+        pointSampler(program, "uChain", b.chain);
+        glProgramUniform1i(program, glGetUniformLocation(program, "uChainLevels"),
+                           int(glossyChain->levels.size()));
+        if (ggxAlbedo) {
+            glBindTextureUnit(b.ggxAlbedo, ggxAlbedo->id());
+            pointSampler(program, "uGgxAlbedo", b.ggxAlbedo);
+        }
+    }
+}
+
+} // namespace specula
