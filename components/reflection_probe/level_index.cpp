@@ -39,7 +39,9 @@ json toJson(const LevelIndex& index) {
 }
 
 LevelIndex levelIndexFromJson(const json& j, const std::string& file) {
-    if (!j.is_object() || j.value("format", "") != "specula-level")
+    // is_string first: json::value() throws type_error for a member of another type.
+    if (!j.is_object() || !j.contains("format") || !j["format"].is_string() ||
+        j["format"].get<std::string>() != "specula-level")
         throw Error(file, "format", "expected \"specula-level\"");
     if (!j.contains("version") || !j["version"].is_number_integer() ||
         j["version"].get<int>() != kLevelFormatVersion)

@@ -1,9 +1,9 @@
 // The host path, as a host programmer runs it: examples/minimal (its own context, shader and
 // analytic mirror sphere and rough disc, Specula through DistanceHostProbe only) renders a
 // probe of the bundled room headless, and every pixel is held to the CPU twin of the shader
-// (CpuDistanceProbe: radiance for the mirror, the glossy sample times the GGX albedo for the
-// disc) recomputed here from the example's camera and geometry: >= 40 dB. Bad input reaches
-// the host as an error value naming the asset, and it exits cleanly.
+// (CpuDistanceProbe's glossy sample times the GGX albedo, at roughness 0 for the mirror and
+// 0.3 for the disc) recomputed here from the example's camera and geometry: >= 40 dB. Bad input
+// reaches the host as an error value naming the asset, and it exits cleanly.
 #include "assetcooker/lib/cook.h"
 #include "components/reflection_probe/distance/distance_glossy_chain.h"
 #include "components/reflection_probe/distance/distance_gpu_probe.h"
@@ -70,9 +70,10 @@ struct HostScene {
         glm::vec3 n = onSphere ? glm::normalize(p - sphere) : glm::vec3(0.f, 1.f, 0.f);
         if (glm::dot(n, d) > 0.f) n = -n;
         const glm::vec3 l = glm::normalize(d - 2.f * glm::dot(d, n) * n); // the mirror ray
-        int fetches = 0;
-        if (onSphere) return twin.radiance(p - centre, l, fetches);
-        return twin.glossyRadiance(p - centre, l, 0.3f) * ggxAlbedo(std::abs(glm::dot(n, d)), 0.3f);
+        // The example's probe is glossy: every pixel runs the chain's path, the mirror at
+        // roughness 0 (level 0 of the chain), times the GGX albedo, as the shader does.
+        const float r = onSphere ? 0.f : 0.3f;
+        return twin.glossyRadiance(p - centre, l, r) * ggxAlbedo(std::abs(glm::dot(n, d)), r);
     }
 };
 

@@ -14,6 +14,7 @@
 // (shaders/distance_host.glsl). The probe owns its GL textures and buffer (Specula's own
 // store binds the same DistanceGpuProbe); it must be destroyed while the context is current.
 #include "components/reflection_probe/distance/distance_gpu_probe.h"
+#include "components/reflection_probe/host_probe.h"
 
 #include <memory>
 #include <string>
@@ -32,13 +33,7 @@ struct DistanceHostOptions {
 
 class DistanceHostProbe;
 
-// create()'s answer: a probe, or an error that names the asset and field (or the GL feature)
-// and leaves the host's GL state as it was.
-struct DistanceHostResult {
-    std::unique_ptr<DistanceHostProbe> probe;
-    std::string error;
-    explicit operator bool() const { return probe != nullptr; }
-};
+using DistanceHostResult = HostResult<DistanceHostProbe>;
 
 class DistanceHostProbe {
 public:

@@ -5,9 +5,8 @@
 // worldPos: the reflector point in world space; normal: its shading normal (any length; a zero
 // or NaN normal falls back to the screen-space geometric one); viewDir: from the eye to the
 // point; roughness: perceptual (0: a mirror). Returns the radiance the reflector reflects,
-// before the host's Fresnel and albedo: with HAS_GLOSSY a rough reflector reads the GGX chain
-// at the hit times the directional albedo, exactly as Specula's own reflector pass
-// (distance_reflector.frag) does. Samplers and the parameter block are bound by
+// before the host's Fresnel and albedo: with HAS_GLOSSY the GGX chain at the hit times the
+// directional albedo. Specula's own reflector pass (distance_reflector.frag) calls it too. Samplers and the parameter block are bound by
 // DistanceHostProbe::bindTo on units and a binding point the host chose.
 #include "engine/core/glsl_device.glsl"
 #include "engine/math/cube_face.glsl.h"
@@ -43,12 +42,13 @@ vec3 speculaReflect(vec3 worldPos, vec3 normal, vec3 viewDir, float roughness) {
     vec3 n = safeNormal(normal, geometric);
     vec3 lhat = normalize(mirrorDirection(v, n));
     DistanceParams p = lookupParams();
-    int fetches = 0;
 #if HAS_GLOSSY
-    if (roughness > 0.0) {
-        GlossySample glossy = probeGlossySample(x, lhat, roughness, p, uChainLevels);
-        return glossy.radiance * ggxAlbedo(abs(dot(n, v)), roughness);
-    }
-#endif
+    // The glossy variant runs the chain's path at every roughness (0 reads level 0: the
+    // mirror's radiance, CpuDistanceProbe::glossySample).
+    float r = max(roughness, 0.0);
+    return probeGlossySample(x, lhat, r, p, uChainLevels).radiance * ggxAlbedo(abs(dot(n, v)), r);
+#else
+    int fetches = 0;
     return probeRadiance(x, lhat, p, fetches);
+#endif
 }

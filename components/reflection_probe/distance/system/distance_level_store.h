@@ -6,6 +6,7 @@
 // (shaders/distance_level_reflector.frag). A rough reflector (issue 14) also reads every
 // probe's GGX chain: made and uploaded by the first sync that finds one, never otherwise.
 #include "components/reflection_probe/distance/distance_level.h"
+#include "components/reflection_probe/distance/distance_level_gpu.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/probe_volume.h"
 #include "components/reflection_probe/shader_variants.h"
@@ -20,25 +21,8 @@
 #include <vector>
 
 namespace specula {
-namespace glsl {
-#include "components/reflection_probe/distance/shaders/distance_level_params.glsl.h"
-} // namespace glsl
-
-struct DistanceLevelGpu {
-    std::string indexPath;
-    std::vector<ProbeVolume> volumes; // blend order (probe_volume.h blendsBefore)
-    std::vector<std::shared_ptr<const DistanceProbeAsset>> assets; // (the same order)
-    gpu::Texture composites; // probe i's faces are layers 6i .. 6i+5
-    gpu::Texture sky;
-    gpu::UniformBuffer<glsl::LevelParamsBlock> params;
-    std::uint32_t methodFeature = 0; // the permutation bit of the settings' method
-    // Every probe's composite GGX chain (glossyChainOf; blend order) and their levels 1.. in
-    // one array (uploadChainArrays): made by the first sync that finds a rough reflector of
-    // the level, since only rough reflectors read them (mutable: the store's hooks get the
-    // level const). Empty while every reflector is a mirror.
-    mutable std::vector<std::shared_ptr<const CubeChain>> chains;
-    mutable gpu::Texture chainTexture;
-};
+// The store holds the runtime's DistanceLevelGpu (distance_level_gpu.h), as a host's
+// DistanceLevelHostProbe does.
 
 struct DistanceLevelVariant {
     std::uint32_t features = 0; // the method's bit, kFeatureGlossy and kFeatureFresnel
@@ -52,10 +36,6 @@ struct DistanceLevelVariant {
     std::string name() const;
     gpu::Program build() const;
 };
-
-// The most probes one level may hold on this GL context: the uniform block's
-// kMaxLevelProbes, and GL_MAX_ARRAY_TEXTURE_LAYERS / 6.
-int maxLevelProbes();
 
 class DistanceLevelStore final : public FlavourStoreBase<DistanceLevel, DistanceLevelGpu> {
 public:

@@ -1,0 +1,185 @@
+#include "distance_level_gpu.h"
+
+#include "components/reflection_probe/distance/distance_glossy_chain.h"
+#include "components/reflection_probe/distance/distance_lookup_config.h"
+#include "components/reflection_probe/distance/distance_textures.h"
+#include "engine/core/error.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <numeric>
+
+namespace specula {
+namespace {
+
+// Whether the influence volume reaches into the box (the reflector's world bounds).
+bool influenceMeets(const ProbeInfluence& v, const Aabb& box) {
+    if (v.shape == ProbeInfluence::Shape::Box) return v.box.overlaps(box);
+    const glm::vec3 nearest = glm::clamp(v.centre, box.min, box.max);
+    return glm::distance(nearest, v.centre) <= v.radius;
+}
+
+glsl::LevelProbeParams levelProbeParams(const ProbeVolume& v, const DistanceLookupConfig& c) {
+    glsl::LevelProbeParams p{};
+    p.lookup = c.params;
+    p.composite = c.layers[0];
+    const ProbeInfluence& in = v.influence;
+    p.influenceShape = influenceShapeCode(in);
+    p.influenceMin = in.box.min;
+    p.influenceMax = in.box.max;
+    p.influenceCentre = in.centre;
+    p.influenceRadius = in.radius;
+    p.blendDistance = v.blendDistance;
+    return p;
+}
+
+void pointSampler(GLuint program, const char* name, GLuint unit) {
+    glProgramUniform1i(program, glGetUniformLocation(program, name), GLint(unit));
+}
+
+} // namespace
+
+int maxLevelProbes() {
+    GLint layers = 0;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &layers);
+    return std::min(glsl::kMaxLevelProbes, int(layers) / 6);
+}
+
+std::vector<std::string> distanceLevelDefines(std::uint32_t features, int k, LevelBlend blend,
+                                              bool roughnessMap) {
+    auto bit = [&](std::uint32_t b) { return (features & b) ? "1" : "0"; };
+    std::vector<std::string> defines;
+    for (const DistanceMethodInfo& row : kDistanceMethods)
+        if (row.define) defines.push_back(std::string(row.define) + "=" + bit(row.feature));
+    defines.push_back("HAS_LAYERS=0");
+    defines.push_back(std::string("HAS_GLOSSY=") + bit(kFeatureGlossy));
+    defines.push_back(std::string("HAS_ROUGHNESS_MAP=") + (roughnessMap ? "1" : "0"));
+    defines.push_back(std::string("HAS_FRESNEL=") + bit(kFeatureFresnel));
+    defines.push_back("LEVEL_K=" + std::to_string(k));
+    defines.push_back("LEVEL_BLEND=" + std::to_string(int(blend)));
+    return defines;
+}
+
+DistanceLevelGpu DistanceLevelGpu::load(const std::string& path, const LevelIndex& index,
+                                        const DistanceAssetReader& read) {
+    if (index.flavour != "distance")
+        throw Error(path, "flavour", "expected \"distance\", got \"" + index.flavour + "\"");
+    if (index.probes.empty()) throw Error(path, "probes", "the level has no probe");
+    const int limit = maxLevelProbes();
+    if (int(index.probes.size()) > limit)
+        throw Error(path, "probes",
+                    "the level has " + std::to_string(index.probes.size()) +
+                        " probes; one view holds at most " + std::to_string(limit) +
+                        " (a uniform block of " + std::to_string(glsl::kMaxLevelProbes) +
+                        " probes, 6 texture-array layers each): split the level");
+    std::vector<std::size_t> order(index.probes.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return blendsBefore(index.probes[a].volume, index.probes[b].volume);
+    });
+    DistanceLevelGpu g;
+    g.indexPath = path;
+    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    for (const std::size_t i : order) {
+        const LevelProbeEntry& e = index.probes[i];
+        g.volumes.push_back(e.volume);
+        g.assets.push_back(read((dir / e.folder / "manifest.json").string()));
+        if (g.assets.back()->faceRes != g.assets.front()->faceRes)
+            throw Error(path, "probes[" + std::to_string(i) + "]",
+                        "face resolution " + std::to_string(g.assets.back()->faceRes) +
+                            " differs from the level's " +
+                            std::to_string(g.assets.front()->faceRes) +
+                            " (one texture array holds every probe): re-bake the level");
+    }
+    g.composites = createCubeArray(g.assets.front()->faceRes, int(g.assets.size()));
+    for (std::size_t i = 0; i < g.assets.size(); ++i)
+        uploadCube(g.composites, int(i), g.assets[i]->layers.front());
+    // The level is baked under one sky: the first probe's.
+    if (!g.assets.front()->sky.empty()) g.sky = uploadSkyTexture(g.assets.front()->sky);
+    return g;
+}
+
+void DistanceLevelGpu::applySettings(const DistanceLevel& settings) {
+    validateDistanceLevel(settings, indexPath);
+    glsl::LevelParamsBlock block{};
+    std::uint32_t features = 0;
+    for (std::size_t i = 0; i < assets.size(); ++i) {
+        const DistanceLookupConfig c = makeLookupConfig(settings.lookup, *assets[i]);
+        block.probes[i] = levelProbeParams(volumes[i], c);
+        features = c.features;
+    }
+    methodFeature = features;
+    params.upload(block);
+}
+
+std::vector<std::shared_ptr<const CubeChain>> DistanceLevelGpu::makeChains() const {
+    std::vector<std::shared_ptr<const CubeChain>> made;
+    for (const std::shared_ptr<const DistanceProbeAsset>& a : assets) {
+        made.push_back(std::make_shared<const CubeChain>(glossyChainOf(*a)));
+        if (made.back()->levels.size() != made.front()->levels.size())
+            throw Error(indexPath, "probes",
+                        "probe '" + volumes[made.size() - 1].name + "' has a glossy chain of " +
+                            std::to_string(made.back()->levels.size()) + " levels, probe '" +
+                            volumes.front().name + "' one of " +
+                            std::to_string(made.front()->levels.size()) +
+                            " (one texture array holds every probe's): re-bake the level");
+    }
+    return made;
+}
+
+void DistanceLevelGpu::setChains(std::vector<std::shared_ptr<const CubeChain>> made) const {
+    if (!chains.empty()) return;
+    std::vector<const CubeChain*> all;
+    for (const auto& c : made)
+        all.push_back(c.get());
+    chainTexture = uploadChainArrays(all);
+    chains = std::move(made);
+}
+
+std::size_t DistanceLevelGpu::gpuBytes() const {
+    const DistanceProbeAsset& a = *assets.front();
+    return cubeArrayBytes(a.faceRes, int(assets.size())) +
+           (a.sky.empty() ? 0 : skyTextureBytes(a.sky)) +
+           (chains.empty() ? 0 : chains.size() * chainArrayBytes(*chains.front()));
+}
+
+std::vector<GLint> DistanceLevelGpu::candidatesFor(const Aabb& bounds) const {
+    std::vector<GLint> candidates;
+    for (std::size_t i = 0; i < volumes.size(); ++i)
+        if (bounds.empty() || influenceMeets(volumes[i].influence, bounds))
+            candidates.push_back(GLint(i));
+    return candidates;
+}
+
+void DistanceLevelGpu::bindTo(GLuint program, const DistanceLevelBindings& b,
+                              const std::vector<GLint>& candidates, bool glossy,
+                              const gpu::Texture* ggxAlbedo) const {
+    glBindTextureUnit(b.layers, composites.id());
+    glBindTextureUnit(b.sky, sky.id());
+    pointSampler(program, "uLevelLayers", b.layers);
+    pointSampler(program, "uSky", b.sky);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uHasSky"), sky.id() != 0 ? 1 : 0);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uProbeCount"), int(volumes.size()));
+    glProgramUniform1i(program, glGetUniformLocation(program, "uCandidateCount"),
+                       int(candidates.size()));
+    if (!candidates.empty())
+        glProgramUniform1iv(program, glGetUniformLocation(program, "uCandidates[0]"),
+                            GLsizei(candidates.size()), candidates.data());
+    params.bind(b.params);
+    const GLuint block = glGetUniformBlockIndex(program, "LevelParamsUniforms");
+    if (block != GL_INVALID_INDEX) glUniformBlockBinding(program, block, b.params);
+    if (glossy && !chains.empty()) {
+        glBindTextureUnit(b.chains, chainTexture.id());
+        pointSampler(program, "uLevelChain", b.chains);
+        glProgramUniform1i(program, glGetUniformLocation(program, "uChainSlots"),
+                           chainArraySlots(*chains.front()));
+        glProgramUniform1i(program, glGetUniformLocation(program, "uChainLevels"),
+                           int(chains.front()->levels.size()));
+        if (ggxAlbedo) {
+            glBindTextureUnit(b.ggxAlbedo, ggxAlbedo->id());
+            pointSampler(program, "uGgxAlbedo", b.ggxAlbedo);
+        }
+    }
+}
+
+} // namespace specula

@@ -1,0 +1,30 @@
+#pragma once
+// What every flavour's host API shares (distance/distance_host_probe.h and the level's): the
+// answer of create() as a value, the GL checks made before any GL object, and the GLSL a
+// host's shader prepends.
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace specula {
+
+// create()'s answer: a probe, or an error that names the asset and field (or the GL feature)
+// and leaves the host's GL state as it was.
+template <typename Probe> struct HostResult {
+    std::unique_ptr<Probe> probe;
+    std::string error;
+    explicit operator bool() const { return probe != nullptr; }
+};
+
+// Empty when the current context can run the lookups on textures of faceRes^2 and `layers`
+// array layers, else why not: no current context, below OpenGL 4.5, a size over the limits.
+std::string missingHostGlFeature(int faceRes, int layers);
+
+// `shader` (a path the runtime embeds) expanded with `defines`, without its #version line:
+// the host writes its own first.
+std::string hostGlslLibrary(const std::string& shader, const std::vector<std::string>& defines);
+
+// Throws Error(file) when the GL error flag is set after creating a host probe's objects.
+void throwOnHostGlError(const std::string& file);
+
+} // namespace specula

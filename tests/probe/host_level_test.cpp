@@ -1,0 +1,127 @@
+// A level of distance probes through the host API (DistanceLevelHostProbe): a host's own
+// full-screen shader ray casts a mirror sphere in the two-room scene's doorway, where both
+// probes have influence, and calls speculaReflect; every pixel is held to the level's CPU twin
+// (CpuDistanceLevel) for the visibility blend at K = 4: >= 40 dB. The per-reflector data: a
+// reflector's bounds select the probes whose influence meets them. Bad input is an error value.
+#include "components/reflection_probe/distance/distance_level_cpu.h"
+#include "components/reflection_probe/distance/distance_level_host_probe.h"
+#include "engine/gpu/render_target.h"
+#include "engine/image_io/compare.h"
+#include "support/fullscreen_pass.h"
+#include "two_room_level_gpu_fixture.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+namespace specula {
+namespace {
+
+constexpr int kW = 160, kH = 120;
+const glm::vec4 kSphere(0.2f, 1.2f, 0.f, 0.35f); // in the doorway (the wall at x = 0)
+
+// The host's fragment shader after Specula's library: one mirror sphere, ray cast per pixel.
+const char* kHostMain = R"(
+uniform mat4 uInvViewProj;
+uniform vec3 uEye;
+uniform vec4 uSphere;
+uniform vec2 uSize;
+out vec4 colour;
+void main() {
+    vec2 ndc = gl_FragCoord.xy / uSize * 2.0 - 1.0;
+    vec4 far = uInvViewProj * vec4(ndc, 1.0, 1.0);
+    vec3 d = normalize(far.xyz / far.w - uEye);
+    vec3 o = uEye - uSphere.xyz;
+    float b = dot(o, d), h = b * b - dot(o, o) + uSphere.w * uSphere.w;
+    float t = h >= 0.0 ? -b - sqrt(h) : -1.0;
+    if (t <= 0.0) { colour = vec4(0.0); return; }
+    vec3 p = uEye + t * d;
+    colour = vec4(speculaReflect(p, p - uSphere.xyz, d, 0.0), 1.0);
+}
+)";
+
+class HostLevel : public test::TwoRoomLevelGpuTest {
+protected:
+    HostLevel() : TwoRoomLevelGpuTest("specula-host-level") {}
+};
+
+TEST_F(HostLevel, BlendsTheLevelAsItsTwinDoes) {
+    test::ProbeRoom room(test::kTwoRoomsScene, "");
+    const std::string index = bake(room);
+    DistanceLevelHostOptions options;
+    options.settings.lookup.method = DistanceMethod::Secant;
+    options.settings.blend = LevelBlend::Visibility;
+    options.settings.k = 4;
+    const DistanceLevelHostResult made = DistanceLevelHostProbe::create(index, options);
+    ASSERT_TRUE(made) << made.error;
+    const DistanceLevelHostProbe& level = *made.probe;
+
+    const Aabb sphereBounds = Aabb::cube(glm::vec3(kSphere), kSphere.w);
+    EXPECT_EQ(level.probesFor(sphereBounds).size(), 2u) << "the doorway is in both influences";
+    EXPECT_EQ(level.probesFor(Aabb::cube(glm::vec3(-3.f, 1.2f, 0.f), 0.2f)).size(), 1u)
+        << "deep in room A only its probe";
+
+    const CameraView cam = doorwayCamera(kW, kH);
+    const glm::mat4 inv = glm::inverse(cam.viewProj());
+    const glm::vec3 eye = cam.eye();
+    gpu::Program prog =
+        test::buildFullscreenProgram("host_level", level.glslLibrary() + kHostMain);
+    gpu::RenderTarget target(kW, kH);
+    const gpu::VertexArray vao = gpu::VertexArray::create();
+    const Image host = test::drawFullscreen(target, prog, vao, [&] {
+        glProgramUniformMatrix4fv(prog.id(), prog.uniformLocation("uInvViewProj"), 1, GL_FALSE,
+                                  &inv[0][0]);
+        prog.setUniform("uEye", eye);
+        prog.setUniform("uSize", glm::vec2(kW, kH));
+        glProgramUniform4f(prog.id(), prog.uniformLocation("uSphere"), kSphere.x, kSphere.y,
+                           kSphere.z, kSphere.w);
+        level.bindTo(prog.id(), sphereBounds);
+    });
+
+    const CpuDistanceLevel twin(index, options.settings.lookup);
+    Image reference(kW, kH, 3);
+    int covered = 0, blended = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            // Row 0 of the read-back image is the top: GL row kH - 1 - y.
+            const glm::vec2 ndc((x + 0.5f) / kW * 2.f - 1.f, (kH - 1 - y + 0.5f) / kH * 2.f - 1.f);
+            const glm::vec4 far = inv * glm::vec4(ndc, 1.f, 1.f);
+            const glm::vec3 d = glm::normalize(glm::vec3(far) / far.w - eye);
+            const glm::vec3 o = eye - glm::vec3(kSphere);
+            const float b = glm::dot(o, d), h = b * b - glm::dot(o, o) + kSphere.w * kSphere.w;
+            const float t = h >= 0.f ? -b - std::sqrt(h) : -1.f;
+            if (t <= 0.f) continue;
+            const glm::vec3 p = eye + t * d, n = glm::normalize(p - glm::vec3(kSphere));
+            const glm::vec3 l = glm::normalize(d - 2.f * glm::dot(d, n) * n);
+            const LevelSample s = twin.radiance(p, l, LevelBlend::Visibility, 4);
+            std::copy(&s.radiance[0], &s.radiance[0] + 3, reference.at(x, y));
+            ++covered;
+            blended += s.weights.size() >= 2 ? 1 : 0;
+        }
+    const ImageStats stats = compareImages(host, reference);
+    std::printf(
+        "[host-level] %d sphere px (%d blend 2+ probes): %s dB against the twin, max %.4f\n",
+        covered, blended, formatPsnr(stats.psnr).c_str(), stats.maxError);
+    ASSERT_GT(covered, 1000) << "the camera must see the sphere";
+    ASSERT_TRUE(stats.hasPsnr);
+    EXPECT_GE(stats.psnr, 40.0);
+}
+
+TEST_F(HostLevel, BadInputIsAnErrorValueNamingTheFile) {
+    const DistanceLevelHostResult missing =
+        DistanceLevelHostProbe::create((root_ / "none" / "level.json").string());
+    EXPECT_FALSE(missing);
+    EXPECT_NE(missing.error.find("level.json"), std::string::npos) << missing.error;
+
+    test::ProbeRoom room(test::kTwoRoomsScene, "");
+    const std::string index = bake(room);
+    DistanceLevelHostOptions layered;
+    layered.settings.lookup.method = DistanceMethod::Layered; // a level looks up composites only
+    const DistanceLevelHostResult refused = DistanceLevelHostProbe::create(index, layered);
+    EXPECT_FALSE(refused);
+    EXPECT_NE(refused.error.find("level.json"), std::string::npos) << refused.error;
+}
+
+} // namespace
+} // namespace specula
