@@ -65,8 +65,7 @@ TEST_F(HostLevel, BlendsTheLevelAsItsTwinDoes) {
     const CameraView cam = doorwayCamera(kW, kH);
     const glm::mat4 inv = glm::inverse(cam.viewProj());
     const glm::vec3 eye = cam.eye();
-    gpu::Program prog =
-        test::buildFullscreenProgram("host_level", level.glslLibrary() + kHostMain);
+    gpu::Program prog = test::buildFullscreenProgram("host_level", level.glslLibrary() + kHostMain);
     gpu::RenderTarget target(kW, kH);
     const gpu::VertexArray vao = gpu::VertexArray::create();
     const Image host = test::drawFullscreen(target, prog, vao, [&] {
