@@ -1,7 +1,6 @@
 #include "host_probe.h"
 
 #include "engine/core/error.h"
-#include "engine/gpu/gl_objects.h"
 #include "engine/gpu/shader.h"
 
 namespace specula {
@@ -30,6 +29,20 @@ std::string hostGlslLibrary(const std::string& shader, const std::vector<std::st
         gpu::expandShader(gpu::ShaderSource::file(shader), defines);
     const std::size_t eol = expanded.text.find('\n');
     return eol == std::string::npos ? std::string() : expanded.text.substr(eol + 1);
+}
+
+void bindSampler(GLuint program, const char* name, GLuint unit, GLuint texture) {
+    glBindTextureUnit(unit, texture);
+    glProgramUniform1i(program, glGetUniformLocation(program, name), GLint(unit));
+}
+
+void setIntUniform(GLuint program, const char* name, int value) {
+    glProgramUniform1i(program, glGetUniformLocation(program, name), value);
+}
+
+void bindUniformBlock(GLuint program, const char* block, GLuint binding) {
+    const GLuint index = glGetUniformBlockIndex(program, block);
+    if (index != GL_INVALID_INDEX) glUniformBlockBinding(program, index, binding);
 }
 
 void throwOnHostGlError(const std::string& file) {

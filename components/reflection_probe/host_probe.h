@@ -2,6 +2,8 @@
 // What every flavour's host API shares (distance/distance_host_probe.h and the level's): the
 // answer of create() as a value, the GL checks made before any GL object, and the GLSL a
 // host's shader prepends.
+#include "engine/gpu/gl_objects.h"
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +25,13 @@ std::string missingHostGlFeature(int faceRes, int layers);
 // `shader` (a path the runtime embeds) expanded with `defines`, without its #version line:
 // the host writes its own first.
 std::string hostGlslLibrary(const std::string& shader, const std::vector<std::string>& defines);
+
+// What every GPU probe's bindTo does to a program it does not own (a host's, or Specula's own):
+// `texture` on `unit` and the sampler uniform `name` pointed at it; an int uniform; the uniform
+// block `block` pointed at `binding`. Names the program does not use are skipped.
+void bindSampler(GLuint program, const char* name, GLuint unit, GLuint texture);
+void setIntUniform(GLuint program, const char* name, int value);
+void bindUniformBlock(GLuint program, const char* block, GLuint binding);
 
 // Throws Error(file) when the GL error flag is set after creating a host probe's objects.
 void throwOnHostGlError(const std::string& file);

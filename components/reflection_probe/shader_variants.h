@@ -11,12 +11,24 @@
 #include "engine/gpu/shader_files.h"
 
 #include <map>
+#include <string>
+#include <vector>
 
 namespace specula::gpu::embedded {
 std::span<const ShaderFile> probeShaderFiles(); // generated: components/reflection_probe/**
 } // namespace specula::gpu::embedded
 
 namespace specula {
+
+// A reflector pass: the shared vertex stage (shaders/reflector.vert) and a flavour's fragment
+// stage `frag` with its permutation `defines` and OUTPUT (0 colour, 1.. the twin's inputs).
+inline gpu::Program buildReflectorProgram(const char* frag, std::vector<std::string> defines,
+                                          int output) {
+    defines.push_back("OUTPUT=" + std::to_string(output));
+    return gpu::buildProgram(
+        gpu::ShaderSource::file("components/reflection_probe/shaders/reflector.vert"),
+        gpu::ShaderSource::file(frag), defines);
+}
 
 template <typename Variant> class ShaderVariants {
 public:

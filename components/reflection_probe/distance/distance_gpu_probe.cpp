@@ -1,17 +1,12 @@
 #include "distance_gpu_probe.h"
 
 #include "components/reflection_probe/distance/shaders/distance_params.glsl.h"
+#include "components/reflection_probe/host_probe.h"
 
 namespace specula {
 
 namespace {
-
 constexpr bool kHalfObjectLayers = true;
-
-void pointSampler(GLuint program, const char* name, GLuint unit) {
-    glProgramUniform1i(program, glGetUniformLocation(program, name), GLint(unit));
-}
-
 } // namespace
 
 DistanceProbeAsset storedDistanceAsset(DistanceProbeAsset asset) {
@@ -24,17 +19,23 @@ LayerTiles storedLayerTiles(const DistanceProbeAsset& stored) {
                             kHalfObjectLayers && objectLayersFitHalf(stored));
 }
 
-std::vector<std::string> distanceDefines(std::uint32_t features, bool roughnessMap) {
+std::vector<std::string> distanceFeatureDefines(std::uint32_t features, bool roughnessMap) {
     auto bit = [&](std::uint32_t b) { return (features & b) ? "1" : "0"; };
     std::vector<std::string> defines;
     for (const DistanceMethodInfo& row : kDistanceMethods)
         if (row.define) defines.push_back(std::string(row.define) + "=" + bit(row.feature));
-    defines.push_back(std::string("HAS_LAYERS=") + bit(kFeatureLayers));
-    // The GPU probe keeps the object layers as tiles (uploadLayerTiles).
-    defines.push_back(std::string("LAYER_TILES=") + bit(kFeatureLayers));
     defines.push_back(std::string("HAS_GLOSSY=") + bit(kFeatureGlossy));
     defines.push_back(std::string("HAS_ROUGHNESS_MAP=") + (roughnessMap ? "1" : "0"));
     defines.push_back(std::string("HAS_FRESNEL=") + bit(kFeatureFresnel));
+    return defines;
+}
+
+std::vector<std::string> distanceDefines(std::uint32_t features, bool roughnessMap) {
+    std::vector<std::string> defines = distanceFeatureDefines(features, roughnessMap);
+    const char* layers = (features & kFeatureLayers) ? "1" : "0";
+    defines.push_back(std::string("HAS_LAYERS=") + layers);
+    // The GPU probe keeps the object layers as tiles (uploadLayerTiles).
+    defines.push_back(std::string("LAYER_TILES=") + layers);
     return defines;
 }
 
@@ -85,31 +86,21 @@ std::size_t DistanceGpuProbe::gpuBytes() const {
 
 void DistanceGpuProbe::bindTo(GLuint program, const DistanceBindings& b, bool glossy,
                               const gpu::Texture* ggxAlbedo) const {
-    glBindTextureUnit(b.layers, layers.id());
-    glBindTextureUnit(b.sky, sky.id());
-    pointSampler(program, "uLayers", b.layers);
-    pointSampler(program, "uSky", b.sky);
-    glProgramUniform1i(program, glGetUniformLocation(program, "uHasSky"), sky.id() != 0 ? 1 : 0);
+    bindSampler(program, "uLayers", b.layers, layers.id());
+    bindSampler(program, "uSky", b.sky, sky.id());
+    setIntUniform(program, "uHasSky", sky.id() != 0 ? 1 : 0);
     if (config.features & kFeatureLayers) {
-        glBindTextureUnit(b.tileAtlas, tiles.atlas.id());
-        glBindTextureUnit(b.tileTable, tiles.table.id());
-        pointSampler(program, "uTileAtlas", b.tileAtlas);
-        pointSampler(program, "uTileTable", b.tileTable);
+        bindSampler(program, "uTileAtlas", b.tileAtlas, tiles.atlas.id());
+        bindSampler(program, "uTileTable", b.tileTable, tiles.table.id());
         glProgramUniform2i(program, glGetUniformLocation(program, "uTileGrid"), tileGrid.x,
                            tileGrid.y);
     }
     params.bind(b.params);
-    const GLuint block = glGetUniformBlockIndex(program, "DistanceParamsUniforms");
-    if (block != GL_INVALID_INDEX) glUniformBlockBinding(program, block, b.params);
+    bindUniformBlock(program, "DistanceParamsUniforms", b.params);
     if (glossy && glossyChain) {
-        glBindTextureUnit(b.chain, glossyTexture.id());
-        pointSampler(program, "uChain", b.chain);
-        glProgramUniform1i(program, glGetUniformLocation(program, "uChainLevels"),
-                           int(glossyChain->levels.size()));
-        if (ggxAlbedo) {
-            glBindTextureUnit(b.ggxAlbedo, ggxAlbedo->id());
-            pointSampler(program, "uGgxAlbedo", b.ggxAlbedo);
-        }
+        bindSampler(program, "uChain", b.chain, glossyTexture.id());
+        setIntUniform(program, "uChainLevels", int(glossyChain->levels.size()));
+        if (ggxAlbedo) bindSampler(program, "uGgxAlbedo", b.ggxAlbedo, ggxAlbedo->id());
     }
 }
 

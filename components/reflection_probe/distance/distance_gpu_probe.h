@@ -24,6 +24,9 @@ namespace specula {
 DistanceProbeAsset storedDistanceAsset(DistanceProbeAsset asset);
 LayerTiles storedLayerTiles(const DistanceProbeAsset& stored);
 
+// The defines every distance variant shares: one per method row (features' method bits),
+// HAS_GLOSSY, HAS_FRESNEL and HAS_ROUGHNESS_MAP.
+std::vector<std::string> distanceFeatureDefines(std::uint32_t features, bool roughnessMap);
 // The permutation defines of a feature set (distance_probe.h's bits): one per method row,
 // HAS_LAYERS and LAYER_TILES (object layers as tiles), HAS_GLOSSY, HAS_FRESNEL, and
 // HAS_ROUGHNESS_MAP. Unused features compile out.

@@ -1,8 +1,10 @@
 #include "distance_level_gpu.h"
 
 #include "components/reflection_probe/distance/distance_glossy_chain.h"
+#include "components/reflection_probe/distance/distance_gpu_probe.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "components/reflection_probe/distance/distance_textures.h"
+#include "components/reflection_probe/host_probe.h"
 #include "engine/core/error.h"
 
 #include <algorithm>
@@ -33,10 +35,6 @@ glsl::LevelProbeParams levelProbeParams(const ProbeVolume& v, const DistanceLook
     return p;
 }
 
-void pointSampler(GLuint program, const char* name, GLuint unit) {
-    glProgramUniform1i(program, glGetUniformLocation(program, name), GLint(unit));
-}
-
 } // namespace
 
 int maxLevelProbes() {
@@ -47,14 +45,8 @@ int maxLevelProbes() {
 
 std::vector<std::string> distanceLevelDefines(std::uint32_t features, int k, LevelBlend blend,
                                               bool roughnessMap) {
-    auto bit = [&](std::uint32_t b) { return (features & b) ? "1" : "0"; };
-    std::vector<std::string> defines;
-    for (const DistanceMethodInfo& row : kDistanceMethods)
-        if (row.define) defines.push_back(std::string(row.define) + "=" + bit(row.feature));
-    defines.push_back("HAS_LAYERS=0");
-    defines.push_back(std::string("HAS_GLOSSY=") + bit(kFeatureGlossy));
-    defines.push_back(std::string("HAS_ROUGHNESS_MAP=") + (roughnessMap ? "1" : "0"));
-    defines.push_back(std::string("HAS_FRESNEL=") + bit(kFeatureFresnel));
+    std::vector<std::string> defines = distanceFeatureDefines(features, roughnessMap);
+    defines.push_back("HAS_LAYERS=0"); // every probe looks up its composite
     defines.push_back("LEVEL_K=" + std::to_string(k));
     defines.push_back("LEVEL_BLEND=" + std::to_string(int(blend)));
     return defines;
@@ -154,31 +146,21 @@ std::vector<GLint> DistanceLevelGpu::candidatesFor(const Aabb& bounds) const {
 void DistanceLevelGpu::bindTo(GLuint program, const DistanceLevelBindings& b,
                               const std::vector<GLint>& candidates, bool glossy,
                               const gpu::Texture* ggxAlbedo) const {
-    glBindTextureUnit(b.layers, composites.id());
-    glBindTextureUnit(b.sky, sky.id());
-    pointSampler(program, "uLevelLayers", b.layers);
-    pointSampler(program, "uSky", b.sky);
-    glProgramUniform1i(program, glGetUniformLocation(program, "uHasSky"), sky.id() != 0 ? 1 : 0);
-    glProgramUniform1i(program, glGetUniformLocation(program, "uProbeCount"), int(volumes.size()));
-    glProgramUniform1i(program, glGetUniformLocation(program, "uCandidateCount"),
-                       int(candidates.size()));
+    bindSampler(program, "uLevelLayers", b.layers, composites.id());
+    bindSampler(program, "uSky", b.sky, sky.id());
+    setIntUniform(program, "uHasSky", sky.id() != 0 ? 1 : 0);
+    setIntUniform(program, "uProbeCount", int(volumes.size()));
+    setIntUniform(program, "uCandidateCount", int(candidates.size()));
     if (!candidates.empty())
         glProgramUniform1iv(program, glGetUniformLocation(program, "uCandidates[0]"),
                             GLsizei(candidates.size()), candidates.data());
     params.bind(b.params);
-    const GLuint block = glGetUniformBlockIndex(program, "LevelParamsUniforms");
-    if (block != GL_INVALID_INDEX) glUniformBlockBinding(program, block, b.params);
+    bindUniformBlock(program, "LevelParamsUniforms", b.params);
     if (glossy && !chains.empty()) {
-        glBindTextureUnit(b.chains, chainTexture.id());
-        pointSampler(program, "uLevelChain", b.chains);
-        glProgramUniform1i(program, glGetUniformLocation(program, "uChainSlots"),
-                           chainArraySlots(*chains.front()));
-        glProgramUniform1i(program, glGetUniformLocation(program, "uChainLevels"),
-                           int(chains.front()->levels.size()));
-        if (ggxAlbedo) {
-            glBindTextureUnit(b.ggxAlbedo, ggxAlbedo->id());
-            pointSampler(program, "uGgxAlbedo", b.ggxAlbedo);
-        }
+        bindSampler(program, "uLevelChain", b.chains, chainTexture.id());
+        setIntUniform(program, "uChainSlots", chainArraySlots(*chains.front()));
+        setIntUniform(program, "uChainLevels", int(chains.front()->levels.size()));
+        if (ggxAlbedo) bindSampler(program, "uGgxAlbedo", b.ggxAlbedo, ggxAlbedo->id());
     }
 }
 

@@ -30,14 +30,9 @@ std::string DistanceLevelVariant::name() const {
 }
 
 gpu::Program DistanceLevelVariant::build() const {
-    std::vector<std::string> defines =
-        distanceLevelDefines(features, k, LevelBlend(blend), roughnessMap);
-    defines.push_back("OUTPUT=" + std::to_string(output));
-    return gpu::buildProgram(
-        gpu::ShaderSource::file("components/reflection_probe/shaders/reflector.vert"),
-        gpu::ShaderSource::file(
-            "components/reflection_probe/distance/shaders/distance_level_reflector.frag"),
-        defines);
+    return buildReflectorProgram(
+        "components/reflection_probe/distance/shaders/distance_level_reflector.frag",
+        distanceLevelDefines(features, k, LevelBlend(blend), roughnessMap), output);
 }
 
 DistanceLevelGpu DistanceLevelStore::loadProbe(const ProbeManifest& manifest, ProbeFrameStats&) {

@@ -21,13 +21,9 @@ std::string DistanceVariant::name() const {
 }
 
 gpu::Program DistanceVariant::build() const {
-    std::vector<std::string> defines = distanceDefines(features, roughnessMap);
-    defines.push_back("OUTPUT=" + std::to_string(output));
-    return gpu::buildProgram(
-        gpu::ShaderSource::file("components/reflection_probe/shaders/reflector.vert"),
-        gpu::ShaderSource::file(
-            "components/reflection_probe/distance/shaders/distance_reflector.frag"),
-        defines);
+    return buildReflectorProgram(
+        "components/reflection_probe/distance/shaders/distance_reflector.frag",
+        distanceDefines(features, roughnessMap), output);
 }
 
 DistanceProbeGpu DistanceStore::loadProbe(const ProbeManifest& manifest, ProbeFrameStats&) {

@@ -87,13 +87,12 @@ gpu::Texture uploadDistance(const PemAsset& a) {
 } // namespace
 
 gpu::Program PemVariant::build() const {
-    return gpu::buildProgram(
-        gpu::ShaderSource::file("components/reflection_probe/shaders/reflector.vert"),
-        gpu::ShaderSource::file("components/reflection_probe/pem/shaders/pem_reflector.frag"),
-        {std::string("HAS_FRESNEL=") + (fresnel ? "1" : "0"), "OUTPUT=" + std::to_string(output),
-         std::string("GEOMETRY_DISTANCE=") + (distance ? "1" : "0"),
-         std::string("PEM_MIP=") + (mip ? "1" : "0"),
-         std::string("HAS_LOCAL_LAYER=") + (local ? "1" : "0")});
+    return buildReflectorProgram("components/reflection_probe/pem/shaders/pem_reflector.frag",
+                                 {std::string("HAS_FRESNEL=") + (fresnel ? "1" : "0"),
+                                  std::string("GEOMETRY_DISTANCE=") + (distance ? "1" : "0"),
+                                  std::string("PEM_MIP=") + (mip ? "1" : "0"),
+                                  std::string("HAS_LOCAL_LAYER=") + (local ? "1" : "0")},
+                                 output);
 }
 
 PemProbeGpu PemStore::loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) {
