@@ -195,6 +195,27 @@ LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& env,
             scene.skyPath.empty() ? "none" : fileChecksum(scene.skyPath)};
 }
 
+std::vector<std::string> levelStaleness(ProbeScene& scene, const LevelIndex& index,
+                                        const std::string& indexPath, bool compareSky) {
+    const EmbreeScene env(scene.registry,
+                          [&](ecs::Entity e) { return scene.markup.mirrorEntities.count(e) == 0; });
+    std::vector<std::string> lines;
+    for (std::size_t i = 0; i < index.probes.size(); ++i) {
+        const LevelProbeEntry& p = index.probes[i];
+        const LevelProbeInputs now = levelProbeInputs(scene, env, p.volume, "");
+        const std::string field = indexPath + ": probes[" + std::to_string(i) + "].inputs.";
+        if (now.geometry != p.inputs.geometry)
+            lines.push_back(field + "geometry: probe '" + p.volume.name + "' was baked from " +
+                            index.source +
+                            " with other meshes, materials or reflectors within its reach than " +
+                            scene.path + " has");
+        if (compareSky && now.sky != p.inputs.sky)
+            lines.push_back(field + "sky: probe '" + p.volume.name + "' was baked under sky " +
+                            p.inputs.sky + ", the scene's sky is " + now.sky);
+    }
+    return lines;
+}
+
 LevelCookResult cookLevel(const LevelCookOptions& options, std::ostream* log) {
     ProbeScene scene(options.cook.scene, options.cook.sky);
     return cookLevel(scene, options, log);

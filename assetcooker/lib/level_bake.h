@@ -24,6 +24,14 @@ namespace specula {
 LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& environment,
                                   const ProbeVolume& probe, const std::string& options);
 
+// What differs between `scene` and the scene the level `index` (read from `indexPath`) was
+// baked from: one line per probe whose geometry within reach or sky checksum differs, naming
+// the probe and its index field. Empty when the level fits the scene. The options are not
+// compared: a loader holds no bake settings; nor the sky when `compareSky` is false (a
+// loader that lights its scene with the level's own copy of the sky).
+std::vector<std::string> levelStaleness(ProbeScene& scene, const LevelIndex& index,
+                                        const std::string& indexPath, bool compareSky);
+
 struct LevelCookOptions {
     CookOptions cook;        // scene, sky, out (the level folder), flavour, progress
     std::string optionsText; // the flavour's settings as text, for the options checksum

@@ -118,10 +118,22 @@ struct FrameImages {
     std::array<Image, 3> blends;
 };
 
+// The sky a baked level's first probe holds (every probe of a level is baked under one):
+// its file in the probe's folder, "" (black) when it holds none.
+std::string levelSkyPath(const std::string& levelDir) {
+    const fs::path index = fs::path(levelDir) / "level.json";
+    const LevelIndex level = readLevelIndex(index.string());
+    if (level.probes.empty()) throw Error(index.string(), "probes", "the level has no probe");
+    const fs::path folder = fs::path(levelDir) / level.probes.front().folder;
+    const DistanceProbeAsset first = readDistanceProbe((folder / "manifest.json").string());
+    return first.skyFile.empty() ? "" : (folder / first.skyFile).string();
+}
+
 } // namespace
 
 LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
-    ReflectionScene reflectionScene(o.scene, o.sky, o.addedReflectors);
+    ReflectionScene reflectionScene(o.scene, o.skyFromLevel ? levelSkyPath(o.level) : o.sky,
+                                    o.addedReflectors);
     ProbeScene& scene = reflectionScene.probeScene();
     for (const AddedReflector& r : o.addedReflectors)
         log << "added " << describeAddedReflector(r) << '\n';
@@ -156,6 +168,19 @@ LevelWalkResult runLevelWalk(const LevelWalkOptions& o, std::ostream& log) {
     const std::string indexPath = (fs::path(levelDir) / "level.json").string();
     const LevelIndex index = readLevelIndex(indexPath);
     if (index.probes.empty()) throw Error(indexPath, "probes", "the level has no probe to walk");
+    if (!o.level.empty()) {
+        // A level walked against another scene than it was baked from measures nothing true.
+        const std::vector<std::string> stale =
+            levelStaleness(scene, index, indexPath, !o.skyFromLevel);
+        for (const std::string& line : stale)
+            log << (o.allowStale ? "warning: " : "error: ") << line << '\n';
+        if (!stale.empty() && !o.allowStale)
+            throw Error(indexPath, "probes",
+                        std::to_string(stale.size()) +
+                            " input(s) differ from the scene walked (listed "
+                            "above): re-bake the level with specula-cook "
+                            "bake, or pass --allow-stale");
+    }
     const CpuDistanceLevel level(indexPath, settings, rough);
     {
         // What the level store holds on the GPU: the composites and the sky, plus a rough

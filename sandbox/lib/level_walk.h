@@ -26,6 +26,8 @@ namespace specula::sandbox {
 struct LevelWalkOptions {
     std::string scene, sky, out;
     std::string level;             // a baked level folder; empty: bake one into out/level
+    bool allowStale = false;       // walk a --level baked from another scene (a warning each)
+    bool skyFromLevel = false;     // a --level's own sky, not `sky`, lights the truth
     std::vector<glm::vec3> path;   // world points; empty: through every probe in order
     std::vector<glm::vec3> probes; // baking: probe positions (--probe), else the markup's
     std::string probeList;         // baking: --probes FILE.json (level_bake.h)

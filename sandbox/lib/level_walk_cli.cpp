@@ -25,7 +25,9 @@ constexpr const char* kLevelDescription =
     "nothing). Each is compared with Embree's environment-only ground truth on the reflector\n"
     "pixels.\n"
     "\n"
-    "The level is baked into DIR/level first unless --level names a baked one. The path runs\n"
+    "The level is baked into DIR/level first unless --level names a baked one; a baked one\n"
+    "whose recorded geometry (or sky, when --sky is given) differs from SCENE's is refused\n"
+    "(--allow-stale walks it with a warning per probe). The path runs\n"
     "through every probe in order (--path through, the default) unless --path gives points,\n"
     "inline or as @FILE.\n"
     "\n"
@@ -58,6 +60,7 @@ struct LevelArgs {
     LevelWalkOptions o;
     std::string size = "320x240", path;
     std::vector<std::string> probes, addedReflectors;
+    CLI::Option* sky = nullptr;
 };
 
 constexpr std::uint64_t kMaxPathFileBytes = 64 << 20;
@@ -111,6 +114,7 @@ void addLevelCommand(cli::ToolCli& tool) {
             for (const std::string& p : a->probes)
                 a->o.probes.push_back(cli::parseVec3(p));
             a->o.addedReflectors = parseAddedReflectors(a->addedReflectors);
+            a->o.skyFromLevel = !a->o.level.empty() && a->sky->count() == 0;
             CreatedOutputFolder created(a->o.out);
             runLevelWalk(a->o, out);
             created.keep();
@@ -133,8 +137,10 @@ void addLevelCommand(cli::ToolCli& tool) {
         ->check(CLI::IsMember({"envmap", "boxproj", "bisection", "secant", "march"}));
     sub->add_option("--de", o.tolerance, "rectification tolerance d_e in metres (default 0.01)")
         ->check(cli::finiteRange(1e-5, 10.0));
-    tool.allowEmpty(sub->add_option(
-        "--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg; '': black)"));
+    a->sky = tool.allowEmpty(sub->add_option(
+        "--sky", o.sky,
+        "equirectangular panorama (default: a --level's own sky, else the bundled field.jpg; "
+        "'': black)"));
     sub->add_option("--probe", a->probes,
                     "baking: a probe at x,y,z (repeatable; the i-th moves the markup's i-th)")
         ->check(cli::vec3Text());
@@ -142,6 +148,9 @@ void addLevelCommand(cli::ToolCli& tool) {
                     "baking: a probe list (JSON, as specula-cook bake --probes takes)")
         ->check(CLI::ExistingFile);
     addReflectorOption(sub, a->addedReflectors);
+    sub->add_flag("--allow-stale", o.allowStale,
+                  "walk a --level whose recorded geometry or sky differs from SCENE's "
+                  "(a warning per probe instead of an error)");
     sub->add_flag("!--no-timing", o.timing, "skip the GPU pass timing (timing.csv)");
     sub->add_option("--roughness", o.roughness,
                     "every reflector's perceptual roughness, 0 .. 1 (default 0: mirrors; times its "

@@ -121,3 +121,78 @@ TEST(SandboxInput, AGlossyBenchThatMeasuresNothingSaysNone) {
     EXPECT_NE(r.out.find("truth noise floor none dB"), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("| 0.00"), std::string::npos) << r.out;
 }
+
+// A level walked against another scene than it was baked from (issue 34): the probes'
+// recorded geometry checksums differ from the scene's, so the walk refuses, naming the field,
+// unless --allow-stale, which walks with a warning per probe.
+TEST(SandboxInput, ALevelBakedFromAnotherSceneIsRefusedUnlessAllowStale) {
+    TempDir dir("level-stale");
+    const fs::path baked = dir.path / "level";
+    const ToolRun cook =
+        runShellTool(kCook, "bake " + shellQuote(kTwoRooms.string()) + " --face-res 8 --out " +
+                                shellQuote(baked.string()));
+    ASSERT_EQ(cook.status, 0) << cook.err;
+    const fs::path other = blackTwoRooms(dir.path / "scene");
+    const std::string walk = " --level " + shellQuote(baked.string()) +
+                             " --path '-3,1.2,0;-1,1.2,0' --frames 2 --size 32x24 --no-timing";
+    const fs::path refusedOut = dir.path / "refused";
+    const ToolRun refused =
+        level(shellQuote(other.string()) + walk + " --out " + shellQuote(refusedOut.string()));
+    EXPECT_EQ(refused.status, 1) << refused.err;
+    const std::string index = (baked / "level.json").string();
+    EXPECT_NE(refused.out.find("error: " + index + ": probes[0].inputs.geometry: "),
+              std::string::npos)
+        << refused.out;
+    EXPECT_NE(refused.err.find("--allow-stale"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(refusedOut / "frames.csv"));
+
+    const ToolRun allowed = level(shellQuote(other.string()) + walk + " --allow-stale --out " +
+                                  shellQuote((dir.path / "allowed").string()));
+    EXPECT_EQ(allowed.status, 0) << allowed.err;
+    EXPECT_NE(allowed.out.find("warning: " + index + ": probes[1].inputs.geometry: "),
+              std::string::npos)
+        << allowed.out;
+
+    // The scene it was baked from under another sky than the level's (none): the sky is named.
+    const ToolRun sky = level(shellQuote(kTwoRooms.string()) + walk + " --sky " +
+                              shellQuote(SPECULA_SOURCE_DIR "/assets/scenes/env/field.jpg") +
+                              " --out " + shellQuote((dir.path / "sky").string()));
+    EXPECT_EQ(sky.status, 1) << sky.err;
+    EXPECT_NE(sky.out.find("error: " + index + ": probes[0].inputs.sky: "), std::string::npos)
+        << sky.out;
+    EXPECT_EQ(sky.out.find("inputs.geometry"), std::string::npos) << sky.out;
+
+    // The scene it was baked from, lit by the level's own sky, walks without a word of
+    // staleness.
+    const ToolRun same = level(shellQuote(kTwoRooms.string()) + walk + " --out " +
+                               shellQuote((dir.path / "same").string()));
+    EXPECT_EQ(same.status, 0) << same.err;
+    EXPECT_EQ(same.out.find("inputs."), std::string::npos) << same.out;
+}
+
+// Probes of one level at two face sizes: one cube-map array cannot hold them, and the twin
+// (which the walk measures with) refuses them as the GPU level does, naming the probe.
+TEST(SandboxInput, ALevelMixingFaceSizesIsRefusedNamingTheProbe) {
+    TempDir dir("level-mixed");
+    const fs::path small = dir.path / "small", large = dir.path / "large";
+    for (const auto& [folder, res] : {std::pair{small, "8"}, std::pair{large, "16"}}) {
+        const ToolRun cook =
+            runShellTool(kCook, "bake " + shellQuote(kTwoRooms.string()) + " --face-res " + res +
+                                    " --out " + shellQuote(folder.string()));
+        ASSERT_EQ(cook.status, 0) << cook.err;
+    }
+    const nlohmann::json index = nlohmann::json::parse(std::ifstream(small / "level.json"));
+    ASSERT_GE(index["probes"].size(), 2u);
+    const std::string second = index["probes"][1]["folder"];
+    fs::remove_all(small / second);
+    fs::copy(large / second, small / second);
+    const ToolRun r =
+        level(shellQuote(kTwoRooms.string()) + " --level " + shellQuote(small.string()) +
+              " --path '-3,1.2,0;-1,1.2,0' --frames 2 --size 32x24 --no-timing " + "--out " +
+              shellQuote((dir.path / "out").string()));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find((small / "level.json").string() + ": probes[1]: face resolution 16 "
+                                                           "differs from the level's 8"),
+              std::string::npos)
+        << r.err;
+}

@@ -37,4 +37,12 @@ void validateDistanceLevel(const DistanceLevel& s, const std::string& file) {
                         ", got " + std::to_string(s.k));
 }
 
+void checkLevelFaceRes(int faceRes, int levelFaceRes, const std::string& file, std::size_t probe) {
+    if (faceRes != levelFaceRes)
+        throw Error(file, "probes[" + std::to_string(probe) + "]",
+                    "face resolution " + std::to_string(faceRes) + " differs from the level's " +
+                        std::to_string(levelFaceRes) +
+                        " (one texture array holds every probe): re-bake the level");
+}
+
 } // namespace specula

@@ -6,6 +6,7 @@
 // CpuDistanceLevel is its CPU twin.
 #include "components/reflection_probe/distance/distance_probe.h"
 
+#include <cstddef>
 #include <string>
 
 namespace specula {
@@ -25,5 +26,9 @@ struct DistanceLevel {
 // Throws Error naming `file` and the field when the settings cannot drive a level: a method
 // that is not single-layer, or k outside 1 .. kMaxLevelK.
 void validateDistanceLevel(const DistanceLevel& settings, const std::string& file);
+
+// Throws Error naming the level `file` and probes[probe] when that probe's face resolution
+// differs from the level's first: one cube-map array holds every probe of a level.
+void checkLevelFaceRes(int faceRes, int levelFaceRes, const std::string& file, std::size_t probe);
 
 } // namespace specula

@@ -85,6 +85,9 @@ CpuDistanceLevel::CpuDistanceLevel(const std::string& path, const DistanceProbe&
         volumes_.push_back(e.volume);
         assets_.push_back(std::make_unique<DistanceProbeAsset>(
             readDistanceProbe((dir / e.folder / "manifest.json").string())));
+        // The twin refuses what the GPU level refuses.
+        checkLevelFaceRes(assets_.back()->faceRes, assets_.front()->faceRes, path,
+                          assets_.size() - 1);
         twins_.push_back(std::make_unique<CpuDistanceProbe>(
             *assets_.back(), makeLookupConfig(settings, *assets_.back()),
             glossy ? std::make_shared<const CubeChain>(glossyChainOf(*assets_.back())) : nullptr));

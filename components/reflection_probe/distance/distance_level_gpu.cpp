@@ -76,12 +76,7 @@ DistanceLevelGpu DistanceLevelGpu::load(const std::string& path, const LevelInde
         const LevelProbeEntry& e = index.probes[i];
         g.volumes.push_back(e.volume);
         g.assets.push_back(read((dir / e.folder / "manifest.json").string()));
-        if (g.assets.back()->faceRes != g.assets.front()->faceRes)
-            throw Error(path, "probes[" + std::to_string(i) + "]",
-                        "face resolution " + std::to_string(g.assets.back()->faceRes) +
-                            " differs from the level's " +
-                            std::to_string(g.assets.front()->faceRes) +
-                            " (one texture array holds every probe): re-bake the level");
+        checkLevelFaceRes(g.assets.back()->faceRes, g.assets.front()->faceRes, path, i);
     }
     g.composites = createCubeArray(g.assets.front()->faceRes, int(g.assets.size()));
     for (std::size_t i = 0; i < g.assets.size(); ++i)
