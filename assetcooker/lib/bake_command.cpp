@@ -145,13 +145,18 @@ void printPemSummary(const BakeArgs& a, const CookResult& r, double seconds, std
     // is left out of the means; "none" when no sample has one.
     std::vector<double> on, off;
     double infer = 0, worstInfer = 0, rays = 0, copies = 0;
+    std::string leftOut; // the samples whose view held no reflector pixel
     for (const PemSampleFit& f : r.pemFits) {
+        if (f.leftOut) leftOut += (leftOut.empty() ? "" : ", ") + std::to_string(f.parameter);
         on.push_back(f.psnrOn), off.push_back(f.psnrOff);
         infer += f.inferSeconds, rays += f.rays;
         copies += f.roundingRows;
         worstInfer = std::max(worstInfer, f.inferSeconds);
     }
-    const double n = double(r.pemFits.size());
+    if (!leftOut.empty())
+        out << "left out " << r.pemFits.size() - asset.samples.size() << " of " << r.pemFits.size()
+            << " samples (no reflector pixel in view) at t = " << leftOut << "\n";
+    const double n = double(asset.samples.size());
     char line[320];
     std::snprintf(
         line, sizeof line,

@@ -166,15 +166,21 @@ PemBake::PemBake(ProbeScene& scene, const PemCookSettings& s, std::optional<glm:
 
 PemBake::~PemBake() = default;
 
-PemSamples PemBake::traceAt(float t) {
+std::optional<PemSamples> PemBake::traceAt(float t) {
     const State::At at = state_->at(t);
-    return tracePemSamples(*at.tracer, at.camera, asset_.centre, options_, scene_.path);
+    try {
+        return tracePemSamples(*at.tracer, at.camera, asset_.centre, options_, scene_.path);
+    } catch (const Error& e) {
+        if (e.field() != "camera") throw;
+        return std::nullopt;
+    }
 }
 
 PemSamples PemBake::trace(int k) {
     const float t = parameter(k);
     try {
-        return traceAt(t);
+        const State::At at = state_->at(t);
+        return tracePemSamples(*at.tracer, at.camera, asset_.centre, options_, scene_.path);
     } catch (const Error& e) {
         // Say which sample: a reflector walking out of the frame sees no pixel at one t.
         if (e.field() != "camera") throw;

@@ -69,8 +69,9 @@ public:
     // unless localLayer is "off"). Throws Error naming the scene and "camera" (with the
     // sample) when the camera sees no reflector there.
     PemSamples trace(int k);
-    // The samples at any t (the off-manifold measurement's half-way points).
-    PemSamples traceAt(float t);
+    // The samples at any t (the off-manifold measurement's half-way points); none where the
+    // camera sees no reflector pixel there (a camera path that looks away). Other errors throw.
+    std::optional<PemSamples> traceAt(float t);
 
     // Sample k's maps from its trace under the decision; `fit` (may be null) gets the
     // inference's figures (unseen texels, seconds).

@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 
 namespace specula {
 
@@ -18,7 +19,8 @@ namespace {
 // (pemBlend; on the walk's closed loops the last sample blends with the first, on the open
 // camera path it has no next one: NaN) against the tracer at that viewpoint.
 void measureOffManifold(const PemAsset& asset, const PemCookSettings& s, const PemCookHooks& hooks,
-                        const std::string& file, const std::function<PemSamples(float)>& trace) {
+                        const std::string& file,
+                        const std::function<std::optional<PemSamples>(float)>& trace) {
     std::vector<float> params;
     for (const PemSampleMap& m : asset.samples)
         params.push_back(m.parameter);
@@ -26,11 +28,14 @@ void measureOffManifold(const PemAsset& asset, const PemCookSettings& s, const P
     for (int k = 0; k < s.samples; ++k) {
         if (hooks.cancelled && hooks.cancelled())
             throw Error(file, "cancelled", "the bake was cancelled");
-        if (!periodic && k + 1 == s.samples) {
+        const float t = 0.5f * (pemSampleParameter(s, k) + pemSampleParameter(s, k + 1));
+        // Nothing to measure past an open path's end, or where the camera sees no reflector.
+        const std::optional<PemSamples> seen =
+            !periodic && k + 1 == s.samples ? std::nullopt : trace(t);
+        if (!seen) {
             (*hooks.fits)[std::size_t(k)].psnrOff = std::numeric_limits<double>::quiet_NaN();
             continue;
         }
-        const float t = 0.5f * (pemSampleParameter(s, k) + pemSampleParameter(s, k + 1));
         const PemBlendWeights w = pemBlend(params, t, false, periodic);
         // The runtime's own twin: the blend, and the local layer off the hull.
         glsl::PemParams block = pemParams(asset, PemProbe{});
@@ -39,7 +44,7 @@ void measureOffManifold(const PemAsset& asset, const PemCookSettings& s, const P
         block.wb = w.wb;
         const PemProbeCpu twin(asset, block);
         (*hooks.fits)[std::size_t(k)].psnrOff = pemSamplesPsnr(
-            trace(t),
+            *seen,
             [&](const PemSample& p) { return twin.radiance(p.x, p.l, p.onHull, p.footprint()); },
             pemRows(s));
         if (hooks.progress) hooks.progress(0.5 + 0.5 * double(k + 1) / double(s.samples));
@@ -74,24 +79,44 @@ PemAsset cookPemAsset(ProbeScene& scene, const PemCookSettings& s, const PemCook
         if (hooks.cancelled && hooks.cancelled())
             throw Error(scene.path, "cancelled", "the bake was cancelled");
     };
-    // Every sample traced first: "auto" decides on the local layer from all of them.
-    std::vector<PemSamples> traced;
+    // Every sample traced first: "auto" decides on the local layer from all of them. A sample
+    // whose view holds no reflector pixel (a camera path that looks away) is left out: the
+    // runtime blends its neighbours across the gap (pemBlend reads each sample's parameter).
+    std::vector<PemSamples> traced; // the samples seen, in order
+    std::vector<int> tracedIndex;   // sample k's in traced; -1: left out
     for (int k = 0; k < s.samples; ++k) {
         pollCancel();
-        traced.push_back(bake.trace(k));
+        std::optional<PemSamples> seen = bake.traceAt(bake.parameter(k));
+        tracedIndex.push_back(seen ? int(traced.size()) : -1);
+        if (seen) traced.push_back(std::move(*seen));
         if (hooks.progress) hooks.progress(share * 0.5 * double(k + 1) / double(s.samples));
     }
+    if (traced.empty()) bake.trace(0); // throws, naming the sample and the camera
     const PemLocalDecision decision = decidePemLocalLayer(s, traced);
     std::vector<PemSampleMap> maps;
     for (int k = 0; k < s.samples; ++k) {
         pollCancel();
-        const PemSamples& samples = traced[std::size_t(k)];
         PemSampleFit fit;
+        fit.parameter = bake.parameter(k);
+        fit.localLayer = decision.local;
+        if (tracedIndex[std::size_t(k)] < 0) {
+            if (hooks.warnings)
+                hooks.warnings->push_back(
+                    "parameter sample " + std::to_string(k) +
+                    " (t = " + std::to_string(fit.parameter) +
+                    "): the camera sees no reflector pixel there; the sample is left out and the "
+                    "runtime blends its neighbours across it");
+            fit.leftOut = true;
+            fit.psnrOn = std::numeric_limits<double>::quiet_NaN();
+            if (hooks.fits) hooks.fits->push_back(fit);
+            continue;
+        }
+        const PemSamples& samples = traced[std::size_t(tracedIndex[std::size_t(k)])];
         PemSampleMap m = bake.infer(k, samples, decision, &fit);
         if (hooks.fits) {
             fit.parameter = m.parameter;
-            fit.rays = int(samples.size());
             fit.localLayer = decision.local;
+            fit.rays = int(samples.size());
             fit.selfHitFraction = pemCoverage(samples).fraction();
             fit.psnrOn = pemSamplesPsnr(
                 samples, [&](const PemSample& p) { return sampleRadiance(m, decision.local, p); },

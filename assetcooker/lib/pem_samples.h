@@ -132,6 +132,8 @@ struct PemSampleFit {
     // (off the hull), and whether the asset got a local layer. Single-map bakes: 0, false.
     double selfHitFraction = 0;
     bool localLayer = false;
+    // The camera saw no reflector pixel at this sample: it has no map in the asset (rays 0).
+    bool leftOut = false;
 };
 
 // Throws Error naming the field ("samples", "face_res", "supersample", "regularisation",

@@ -15,7 +15,7 @@ namespace {
 constexpr char kTraceMagic[8] = {'S', 'P', 'P', 'E', 'M', 'T', 'R', 'C'};
 constexpr char kMapMagic[8] = {'S', 'P', 'P', 'E', 'M', 'M', 'A', 'P'};
 // 2: PemSample::pixel and centre.
-constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersion = 3; // 3: a sample map may be left out
 
 // Every member of a PemSample, in file order. The structured binding names them all: a
 // member added to PemSample stops this from compiling until it is listed here.
@@ -207,6 +207,7 @@ void writePemSampleShard(const PemSampleShard& shard, const std::string& file) {
     std::string out = header(kMapMagic);
     const Put put{out};
     put("sample", shard.sample);
+    put("left_out", shard.leftOut);
     const PemLocalDecision& d = shard.decision;
     put("local", d.local), put("local_face_res", d.faceRes);
     put("sphere", d.sphere.centre), put("sphere", d.sphere.radius);
@@ -227,6 +228,7 @@ PemSampleShard readPemSampleShard(const std::string& file, int sample,
         throw Error(file, "sample",
                     "expected sample " + std::to_string(sample) + ", got " +
                         std::to_string(shard.sample) + " (a file of another shard list)");
+    get("left_out", shard.leftOut);
     PemLocalDecision& d = shard.decision;
     get("local", d.local), get("local_face_res", d.faceRes);
     get("sphere", d.sphere.centre), get("sphere", d.sphere.radius);

@@ -32,6 +32,8 @@ struct PemSampleShard {
     int sample = 0;
     PemLocalDecision decision;
     PemSampleMap map; // parameter unset (the list's k / samples); distance: the asset's
+    // The sample's view held no reflector pixel (an empty trace): no map, left out of the asset.
+    bool leftOut = false;
 };
 
 void writePemSampleShard(const PemSampleShard& shard, const std::string& file);

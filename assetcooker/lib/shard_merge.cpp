@@ -126,7 +126,10 @@ LevelCookResult mergeShards(const std::string& dir, std::ostream* log) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - assemblyStart).count();
     LevelCookResult result;
     if (isPemList(list)) {
-        installPemShards(dir, list, *scene);
+        result.warnings = installPemShards(dir, list, *scene);
+        if (log)
+            for (const std::string& w : result.warnings)
+                *log << "warning: " << w << '\n';
         result.index = (fs::path(dir) / kPemFolder / "manifest.json").string();
         result.probes.push_back({kPemFolder, kPemFolder, true, "merged", 0.0});
     } else {

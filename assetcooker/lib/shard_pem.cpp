@@ -108,9 +108,10 @@ void computePemShard(const std::string& dir, const ShardList& list, int index, P
     const std::string out = shardOutputPath(dir, shard);
     if (shard.kind == kPemTraceShard) {
         PemBake bake(scene, s, listCentre(list), PemBake::Trace);
-        const PemSamples samples = bake.trace(shard.part);
+        // A view without a reflector pixel stores an empty trace: its sample is left out.
+        const std::optional<PemSamples> samples = bake.traceAt(bake.parameter(shard.part));
         throwIfCancelled(out); // a signal (scancel) during the trace: nothing reaches the store
-        writePemTrace(samples, out);
+        writePemTrace(samples ? *samples : PemSamples{}, out);
         return;
     }
     const PemLocalDecision decision = decideFromTraces(dir, list, s);
@@ -119,15 +120,18 @@ void computePemShard(const std::string& dir, const ShardList& list, int index, P
     PemSampleShard result;
     result.sample = shard.part;
     result.decision = decision;
-    result.map = bake.infer(shard.part, samples, decision, nullptr);
+    result.leftOut = samples.empty();
+    if (!result.leftOut) result.map = bake.infer(shard.part, samples, decision, nullptr);
     throwIfCancelled(out);
     writePemSampleShard(result, out);
 }
 
-void installPemShards(const std::string& dir, const ShardList& list, ProbeScene& scene) {
+std::vector<std::string> installPemShards(const std::string& dir, const ShardList& list,
+                                          ProbeScene& scene) {
     const PemCookSettings s = listSettings(dir, list);
     const PemBake bake(scene, s, listCentre(list), PemBake::Infer);
     std::vector<PemSampleMap> maps;
+    std::vector<std::string> warnings;
     PemLocalDecision decision;
     for (int k = 0; k < s.samples; ++k) {
         const Shard& shard = list.shards[std::size_t(pemShardIndex(list, kPemSampleShard, k))];
@@ -139,11 +143,23 @@ void installPemShards(const std::string& dir, const ShardList& list, ProbeScene&
             throw Error(file, "local",
                         "the local layer differs from sample 0's (a shard of another bake)");
         decision = read.decision;
+        if (read.leftOut) {
+            warnings.push_back("parameter sample " + std::to_string(k) +
+                               " (t = " + std::to_string(bake.parameter(k)) +
+                               "): the camera sees no reflector pixel there; the sample is left "
+                               "out and the runtime blends its neighbours across it");
+            continue;
+        }
         read.map.parameter = bake.parameter(k);
         maps.push_back(std::move(read.map));
     }
+    if (maps.empty())
+        throw Error(shardListPath(dir), "camera",
+                    "no parameter sample's view holds a reflector pixel: nothing to infer a map "
+                    "from");
     writePemProbe(bake.assemble(decision, std::move(maps)), (fs::path(dir) / kPemFolder).string(),
                   list.scene);
+    return warnings;
 }
 
 } // namespace specula

@@ -52,7 +52,10 @@ std::vector<int> pemShardDependencies(const ShardList& list, int index);
 // naming a malformed one).
 void computePemShard(const std::string& dir, const ShardList& list, int index, ProbeScene& scene);
 
-// Writes DIR/pem/ from the sample shards (all present: mergeShards checks) on `scene`.
-void installPemShards(const std::string& dir, const ShardList& list, ProbeScene& scene);
+// Writes DIR/pem/ from the sample shards (all present: mergeShards checks) on `scene`. A
+// sample whose view held no reflector pixel is left out: a warning each, returned. Error
+// when every sample was left out.
+std::vector<std::string> installPemShards(const std::string& dir, const ShardList& list,
+                                          ProbeScene& scene);
 
 } // namespace specula
