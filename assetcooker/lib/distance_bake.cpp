@@ -1,6 +1,8 @@
 #include "distance_bake.h"
+#include "assetcooker/lib/memory_estimate.h"
 
 #include "assetcooker/lib/probe_sanity.h"
+#include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
@@ -108,6 +110,19 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
     const std::size_t layerCount = opt.compositeOnly    ? 0
                                    : opt.layers.empty() ? markup.objects.size()
                                                         : opt.layers.size();
+    // Refused before any face is rendered: what the runtime would refuse to read, and what
+    // would not fit in memory.
+    if (layerCount > std::size_t(glsl::kMaxDistanceLayers - 1))
+        throw Error("", "layers",
+                    std::to_string(layerCount) +
+                        " object layers (one per object): the runtime reads "
+                        "at most " +
+                        std::to_string(glsl::kMaxDistanceLayers - 1) +
+                        "; bake with --layers plan, which packs objects into shared layers");
+    checkMemoryFor(cubeLayersBytes(opt.faceRes, 1 + layerCount),
+                   "a bake at face_res " + std::to_string(opt.faceRes) + " with " +
+                       std::to_string(1 + layerCount) + " layers",
+                   "", "face_res");
     const long rowsTotal = long(opt.faceRes) * 6 * long(1 + layerCount);
     std::atomic<long> rowsDone{0};
 

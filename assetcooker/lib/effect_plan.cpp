@@ -1,6 +1,7 @@
 #include "effect_plan.h"
 
 #include "assetcooker/lib/distance_bake.h"
+#include "assetcooker/lib/plan_layer_packing.h"
 #include "assetcooker/lib/plan_visibility.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "engine/core/error.h"
@@ -26,6 +27,9 @@ std::string fmt(float v, int digits = 2) {
     s << v;
     return s.str();
 }
+
+// The runtime binds the composite and at most this many object layers.
+constexpr std::size_t kMaxObjectLayers = std::size_t(glsl::kMaxDistanceLayers - 1);
 
 } // namespace
 
@@ -95,6 +99,7 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
     std::vector<TexelDepths> texels(cube.size());
     struct Near {
         std::size_t object;
+        std::vector<std::uint32_t> texels; // its grown coverage (layer packing)
     };
     std::vector<Near> nears;
     std::vector<std::string> distant;
@@ -153,15 +158,17 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
             std::vector<char> mask = grownMask(L.texels, t.analysisFaceRes, grow);
             for (std::uint32_t k : cone)
                 mask[k] = 1;
+            std::vector<std::uint32_t> covered;
             for (std::size_t k = 0; k < mask.size(); ++k) {
                 if (!mask[k]) continue;
+                covered.push_back(std::uint32_t(k));
                 TexelDepths& d = texels[k];
                 ++d.objects;
                 d.farthest = std::max(d.farthest, po.nearest);
                 if (po.decision == "avgdist")
                     d.nearestAvgdist = std::min(d.nearestAvgdist, po.nearest);
             }
-            nears.push_back({plan.objects.size()});
+            nears.push_back({plan.objects.size(), std::move(covered)});
         }
         plan.objects.push_back(po);
     }
@@ -186,14 +193,52 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
                 std::max(occluderParallax,
                          reach * (1.f / d.nearestAvgdist - 1.f / d.farthest) * 180.f / kPi);
     }
-    for (const Near& n : nears) {
-        const PlannedObject& po = plan.objects[n.object];
-        const bool rectify = po.decision == "rectify";
-        plan.layers.push_back({po.name,
-                               {po.name},
-                               rectify ? "bisection" : "avgdist",
-                               rectify ? "large: per-pixel rectification"
-                                       : "small: one fetch at its average distance"});
+    if (nears.size() <= kMaxObjectLayers) {
+        for (const Near& n : nears) {
+            const PlannedObject& po = plan.objects[n.object];
+            const bool rectify = po.decision == "rectify";
+            plan.layers.push_back({po.name,
+                                   {po.name},
+                                   rectify ? "bisection" : "avgdist",
+                                   rectify ? "large: per-pixel rectification"
+                                           : "small: one fetch at its average distance"});
+        }
+    } else {
+        // More near objects than the runtime binds layers: those that never overlap as seen
+        // from the cell share a layer (plan_layer_packing.h), each at its own distance, so a
+        // shared layer is rectified per pixel.
+        std::vector<std::vector<std::uint32_t>> coverage;
+        for (Near& n : nears)
+            coverage.push_back(std::move(n.texels));
+        const LayerPacking packing = packNearObjects(coverage, cube.size(), kMaxObjectLayers);
+        for (std::size_t l = 0; l < packing.layers.size(); ++l) {
+            const std::vector<std::size_t>& members = packing.layers[l];
+            PlannedLayer layer{"packed_" + std::to_string(l + 1), {}, "bisection", ""};
+            for (const std::size_t m : members)
+                layer.objects.push_back(plan.objects[nears[m].object].name);
+            if (members.size() == 1) {
+                const bool rectify = plan.objects[nears[members[0]].object].decision == "rectify";
+                layer.name = layer.objects[0];
+                layer.method = rectify ? "bisection" : "avgdist";
+                layer.reason = rectify ? "large: per-pixel rectification"
+                                       : "small: one fetch at its average distance";
+            } else {
+                layer.reason = std::to_string(members.size()) + " objects packed (" +
+                               std::to_string(nears.size()) + " near objects, at most " +
+                               std::to_string(kMaxObjectLayers) +
+                               " object layers): each at its own distance, rectified per pixel";
+            }
+            plan.layers.push_back(std::move(layer));
+        }
+        plan.layerPacking = std::to_string(nears.size()) + " near objects packed into " +
+                            std::to_string(packing.layers.size()) +
+                            " object layers; objects in one layer never overlap as seen from "
+                            "the cell";
+        if (packing.forced > 0)
+            plan.layerPacking += ", except " + std::to_string(packing.forced) +
+                                 " placed past the cap where they overlap least (" +
+                                 std::to_string(packing.forcedTexels) +
+                                 " analysis texels: occlusion there as seen from the centre)";
     }
     if (!distant.empty())
         plan.layers.push_back(
@@ -231,6 +276,7 @@ EffectPlan planEffects(ecs::Registry& registry, const SceneMarkup& markup, glm::
         plan.mode = "layered";
         plan.modeReason = "near objects overlap as seen from the cell: occlusion can show in "
                           "the reflection, so they get their own layers, near to far";
+        if (!plan.layerPacking.empty()) plan.modeReason += " (" + plan.layerPacking + ")";
     }
 
     // Flavour: the light field only for near occluding geometry the distance cube cannot

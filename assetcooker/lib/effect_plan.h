@@ -53,6 +53,9 @@ struct EffectPlan {
     std::string mode; // "envmap" (direction only), "single" (one rectified layer), "layered"
     std::string modeReason;
     std::vector<PlannedLayer> layers; // near to far; the distant layer last
+    // Set when more near objects than the runtime's object layers were packed into shared
+    // layers (plan_layer_packing.h): how many, into how many, and what that cost.
+    std::string layerPacking;
     bool fresnel = false;
     std::string fresnelReason;
     bool lightFieldBackground = false;

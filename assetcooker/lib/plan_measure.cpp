@@ -1,4 +1,5 @@
 #include "plan_measure.h"
+#include "assetcooker/lib/memory_estimate.h"
 
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/scene/probe_setup.h"
@@ -91,6 +92,13 @@ MeasuredPlan measurePlan(ecs::Registry& registry, const SceneMarkup& markup,
         if (!layered) b.compositeOnly = true;
         return bakeDistanceProbe(registry, markup, b);
     };
+    // Both probes are held at once: refused up front, not after the first (minutes) is baked.
+    const std::uint64_t layers = layered ? 1 + analytic.layers.size() : 1;
+    checkMemoryFor(cubeLayersBytes(o.faceRes, layers) + cubeLayersBytes(o.faceRes / 2, layers),
+                   "the measured plan at face_res " + std::to_string(o.faceRes) + " and " +
+                       std::to_string(o.faceRes / 2) + " with " + std::to_string(layers) +
+                       " layers",
+                   "", "face_res");
     // Below 16^2 faces half the resolution is no probe worth weighing: one resolution.
     const DistanceProbeAsset full = bake(o.faceRes);
     const DistanceProbeAsset half = o.faceRes >= 16 ? bake(o.faceRes / 2) : full;

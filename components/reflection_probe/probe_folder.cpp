@@ -256,6 +256,33 @@ void removeStaleProbeTemporaries(const std::string& dir, std::ostream& log) {
     }
 }
 
+namespace {
+
+// A file written beside and renamed (file_write.h) that its writer left, killed: removed when
+// its name says this host's process, which no longer runs, wrote it. One named for no host
+// (written before names carried it) is left, as is a live or another host's writer's.
+void removeStaleTemporaryFile(const fs::path& file, const std::string& folder, std::ostream& log) {
+    const std::optional<TemporaryFileName> t = parseTemporaryFileName(file.filename().string());
+    if (!t) {
+        log << "left " << file.string()
+            << " as it is: a temporary file, which names no host (delete it by hand once no "
+               "specula-cook writes "
+            << folder << ")\n";
+        return;
+    }
+    if (const std::string why = whyOwnerMayRun(t->host, t->pid); !why.empty()) {
+        log << "left " << file.string() << " as it is: " << why << "\n";
+        return;
+    }
+    std::error_code ec;
+    fs::remove(file, ec);
+    if (ec) throw Error(file.string(), "", "cannot remove it: " + ec.message());
+    log << "removed stale " << file.string() << " (left by process " << t->pid
+        << " on this host, which no longer runs)\n";
+}
+
+} // namespace
+
 void removeStaleTemporariesIn(const std::string& folder, std::ostream& log) {
     std::error_code ec;
     std::set<std::string> outputs; // X of every X.tmp-PID and X.old-PID folder
@@ -267,12 +294,7 @@ void removeStaleTemporariesIn(const std::string& folder, std::ostream& log) {
             if (e.is_directory(ec) && !e.is_symlink(ec))
                 outputs.insert(name.substr(0, at));
             else if (kind[1] == 't' && e.is_regular_file(ec) && !e.is_symlink(ec))
-                // A file written beside and renamed (file_write.h) has no owner file: which
-                // host made it is unknown, so it is never removed.
-                log << "left " << e.path().string()
-                    << " as it is: a temporary file, which names no host (delete it by hand "
-                       "once no specula-cook writes "
-                    << folder << ")\n";
+                removeStaleTemporaryFile(e.path(), folder, log);
         }
     }
     for (const std::string& x : outputs)

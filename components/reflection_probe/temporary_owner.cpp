@@ -42,12 +42,16 @@ std::string whyTemporaryIsNotStale(const fs::path& folder, long long pid) {
             in >> owner;
     if (host.empty() || owner <= 0)
         return "its owner file " + std::string(kTemporaryOwnerFile) + " names no host and pid";
-    if (host != hostName())
-        return "it belongs to process " + std::to_string(owner) + " on host " + host +
-               " (this host cannot tell whether that one still runs)";
-    if (owner != pid)
+    if (host == hostName() && owner != pid)
         return "its owner file names process " + std::to_string(owner) + ", not " +
                std::to_string(pid);
+    return whyOwnerMayRun(host, owner);
+}
+
+std::string whyOwnerMayRun(const std::string& host, long long pid) {
+    if (host != hostName())
+        return "it belongs to process " + std::to_string(pid) + " on host " + host +
+               " (this host cannot tell whether that one still runs)";
     if (processRunsHere(pid)) return "its process " + std::to_string(pid) + " still runs";
     return "";
 }

@@ -5,11 +5,13 @@
 // PATH. On failure the temporary file is removed and PATH is left as it was. Header-only so
 // that every engine library can use it without linking specula_core.
 #include "engine/core/error.h"
+#include "engine/core/host_name.h"
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -18,9 +20,29 @@
 
 namespace specula {
 
-// The temporary name beside `path` that this process writes before the rename.
+// The temporary name beside `path` that this process writes before the rename:
+// PATH.tmp-HOST-PID, so that whoever finds it left (a killed writer) can tell whose it was
+// and whether that process still runs (parseTemporaryFileName).
 inline std::string temporaryNameFor(const std::string& path) {
-    return path + ".tmp-" + std::to_string(::getpid());
+    return path + ".tmp-" + hostName() + "-" + std::to_string(::getpid());
+}
+
+// A name temporaryNameFor made: the file it stands for, the host and the pid; none otherwise.
+struct TemporaryFileName {
+    std::string target, host;
+    long long pid = 0;
+};
+inline std::optional<TemporaryFileName> parseTemporaryFileName(const std::string& name) {
+    const std::size_t at = name.rfind(".tmp-"), dash = name.rfind('-');
+    if (at == std::string::npos || at == 0 || dash <= at + 5 || dash + 1 == name.size())
+        return std::nullopt;
+    TemporaryFileName t{name.substr(0, at), name.substr(at + 5, dash - at - 5), 0};
+    for (std::size_t i = dash + 1; i < name.size(); ++i) {
+        if (name[i] < '0' || name[i] > '9' || t.pid > 1'000'000'000) return std::nullopt;
+        t.pid = t.pid * 10 + (name[i] - '0');
+    }
+    if (t.pid <= 0) return std::nullopt;
+    return t;
 }
 
 // Writes every byte of `bytes` to `fd`, again after EINTR. Returns 0, or the errno of the

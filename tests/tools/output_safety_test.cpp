@@ -345,3 +345,46 @@ TEST_F(OutputSafety, WhatAKilledMergeLeftIsRemovedByTheNextMerge) {
     EXPECT_TRUE(fs::exists(level / "level.json"));
     EXPECT_TRUE(temporariesBeside(level / "level.json").empty());
 }
+
+TEST_F(OutputSafety, TemporaryFilesOfDeadWritersAreRemovedByTheNextLevelBake) {
+    // A file written beside and renamed (file_write.h) by a writer killed before the rename
+    // names its host and process: PATH.tmp-HOST-PID. The next writer of the level removes this
+    // host's dead writer's, and leaves another host's, a live writer's and an unnamed one.
+    const fs::path twoRooms =
+        fs::path(SPECULA_SOURCE_DIR) / "assets" / "two_rooms" / "two_rooms.gltf";
+    const fs::path level = root_ / "level";
+    const std::vector<std::string> bakeArgs{"bake",         twoRooms.string(), "--out",
+                                            level.string(), "--face-res",      "8"};
+    ASSERT_EQ(specula::test::runChild(kCook, bakeArgs, root_ / "scratch").status, 0);
+    const pid_t dead = specula::test::deadPid();
+    const std::string index = (level / "level.json").string();
+    const fs::path stale = index + ".tmp-" + specula::hostName() + "-" + std::to_string(dead),
+                   foreign = index + ".tmp-other-node-7-" + std::to_string(dead),
+                   live = index + ".tmp-" + specula::hostName() + "-" + std::to_string(::getpid()),
+                   unnamed = index + ".tmp-" + std::to_string(dead);
+    for (const fs::path& p : {stale, foreign, live, unnamed})
+        std::ofstream(p) << "{\"half\": ";
+    const ChildResult r = specula::test::runChild(kCook, bakeArgs, root_ / "scratch");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_FALSE(fs::exists(stale));
+    EXPECT_NE(r.out.find("removed stale " + stale.string() + " (left by process " +
+                         std::to_string(dead) + " on this host, which no longer runs)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_TRUE(fs::exists(foreign));
+    EXPECT_NE(r.out.find("left " + foreign.string() + " as it is: it belongs to process " +
+                         std::to_string(dead) + " on host other-node-7"),
+              std::string::npos)
+        << r.out;
+    EXPECT_TRUE(fs::exists(live));
+    EXPECT_NE(r.out.find("left " + live.string() + " as it is: its process " +
+                         std::to_string(::getpid()) + " still runs"),
+              std::string::npos)
+        << r.out;
+    EXPECT_TRUE(fs::exists(unnamed));
+    EXPECT_NE(r.out.find("left " + unnamed.string() +
+                         " as it is: a temporary file, which names "
+                         "no host"),
+              std::string::npos)
+        << r.out;
+}
