@@ -5,6 +5,7 @@
 // Error naming it and the field, never a read past the end. Header-only: the fuzz replays
 // build lightfield_rows.cpp without the cooker library.
 #include "engine/core/error.h"
+#include "engine/core/regular_file.h"
 
 #include <bit>
 #include <cstdint>
@@ -61,14 +62,13 @@ private:
     std::size_t at_ = 0;
 };
 
-// The whole file; Error naming it when it cannot be read.
+// Shard files are the cooker's own, but a store on a shared disk is anyone's: a FIFO or a
+// device planted there must not hang or flood a reader (regular_file.h). Past any real shard.
+inline constexpr std::uint64_t kMaxShardFileBytes = std::uint64_t(64) << 30;
+
+// The whole file; Error naming it when it cannot be read or is no regular file.
 inline std::string readAll(const std::string& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(file, "", "cannot be read (missing?)");
-    std::stringstream s;
-    s << in.rdbuf();
-    if (in.bad()) throw Error(file, "", "cannot be read");
-    return s.str();
+    return readRegularFile(file, kMaxShardFileBytes);
 }
 
 } // namespace specula::binary

@@ -98,12 +98,7 @@ void writeLightFieldRows(const LightFieldRows& r, const std::string& file) {
 
 LightFieldRows readLightFieldRows(const std::string& file, int slab, int j0, int j1, int cameras,
                                   int res) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(file, "", "cannot be read (missing?)");
-    std::stringstream s;
-    s << in.rdbuf();
-    if (in.bad()) throw Error(file, "", "cannot be read");
-    const std::string bytes = s.str();
+    const std::string bytes = binary::readAll(file);
     Reader r(file, bytes);
     r.need(sizeof kMagic, "magic");
     if (std::memcmp(r.here(), kMagic, sizeof kMagic) != 0)

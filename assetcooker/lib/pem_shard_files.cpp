@@ -159,15 +159,24 @@ PemDecisionInputs readDecisionInputs(binary::Reader& in, const std::string& file
     return inputs;
 }
 
+// Up to n bytes from f into `to` (a read may return fewer than asked before the end).
+std::size_t readUpTo(RegularFile& f, char* to, std::size_t n) {
+    std::size_t done = 0;
+    while (done < n)
+        if (const std::size_t got = f.read(to + done, n - done); got > 0)
+            done += got;
+        else
+            break;
+    return done;
+}
+
 } // namespace
 
 PemDecisionInputs readPemTraceDecisionInputs(const std::string& file) {
-    std::ifstream f(file, std::ios::binary);
-    if (!f) throw Error(file, "", "cannot be read (missing?)");
+    RegularFile f(file, binary::kMaxShardFileBytes);
     // The header and the off-hull count, then exactly the points: not the samples after them.
     std::string bytes(sizeof kTraceMagic + 4 + 1 + 8, '\0');
-    f.read(bytes.data(), std::streamsize(bytes.size()));
-    bytes.resize(std::size_t(f.gcount()));
+    bytes.resize(readUpTo(f, bytes.data(), bytes.size()));
     std::uint64_t count = 0;
     {
         binary::Reader head(file, bytes);
@@ -175,15 +184,14 @@ PemDecisionInputs readPemTraceDecisionInputs(const std::string& file) {
         head.get<std::uint8_t>("self_hits");
         count = head.get<std::uint64_t>("off_hull");
     }
-    const auto size = std::filesystem::file_size(file);
+    const std::uint64_t size = f.size();
     if (count > size / 12)
         throw Error(file, "off_hull",
                     "count " + std::to_string(count) + " past the file's " + std::to_string(size) +
                         " bytes");
     const std::size_t head = bytes.size();
     bytes.resize(head + std::size_t(count) * 12);
-    f.read(bytes.data() + head, std::streamsize(count * 12));
-    bytes.resize(head + std::size_t(f.gcount()));
+    bytes.resize(head + readUpTo(f, bytes.data() + head, std::size_t(count) * 12));
     binary::Reader in(file, bytes);
     return readDecisionInputs(in, file);
 }

@@ -33,9 +33,9 @@ std::string percent(double share) {
     return b;
 }
 
-std::string metres(float v) {
+std::string metres(double v) {
     char b[32];
-    std::snprintf(b, sizeof b, "%.3g m", double(std::abs(v))); // never "-0 m"
+    std::snprintf(b, sizeof b, "%.3g m", std::abs(v)); // never "-0 m"
     return b;
 }
 
@@ -66,7 +66,7 @@ ProbePlacement measureProbePlacement(ecs::Registry& registry, const SceneMarkup&
                             [&](ecs::Entity e) { return !markup.mirrorEntities.count(e); });
     m.geometry = !scene.empty();
     if (!markup.objects.empty()) {
-        m.sceneSize = glm::length(bounds.extent());
+        m.sceneSize = glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
         m.outside = bounds.distance(centre);
     }
     if (!m.geometry) return m;
@@ -91,13 +91,16 @@ ProbePlacement measureProbePlacement(ecs::Registry& registry, const SceneMarkup&
     });
     std::map<std::size_t, int> backByObject;
     m.nearest = std::numeric_limits<float>::max();
+    float farthest = 0.f;
     for (const Sample& s : samples) {
         if (s.t < 0.f) continue;
         ++m.hits;
         m.nearest = std::min(m.nearest, s.t);
+        farthest = std::max(farthest, s.t);
         if (s.back) ++m.backHits, ++backByObject[s.object];
     }
     if (m.hits == 0) m.nearest = 0.f;
+    if (m.hits > 0) m.sceneSize = 2.0 * double(farthest);
     // Small far objects can slip between the spread directions: aim at each one too, so that
     // "nothing to reflect" means degenerate or absent geometry, not sparse sampling.
     if (m.hits == 0)
@@ -153,13 +156,13 @@ std::vector<std::string> checkProbePlacement(ecs::Registry& registry, const Scen
                            "that is meant)");
     // Float resolves about 6e-8 of a coordinate's magnitude; a hit closer than 1e-6 of the
     // scene's size is on the surface as far as the bake can tell.
-    const float scale = std::max({m.sceneSize, glm::length(centre), 1e-30f});
-    if (m.nearest <= 1e-6f * scale)
+    const double scale = std::max({m.sceneSize, double(glm::length(glm::dvec3(centre))), 1e-30});
+    if (m.nearest <= 1e-6 * scale)
         throw Error("", field,
                     "lies on a surface: the nearest environment hit is " + metres(m.nearest) +
                         " away (scene size " + metres(m.sceneSize) +
                         "), and zero distances cannot be baked; move the probe off it");
-    if (m.nearest < 1e-3f * m.sceneSize)
+    if (m.nearest < 1e-3 * m.sceneSize)
         warnings.push_back(field + ": the nearest environment surface is only " +
                            metres(m.nearest) + " away (scene size " + metres(m.sceneSize) +
                            "): half of what the probe sees is that surface");

@@ -31,9 +31,13 @@ struct ProbePlacement {
     int backHits = 0;       // of those, the back face of single-sided geometry
     std::string backObject; // the environment object most of the back faces belong to
     float nearest = 0.f;    // metres to the nearest hit (0 when none)
-    float sceneSize = 0.f;  // diagonal of the environment's bounds, metres
-    float outside = 0.f;    // metres from the environment's bounds (0 inside)
-    bool geometry = false;  // the scene has environment geometry at all
+    // The span of what the probe sees, metres: twice its farthest hit (the bounds' diagonal
+    // when nothing is hit). Not the bounds of every node: one node 1e38 m away must not make
+    // the room around the probe look like a speck on a surface. Double: such bounds overflow
+    // float.
+    double sceneSize = 0.0;
+    float outside = 0.f;   // metres from the environment's bounds (0 inside)
+    bool geometry = false; // the scene has environment geometry at all
 };
 
 ProbePlacement measureProbePlacement(ecs::Registry& registry, const SceneMarkup& markup,

@@ -6,6 +6,7 @@
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/progress.h"
+#include "engine/core/regular_file.h"
 
 #include <chrono>
 #include <filesystem>
@@ -43,11 +44,13 @@ std::string joinIndices(const std::vector<int>& indices) {
     return s;
 }
 
+// A job's log ("" when it is missing or no regular file: a planted FIFO must not hang us).
 std::string readText(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
+    try {
+        return readRegularFile(file.string(), std::uint64_t(64) << 20);
+    } catch (const Error&) {
+        return "";
+    }
 }
 
 std::string lastLines(const std::string& text, int count) {

@@ -5,6 +5,7 @@
 #include "engine/core/glsl_host.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -122,6 +123,23 @@ ProbeBlend blendProbes(std::span<const ProbeVolume> probes, glm::vec3 p, int k) 
     return blend;
 }
 
+namespace {
+
+// An int, never wrapped: 2^32 + 1 read as 1 would silently reorder a level's probes.
+int priorityMember(const json& p, const std::string& file, const std::string& field) {
+    const bool fits = p.is_number_unsigned()
+                          ? p.get<std::uint64_t>() <= std::uint64_t(INT_MAX)
+                          : p.is_number_integer() && p.get<std::int64_t>() >= INT_MIN &&
+                                p.get<std::int64_t>() <= INT_MAX;
+    if (!fits)
+        throw Error(file, field + ".priority",
+                    "expected an integer from " + std::to_string(INT_MIN) + " to " +
+                        std::to_string(INT_MAX) + ", got " + p.dump());
+    return p.get<int>();
+}
+
+} // namespace
+
 json toJson(const ProbeVolume& v) {
     json influence;
     if (v.influence.shape == ProbeInfluence::Shape::Sphere)
@@ -160,11 +178,7 @@ ProbeVolume probeVolumeFromJson(const json& j, const std::string& file, const st
     }
     if (j.contains("blend_distance"))
         v.blendDistance = numberMember(j, "blend_distance", file, field, 0.f, 1e6f);
-    if (j.contains("priority")) {
-        if (!j["priority"].is_number_integer())
-            throw Error(file, field + ".priority", "expected an integer");
-        v.priority = j["priority"].get<int>();
-    }
+    if (j.contains("priority")) v.priority = priorityMember(j["priority"], file, field);
     if (j.contains("cell_size"))
         v.cellSize = numberMember(j, "cell_size", file, field, 1e-3f, 1e4f);
     return v;
@@ -194,12 +208,7 @@ void applyProbeMarkup(ProbeVolume& v, const json& o, const std::string& file,
     }
     if (o.contains("blend_distance"))
         v.blendDistance = numberMember(o, "blend_distance", file, field, 0.f, 1e6f);
-    if (o.contains("priority")) {
-        if (!o["priority"].is_number_integer())
-            throw Error(file, field + ".priority",
-                        "expected an integer, got " + o["priority"].dump());
-        v.priority = o["priority"].get<int>();
-    }
+    if (o.contains("priority")) v.priority = priorityMember(o["priority"], file, field);
     if (o.contains("cell_size"))
         v.cellSize = numberMember(o, "cell_size", file, field, 1e-3f, 1e4f);
 }

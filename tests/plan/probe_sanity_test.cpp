@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace specula;
 
 namespace {
@@ -111,6 +113,26 @@ TEST(ProbeSanity, OnASurfaceIsRefusedAndNearOneWarned) {
     ASSERT_EQ(w.size(), 1u);
     EXPECT_NE(w[0].find("nearest environment surface is only 0.001 m away"), std::string::npos)
         << w[0];
+}
+
+// Two nodes 3e38 m away (issue 34): the bounds of every node overflowed float ("scene size
+// inf") and dwarfed the room, so a probe 1.2 m from the floor "lay on a surface". The scale
+// is now what the probe sees: the room is judged as if the far nodes were not there.
+TEST(ProbeSanity, FarNodesDoNotShrinkTheRoomAroundTheProbe) {
+    Room r;
+    const auto speck = Room::box(glm::vec3(-0.1f), glm::vec3(0.1f), false);
+    r.node("far_east", glm::vec3(3e38f, 1, 0), speck);
+    r.node("far_west", glm::vec3(-3e38f, 1, 0), speck);
+    const SceneMarkup m = r.markup();
+    const ProbePlacement p = measureProbePlacement(r.reg, m, glm::vec3(0, 1.2f, 0));
+    EXPECT_TRUE(std::isfinite(p.sceneSize));
+    EXPECT_LT(p.sceneSize, 20.0); // twice the farthest corner of the 8 x 4 x 8 room
+    EXPECT_GT(p.sceneSize, 8.0);
+    EXPECT_TRUE(checkProbePlacement(r.reg, m, glm::vec3(0, 1.2f, 0), false).empty());
+    // The floor is still a surface, and the message names finite sizes.
+    const std::string e = refusal(r, glm::vec3(0, 0, 0));
+    EXPECT_NE(e.find("lies on a surface"), std::string::npos) << e;
+    EXPECT_EQ(e.find("inf"), std::string::npos) << e;
 }
 
 TEST(ProbeSanity, DoubleSidedBackFacesAreLegitimate) {

@@ -162,7 +162,7 @@ TEST_F(LightFieldRowsTest, TheFileRoundTripsAndRefusesWhatIsWrongNamingIt) {
     counts[8 + 4 + 20 + 4] ^= 1; // the sky count: no longer adds up
     std::ofstream(cut, std::ios::binary) << counts;
     refused(cut, "do not add up");
-    refused((root_ / "none.rows").string(), "cannot be read");
+    refused((root_ / "none.rows").string(), "cannot read file: no such file");
 }
 
 } // namespace

@@ -144,5 +144,34 @@ TEST(ProbeVolume, ZeroSizeOrInvertedVolumesAreErrorsNamingTheField) {
     EXPECT_EQ(errorOf(R"({"influence": {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}}})"), "");
 }
 
+// A hand-edited level.json's priority past an int (issue 34) used to wrap (2^32 + 1 read as 1,
+// silently reordering the blend); both readers refuse it naming the field, and keep the ends.
+TEST(ProbeVolume, APriorityPastAnIntIsAnErrorNotAWrap) {
+    ProbeVolume v;
+    v.name = "p";
+    v.proxy = v.influence.box = Aabb{glm::vec3(-1.f), glm::vec3(1.f)};
+    for (const json& priority : {json(4294967297ull), json(-2147483649ll), json(2147483648ull)}) {
+        json level = toJson(v);
+        level["priority"] = priority;
+        try {
+            probeVolumeFromJson(level, "level.json", "probes[0]");
+            ADD_FAILURE() << priority.dump() << " was read";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("level.json: probes[0].priority: expected an "
+                                                 "integer from -2147483648 to 2147483647"),
+                      std::string::npos)
+                << e.what();
+        }
+        ProbeVolume markup = v;
+        EXPECT_THROW(applyProbeMarkup(markup, json{{"priority", priority}}, "s.gltf", "p"), Error);
+    }
+    for (const json& priority : {json(2147483647), json(-2147483648ll)}) {
+        json level = toJson(v);
+        level["priority"] = priority;
+        EXPECT_EQ(probeVolumeFromJson(level, "level.json", "probes[0]").priority,
+                  priority.get<int>());
+    }
+}
+
 } // namespace
 } // namespace specula

@@ -18,9 +18,12 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <random>
 #include <set>
+
+#include <sys/stat.h>
 
 namespace specula {
 namespace {
@@ -260,6 +263,26 @@ TEST_F(PemShard, ShardFilesRoundTripBitForBitAndATruncatedOneIsNamed) {
     EXPECT_EQ(back.map.local.alpha, shard.map.local.alpha);
     EXPECT_EQ(back.map.map.distance, nullptr);
     EXPECT_THROW(readPemSampleShard(map, 1, nullptr), Error); // another sample's file
+    EXPECT_FALSE(back.leftOut);
+    shard.leftOut = true; // the sample's view held no reflector pixel
+    writePemSampleShard(shard, map);
+    EXPECT_TRUE(readPemSampleShard(map, 2, nullptr).leftOut);
+
+    // A FIFO planted in a store on a shared disk: refused, naming it, never waited on.
+    const std::string fifo = (root_ / "planted.trace").string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const auto& read : std::vector<std::function<void()>>{
+             [&] { readPemTrace(fifo); }, [&] { readPemTraceDecisionInputs(fifo); },
+             [&] { readPemSampleShard(fifo, 2, nullptr); }}) {
+        try {
+            read();
+            ADD_FAILURE() << "read a FIFO";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.file(), fifo);
+            EXPECT_NE(std::string(e.what()).find("cannot read file"), std::string::npos)
+                << e.what();
+        }
+    }
 
     const std::string bytes = [&] {
         std::ifstream f(trace, std::ios::binary);

@@ -80,6 +80,11 @@ CpuDistanceLevel::CpuDistanceLevel(const std::string& path, const DistanceProbe&
     const LevelIndex index = readLevelIndex(path);
     if (index.flavour != "distance")
         throw Error(path, "flavour", "expected \"distance\", got \"" + index.flavour + "\"");
+    // The shader's uniform block holds kMaxLevelProbes: the twin reads no level it cannot.
+    if (index.probes.empty() || index.probes.size() > std::size_t(glsl::kMaxLevelProbes))
+        throw Error(path, "probes",
+                    "the level has " + std::to_string(index.probes.size()) +
+                        " probes; a level holds 1 to " + std::to_string(glsl::kMaxLevelProbes));
     const std::filesystem::path dir = std::filesystem::path(path).parent_path();
     for (const LevelProbeEntry& e : index.probes) {
         volumes_.push_back(e.volume);
