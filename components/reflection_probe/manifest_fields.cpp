@@ -66,6 +66,23 @@ std::string readManifestText(const std::string& path) {
     return readRegularFile(path, kMaxManifestBytes);
 }
 
+std::string manifestSeal(const json& manifest) {
+    json unsealed = manifest;
+    unsealed.erase("seal");
+    const std::string text = unsealed.dump();
+    return bytesChecksum(text.data(), text.size());
+}
+
+void checkManifestSeal(const ProbeManifest& m) {
+    const auto seal = m.json.find("seal");
+    if (seal == m.json.end()) return;
+    if (!seal->is_string() || *seal != manifestSeal(m.json))
+        throw Error(m.path, "seal",
+                    "the manifest's fields were edited since Specula wrote it (they no longer "
+                    "match its seal): re-cook the probe, or delete \"seal\" to load the edited "
+                    "fields as they are");
+}
+
 ParsedManifest ParsedManifest::load(const std::string& path) {
     return parse(readManifestText(path), path);
 }

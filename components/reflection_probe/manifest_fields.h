@@ -56,6 +56,15 @@ struct ProbeManifest {
     const nlohmann::json& json;
 };
 
+// The manifest's seal: the checksum of its JSON without "seal" (nlohmann's dump, keys sorted,
+// so a parsed manifest dumps to the same text). Written last by writeProbeFolder; a manifest
+// whose fields were edited since no longer matches it.
+std::string manifestSeal(const nlohmann::json& manifest);
+// Throws Error(file, "seal") when the manifest carries a seal its fields do not match. The
+// readers call it after every field is validated, so a bad field is named as such. A
+// manifest without "seal" (written by hand, or unsealed on purpose) passes.
+void checkManifestSeal(const ProbeManifest& m);
+
 // A manifest read from disk (load) or parsed from text in memory (parse), owning its JSON.
 // Throws Error naming the file (and, for a syntax error, the last key read).
 struct ParsedManifest {

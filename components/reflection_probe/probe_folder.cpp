@@ -1,10 +1,12 @@
 #include "probe_folder.h"
 
+#include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/temporary_owner.h"
 
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/regular_file.h"
+#include "engine/image/ktx2.h"
 
 #include <algorithm>
 #include <atomic>
@@ -14,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <set>
 #include <thread>
 #include <unistd.h>
@@ -58,14 +61,18 @@ bool holdsScene(const fs::path& target, const std::string& sourceScene) {
 // Every string under a "file" key, at any depth (layers, sky, slabs): what Specula wrote.
 // Depth-bounded so that a hostile manifest cannot exhaust the stack; anything deeper simply
 // lists nothing, which only makes more files foreign.
-void collectListedFiles(const json& j, std::set<std::string>& files, int depth = 0) {
+// Every listed file with the checksum beside it ("" when it states none).
+void collectListedFiles(const json& j, std::map<std::string, std::string>& files, int depth = 0) {
     if (depth > 16) return;
     if (j.is_object()) {
         for (const auto& [key, value] : j.items()) {
-            if (key == "file" && value.is_string())
-                files.insert(value.get<std::string>());
-            else
+            if (key == "file" && value.is_string()) {
+                const auto sum = j.find("checksum");
+                files[value.get<std::string>()] =
+                    sum != j.end() && sum->is_string() ? sum->get<std::string>() : "";
+            } else {
                 collectListedFiles(value, files, depth + 1);
+            }
         }
     } else if (j.is_array()) {
         for (const json& v : j)
@@ -83,8 +90,23 @@ json parseJsonOrNull(const fs::path& file, std::uint64_t maxBytes) {
     }
 }
 
-// The files a Specula manifest lists; throws when manifest.json is not one.
-std::set<std::string> probeFolderFiles(const fs::path& manifest, const std::string& dir) {
+// Whether `file` is named and begins like a KTX 2.0 texture (its 12-byte identifier).
+bool isKtx2Texture(const fs::path& file) {
+    if (file.extension() != ".ktx2") return false;
+    try {
+        RegularFile f(file.string(), std::uint64_t(16) << 30);
+        unsigned char head[sizeof kKtx2Identifier] = {};
+        return f.read(head, sizeof head) == sizeof head &&
+               std::memcmp(head, kKtx2Identifier, sizeof head) == 0;
+    } catch (const Error&) {
+        return false;
+    }
+}
+
+// The files a Specula manifest lists, with their checksums; throws when manifest.json is not
+// one.
+std::map<std::string, std::string> probeFolderFiles(const fs::path& manifest,
+                                                    const std::string& dir) {
     std::error_code ec;
     const auto st = fs::symlink_status(manifest, ec);
     if (!fs::exists(st))
@@ -98,7 +120,7 @@ std::set<std::string> probeFolderFiles(const fs::path& manifest, const std::stri
         throw Error(dir, "manifest.json",
                     "is not a Specula probe manifest (no \"format\": \"specula-probe\"); "
                     "refusing to replace a folder Specula did not write");
-    std::set<std::string> files;
+    std::map<std::string, std::string> files;
     collectListedFiles(j, files);
     return files;
 }
@@ -193,17 +215,28 @@ void checkProbeFolderReplaceable(const std::string& dir, const std::string& sour
                     "holds the input scene " + sourceScene +
                         "; refusing to replace it (choose another folder)");
     if (fs::is_empty(target, ec) && !ec) return;
-    const std::set<std::string> listed = probeFolderFiles(target / "manifest.json", dir);
+    const std::map<std::string, std::string> listed =
+        probeFolderFiles(target / "manifest.json", dir);
     std::vector<fs::directory_entry> entries(fs::directory_iterator(target),
                                              fs::directory_iterator{});
     std::sort(entries.begin(), entries.end());
     for (const fs::directory_entry& e : entries) {
         const std::string name = e.path().filename().string();
         if (name == "manifest.json") continue;
-        if (!listed.count(name) || !e.is_regular_file() || e.is_symlink())
+        const auto it = listed.find(name);
+        if (it == listed.end() || !e.is_regular_file() || e.is_symlink())
             throw Error(dir, name,
                         "is not one of the files its manifest.json lists (Specula did not "
                         "write it); refusing to replace the folder");
+        // A manifest names a file by its bytes too: a manifest forged to list a user's file
+        // does not make it Specula's to delete. A texture of ours damaged since (the level's
+        // re-bake repairs those) still is one.
+        if (!it->second.empty() && fileChecksum(e.path().string()) == it->second) continue;
+        if (!isKtx2Texture(e.path()))
+            throw Error(dir, name,
+                        "is listed by its manifest.json, but its bytes are neither the ones the "
+                        "manifest records nor a KTX2 texture (not written by Specula); "
+                        "refusing to replace the folder");
     }
 }
 
@@ -313,7 +346,8 @@ void writeProbeFolder(const std::string& dir, const std::string& sourceScene,
     fs::create_directories(tmp);
     try {
         writeTemporaryOwner(tmp); // first: whoever finds it left knows whose it was
-        const json manifest = fill(tmp);
+        json manifest = fill(tmp);
+        manifest["seal"] = manifestSeal(manifest);
         throwIfCancelled(dir);
         writeFileAtomically((tmp / "manifest.json").string(), manifest.dump(2) + "\n");
         pauseBeforeCommitForTests();

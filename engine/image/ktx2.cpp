@@ -18,8 +18,7 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "KTX2 is little-endian; so is this reader");
 
-constexpr unsigned char kIdentifier[12] = {0xAB, 'K',  'T',  'X',  ' ',  '2',
-                                           '0',  0xBB, '\r', '\n', 0x1A, '\n'};
+constexpr const unsigned char (&kIdentifier)[12] = kKtx2Identifier;
 constexpr std::size_t kHeaderBytes = 80; // identifier, 9 header words, the index
 constexpr std::size_t kLevelIndexBytes = 24;
 // Larger than any GL implementation's texture size, small enough that sizes never overflow.

@@ -41,6 +41,10 @@ struct Ktx2ReadLimits {
     int channels = 0; // when > 0: exactly this many
 };
 
+// The 12 bytes every KTX 2.0 file begins with.
+inline constexpr unsigned char kKtx2Identifier[12] = {0xAB, 'K',  'T',  'X',  ' ',  '2',
+                                                      '0',  0xBB, '\r', '\n', 0x1A, '\n'};
+
 // Throws Error(path, field, why) for a file that cannot be read or is not what is described
 // above; field is the header field, "dfd", "kvd" or "level N".
 Ktx2Texture readKtx2(const std::string& path, const Ktx2ReadLimits& limits = {});

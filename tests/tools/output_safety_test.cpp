@@ -12,11 +12,13 @@
 #include "tests/support/scratch_dir_test.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <string>
@@ -133,6 +135,29 @@ TEST_F(OutputSafety, ProbeFolderWithAForeignFileIsRefusedNamingIt) {
     // Without the foreign entries the same folder is replaced as before.
     EXPECT_EQ(bake(kRoom, probe).status, 0);
     EXPECT_TRUE(temporariesBeside(probe).empty());
+
+    // A manifest forged to list a user's file (issue 34): listing it does not make it ours.
+    // Without a checksum, or with one that does not match its bytes, the file is no texture
+    // Specula wrote; the folder is refused and the file kept.
+    const fs::path manifest = probe / "manifest.json";
+    const std::string original = [&] {
+        std::ifstream in(manifest);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    }();
+    for (const std::string& checksum : {std::string(), std::string("fnv1a64:0000000000000000")}) {
+        nlohmann::json forged = nlohmann::json::parse(original);
+        forged["layers"][0]["file"] = "thesis.docx";
+        if (checksum.empty())
+            forged["layers"][0].erase("checksum");
+        else
+            forged["layers"][0]["checksum"] = checksum;
+        std::ofstream(manifest) << forged.dump(2);
+        std::ofstream(probe / "thesis.docx") << "four years of work";
+        fs::remove(probe / "layer_00.ktx2");
+        expectRefused(kRoom, probe, "thesis.docx");
+        EXPECT_TRUE(fs::exists(probe / "thesis.docx")) << checksum;
+        fs::remove(probe / "thesis.docx");
+    }
 }
 
 TEST_F(OutputSafety, EmptyFolderAndMissingFolderAreFilled) {

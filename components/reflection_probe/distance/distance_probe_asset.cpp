@@ -4,6 +4,7 @@
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/probe_folder.h"
 
+#include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "engine/core/error.h"
 #include "engine/core/regular_file.h"
 #include "engine/image/ktx2.h"
@@ -190,8 +191,10 @@ void checkCompositeNearest(const DistanceProbeAsset& a, const std::string& manif
                 for (int x = 0; x < n; ++x) {
                     const float d0 = a.layers[0].faces[std::size_t(f)].at(x, y)[3];
                     const float dk = a.layers[k].faces[std::size_t(f)].at(x, y)[3];
-                    // 1e-5: the same hit traced through two acceleration structures.
-                    if (d0 <= dk * (1.f + 1e-5f)) continue;
+                    // 1e-3: the same hit traced through two acceleration structures, and an
+                    // object layer stored as half floats (11 bits: within 2.5e-4 of it) beside
+                    // the float composite. A swapped layer differs by far more.
+                    if (d0 <= dk * (1.f + 1e-3f)) continue;
                     throw Error(manifest, "layers[0]",
                                 "the composite (" + files[0] + ") is farther than layers[" +
                                     std::to_string(k) + "] (" + files[k] + ") at " +
@@ -248,8 +251,29 @@ std::string layerFileName(std::size_t i) {
 }
 } // namespace
 
-void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
+void writeDistanceProbe(const DistanceProbeAsset& baked, const std::string& dir,
                         const std::string& sourceScene) {
+    // The object layers go to disk as RGBA16F when they fit: the runtime rounds them to half
+    // for the GPU anyway (storedDistanceAsset), so the file loses nothing the runtime uses
+    // and takes half the bytes. Their figures are restated from the rounded texels, as the
+    // reader measures them. The composite stays float32, as the GPU holds it.
+    const bool halfObjectLayers = objectLayersFitHalf(baked);
+    DistanceProbeAsset rounded;
+    if (halfObjectLayers) {
+        rounded = baked;
+        roundObjectLayersToHalf(rounded);
+        for (std::size_t i = 1; i < rounded.layers.size(); ++i) {
+            DistanceProbeLayer& L = rounded.layers[i];
+            const DistanceLayerContent c = measureDistanceLayer(
+                L.faces, rounded.dInf, (fs::path(dir) / layerFileName(i)).string());
+            L.minDistance = c.minDistance;
+            L.maxDistance = c.maxDistance;
+            L.solidAngle = float(c.solidAngle);
+            if (c.solidAngle > 0.0)
+                L.avgDistance = std::clamp(L.avgDistance, c.minDistance, c.maxDistance);
+        }
+    }
+    const DistanceProbeAsset& asset = halfObjectLayers ? rounded : baked;
     // The reader's checks, before anything is written: a probe its reader would refuse is
     // never written (errors name the files as they would be).
     for (int i = 0; i < 3; ++i)
@@ -270,7 +294,7 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
             const DistanceProbeLayer& L = asset.layers[i];
             const std::string name = layerFileName(i);
             const std::string path = (tmp / name).string();
-            writeKtx2Cube(path, stackFaces(L.faces));
+            writeKtx2(path, Ktx2Texture{true, i > 0 && halfObjectLayers, {stackFaces(L.faces)}});
             layers.push_back({{"name", L.name},
                               {"order", i},
                               {"objects", L.objects},
@@ -294,8 +318,9 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
             {"d_inf", asset.dInf},
             {"face_res", asset.faceRes},
             {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
-            {"face_layout", "KTX2 cube map (faceCount 6, float RGBA), faces +X -X +Y -Y +Z -Z, "
-                            "RGB radiance, A distance from the centre"},
+            {"face_layout", "KTX2 cube map (faceCount 6, RGBA: float32 for the composite, half "
+                            "floats for object layers that fit), faces +X -X +Y -Y +Z -Z, RGB "
+                            "radiance, A distance from the centre"},
             {"layers", layers}};
         if (!asset.effectPlan.empty()) manifest["effect_plan"] = json::parse(asset.effectPlan);
         if (!asset.glossyLevels.empty()) manifest["glossy"] = writeGlossyLevels(asset, tmp, dir);
@@ -387,6 +412,7 @@ DistanceProbeAsset readDistanceProbe(const ProbeManifest& manifest) {
         a.sky = readKtx2Image(skyFile);
     }
     checkContent(a, manifestPath, files, glossyFiles, skyFile);
+    checkManifestSeal(manifest);
     return a;
 }
 

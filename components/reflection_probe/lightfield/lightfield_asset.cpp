@@ -280,6 +280,7 @@ LightFieldAsset readLightFieldProbe(const ProbeManifest& manifest) {
                                 " is in the three-colour mode the baker never writes (its "
                                 "index 3 decodes to transparent black)");
     }
+    checkManifestSeal(manifest);
     return a;
 }
 

@@ -435,6 +435,7 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
         files.push_back(file.path);
     }
     checkAsset(a, manifest.path, files, distanceFile, localFiles);
+    checkManifestSeal(manifest);
     return a;
 }
 
