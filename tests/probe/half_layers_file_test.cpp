@@ -55,5 +55,46 @@ TEST(HalfLayersFile, ObjectLayersAreWrittenAsTheHalfFloatsTheRuntimeStores) {
     fs::remove_all(dir);
 }
 
+// A scene modelled a million times smaller: its distances fall below half's smallest normal
+// (2^-14), where a half keeps too few bits to order the layers. Such layers stay float32.
+TEST(HalfLayersFile, DistancesBelowHalfsNormalRangeKeepTheLayersFloat) {
+    DistanceProbeAsset tiny =
+        readDistanceProbe(SPECULA_SOURCE_DIR "/tests/fuzz/data/probe/manifest.json");
+    const auto scaleDistances = [](std::array<Image, 6>& faces) {
+        for (Image& face : faces)
+            for (std::size_t i = 3; i < face.pixels.size(); i += std::size_t(face.channels))
+                face.pixels[i] *= 1e-6f;
+    };
+    tiny.dInf *= 1e-6f;
+    tiny.range *= 1e-6f;
+    tiny.centre *= 1e-6f;
+    tiny.boxMin *= 1e-6f;
+    tiny.boxMax *= 1e-6f;
+    for (auto& layer : tiny.layers) {
+        scaleDistances(layer.faces);
+        const DistanceLayerContent content = measureDistanceLayer(layer.faces, tiny.dInf, "");
+        layer.minDistance = content.minDistance;
+        layer.maxDistance = content.maxDistance;
+        layer.avgDistance *= 1e-6f;
+        layer.boxMin *= 1e-6f;
+        layer.boxMax *= 1e-6f;
+    }
+    for (auto& level : tiny.glossyLevels) scaleDistances(level);
+    EXPECT_FALSE(objectLayersFitHalf(tiny));
+    const fs::path dir =
+        fs::temp_directory_path() / ("specula-tiny-layers-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    writeDistanceProbe(tiny, dir.string(), "scene.gltf");
+    const DistanceProbeAsset back = readDistanceProbe((dir / "manifest.json").string());
+    for (std::size_t i = 0; i < back.layers.size(); ++i) {
+        EXPECT_FALSE(readKtx2((dir / back.layers[i].file).string()).halfFloat) << "layer " << i;
+        for (int f = 0; f < 6; ++f)
+            EXPECT_TRUE(sameBits(back.layers[i].faces[std::size_t(f)].pixels,
+                                 tiny.layers[i].faces[std::size_t(f)].pixels))
+                << "layer " << i << " face " << f;
+    }
+    fs::remove_all(dir);
+}
+
 } // namespace
 } // namespace specula

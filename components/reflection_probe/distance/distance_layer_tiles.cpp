@@ -40,8 +40,15 @@ float roundToHalf(float v) {
 
 bool objectLayersFitHalf(const DistanceProbeAsset& asset) {
     // Radiance is at most kMaxRadiance (the largest half) and distances at most d_inf, as the
-    // reader checks; d_inf must round to a finite half.
-    return std::isfinite(roundToHalf(asset.dInf));
+    // reader checks; d_inf must round to a finite half. Distances below half's smallest
+    // normal (2^-14 m: a scene modelled in kilometres, or scaled down) would lose their
+    // relative precision as subnormals, and the layer order with it: such layers stay float.
+    if (!std::isfinite(roundToHalf(asset.dInf))) return false;
+    for (std::size_t L = 1; L < asset.layers.size(); ++L)
+        for (const Image& face : asset.layers[L].faces)
+            for (std::size_t i = 3; i < face.pixels.size(); i += std::size_t(face.channels))
+                if (face.pixels[i] < 0x1p-14f) return false; // RGBA: distance in alpha
+    return true;
 }
 
 void roundObjectLayersToHalf(DistanceProbeAsset& asset) {

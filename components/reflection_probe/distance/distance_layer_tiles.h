@@ -76,7 +76,8 @@ LayerTiles tileObjectLayers(const DistanceProbeAsset& asset, int tileSize = kLay
                             bool half = false);
 
 // Whether the object layers can be stored as half floats: every value (radiance <=
-// kMaxRadiance, distances <= d_inf) within half's range.
+// kMaxRadiance, distances <= d_inf) within half's range, and no distance below half's
+// smallest normal (2^-14).
 bool objectLayersFitHalf(const DistanceProbeAsset& asset);
 // Rounds every texel of the object layers to the nearest half float, so the CPU twin reads
 // what an RGBA16F atlas holds. The composite and the sky stay as they are.
