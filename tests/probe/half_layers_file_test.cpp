@@ -79,7 +79,8 @@ TEST(HalfLayersFile, DistancesBelowHalfsNormalRangeKeepTheLayersFloat) {
         layer.boxMin *= 1e-6f;
         layer.boxMax *= 1e-6f;
     }
-    for (auto& level : tiny.glossyLevels) scaleDistances(level);
+    for (auto& level : tiny.glossyLevels)
+        scaleDistances(level);
     EXPECT_FALSE(objectLayersFitHalf(tiny));
     const fs::path dir =
         fs::temp_directory_path() / ("specula-tiny-layers-" + std::to_string(::getpid()));
