@@ -3,9 +3,15 @@
 # specula::gpu::embedded::FUNCTION() (engine/gpu/shader_files.h). The table is regenerated
 # when a file changes; a new file is found at the next build (CONFIGURE_DEPENDS).
 function(specula_embed_shaders target function)
+  specula_embed_files(${target} ${function} "*.glsl;*.glsl.h;*.vert;*.frag;*.comp" ${ARGN})
+endfunction()
+
+# specula_embed_files(TARGET FUNCTION PATTERNS FOLDER...): the same for any text files matching
+# PATTERNS (a list of globs), e.g. the manifests' JSON Schemas the runtime reads.
+function(specula_embed_files target function patterns)
   set(files)
   foreach(folder ${ARGN})
-    foreach(pattern *.glsl *.glsl.h *.vert *.frag *.comp)
+    foreach(pattern ${patterns})
       file(GLOB_RECURSE found CONFIGURE_DEPENDS RELATIVE ${PROJECT_SOURCE_DIR}
            ${PROJECT_SOURCE_DIR}/${folder}/${pattern})
       list(APPEND files ${found})

@@ -1,5 +1,6 @@
 #include "level_index.h"
 
+#include "components/reflection_probe/asset_format.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
@@ -31,21 +32,14 @@ json toJson(const LevelIndex& index) {
             {"geometry", e.inputs.geometry}, {"options", e.inputs.options}, {"sky", e.inputs.sky}};
         probes.push_back(std::move(p));
     }
-    return {{"format", "specula-level"},
-            {"version", kLevelFormatVersion},
+    return {{"format", formatJson(kLevelFormat)},
             {"source", index.source},
             {"flavour", index.flavour},
             {"probes", std::move(probes)}};
 }
 
 LevelIndex levelIndexFromJson(const json& j, const std::string& file) {
-    // is_string first: json::value() throws type_error for a member of another type.
-    if (!j.is_object() || !j.contains("format") || !j["format"].is_string() ||
-        j["format"].get<std::string>() != "specula-level")
-        throw Error(file, "format", "expected \"specula-level\"");
-    if (!j.contains("version") || !j["version"].is_number_integer() ||
-        j["version"].get<int>() != kLevelFormatVersion)
-        throw Error(file, "version", "expected " + std::to_string(kLevelFormatVersion));
+    const FormatVersion version = readAssetFormat(j, kLevelFormat, file);
     LevelIndex index;
     index.source = stringMember(j, "source", file, "");
     index.flavour = stringMember(j, "flavour", file, "");
@@ -71,6 +65,7 @@ LevelIndex levelIndexFromJson(const json& j, const std::string& file) {
         e.inputs.sky = stringMember(p["inputs"], "sky", file, in);
         index.probes.push_back(std::move(e));
     }
+    warnAboutNewerMinor(j, kLevelFormat, version, kLevelFormat.schema, file);
     return index;
 }
 

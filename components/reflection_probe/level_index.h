@@ -4,7 +4,8 @@
 // it was baked from (so a re-bake knows which probes are stale and why). Written by
 // `specula-cook bake` when a scene has several probes; read by whatever loads the level.
 //
-//   {"format": "specula-level", "version": 1, "source": "scene.gltf", "flavour": "distance",
+//   {"format": {"name": "specula-level", "major": 1, "minor": 1}, "source": "scene.gltf",
+//    "flavour": "distance",
 //    "probes": [{"name": .., "position": [..], "proxy": {..}, "influence": {..},
 //                "blend_distance": .., "priority": .., "cell_size": .., "folder": "name",
 //                "manifest_checksum": "fnv1a64:..",
@@ -15,8 +16,6 @@
 #include <vector>
 
 namespace specula {
-
-inline constexpr int kLevelFormatVersion = 1;
 
 // What a probe was baked from, each as a checksum: a changed one names why it is re-baked.
 struct LevelProbeInputs {

@@ -1,5 +1,6 @@
 #include "components/reflection_probe/manifest_fields.h"
 
+#include "components/reflection_probe/asset_format.h"
 #include "engine/core/error.h"
 #include "engine/core/regular_file.h"
 
@@ -56,8 +57,7 @@ json vec3Json(glm::vec3 v) {
 }
 
 json probeManifestHeader(std::string_view flavour, const std::string& sourceScene) {
-    return json{{"format", "specula-probe"},
-                {"version", kProbeFormatVersion},
+    return json{{"format", formatJson(kProbeFormat)},
                 {"flavour", std::string(flavour)},
                 {"source", sourceScene}};
 }
@@ -195,25 +195,17 @@ void ManifestFields::rethrowNamed(const std::string& field, const std::exception
     throw Error(file, field, e.what());
 }
 
-std::string ManifestFields::probeFlavour(const json& m, int version) const {
-    if (string(m, "format", "") != "specula-probe")
-        throw Error(file, "format", "expected \"specula-probe\"");
-    const int found = integer(m, "version", "", 0, 1000000);
-    if (found == 1 && version == 2)
-        throw Error(file, "version",
-                    "asset format 1 (OpenEXR textures) is older than this runtime (format 2, "
-                    "KTX2 textures): re-cook it with `specula-cook bake`");
-    if (found != version)
-        throw Error(file, "version",
-                    "unknown format version " + m["version"].dump() + " (this build reads " +
-                        std::to_string(version) + ")");
+std::string ManifestFields::probeFlavour(const json& m) const {
+    readAssetFormat(m, kProbeFormat, file);
     return string(m, "flavour", "");
 }
 
 void ManifestFields::expectFlavour(const json& m, std::string_view flavour) const {
-    if (const std::string f = probeFlavour(m, kProbeFormatVersion); f != flavour)
+    const FormatVersion version = readAssetFormat(m, kProbeFormat, file);
+    if (const std::string f = string(m, "flavour", ""); f != flavour)
         throw Error(file, "flavour",
                     "expected \"" + std::string(flavour) + "\", got \"" + f + "\"");
+    warnAboutNewerMinor(m, kProbeFormat, version, "probe-" + std::string(flavour), file);
 }
 
 } // namespace specula

@@ -14,10 +14,6 @@
 
 namespace specula {
 
-// Version of the cooked-probe manifest format every flavour writes and reads. 2: every
-// texture is KTX 2.0 (engine/image/ktx2.h); 1 stored OpenEXR, which only the tools could read.
-inline constexpr int kProbeFormatVersion = 2;
-
 // A manifest is a few kB; an effect plan for a level of tens of thousands of nodes a few
 // MB. Anything larger is not a manifest.
 inline constexpr std::uint64_t kMaxManifestBytes = 64ull << 20;
@@ -38,8 +34,8 @@ std::string bytesChecksum(const void* data, std::size_t size);
 // A vec3 as the JSON array a manifest stores.
 nlohmann::json vec3Json(glm::vec3 v);
 
-// The members every cooked manifest opens with: "format": "specula-probe", "version":
-// kProbeFormatVersion, "flavour" and "source" (the scene it was baked from).
+// The members every cooked manifest opens with: "format" (kProbeFormat, asset_format.h),
+// "flavour" and "source" (the scene it was baked from).
 nlohmann::json probeManifestHeader(std::string_view flavour, const std::string& sourceScene);
 
 // The manifest text at `path`, read as a regular file of at most kMaxManifestBytes.
@@ -110,11 +106,12 @@ struct ManifestFields {
     // Compares the checksum stored at path + "checksum" with `actual`; returns the stored one.
     std::string checksum(const nlohmann::json& obj, const std::string& path,
                          const std::string& actual) const;
-    // The "flavour" of a Specula probe manifest ("format": "specula-probe") of format
-    // `version`; a manifest of another format or version is refused naming that field.
-    std::string probeFlavour(const nlohmann::json& manifest, int version) const;
-    // probeFlavour of this build's version, which must be `flavour` (every flavour's reader
-    // opens with it, so all refuse a foreign manifest with the same message).
+    // The "flavour" of a Specula probe manifest of a format this runtime reads
+    // (readAssetFormat, asset_format.h); another format or major is refused naming the field.
+    std::string probeFlavour(const nlohmann::json& manifest) const;
+    // probeFlavour, which must be `flavour` (every flavour's reader opens with it, so all
+    // refuse a foreign manifest with the same message). A newer minor's members this runtime
+    // does not know are listed once in a warning (warnAboutNewerMinor).
     void expectFlavour(const nlohmann::json& manifest, std::string_view flavour) const;
     // Runs `read` on a file the manifest names; an Error it throws (the file is missing, a
     // FIFO, a directory, a symlink loop...) is re-thrown naming the manifest and the field

@@ -1,5 +1,6 @@
 #include "probe_folder.h"
 
+#include "components/reflection_probe/asset_format.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/temporary_owner.h"
 
@@ -115,10 +116,9 @@ std::map<std::string, std::string> probeFolderFiles(const fs::path& manifest,
                     "replace it");
     constexpr std::uintmax_t kMaxManifestBytes = 64u << 20;
     const json j = fs::is_regular_file(st) ? parseJsonOrNull(manifest, kMaxManifestBytes) : json();
-    const auto format = j.is_object() ? j.find("format") : j.end();
-    if (!j.is_object() || format == j.end() || *format != "specula-probe")
+    if (assetFormatName(j) != std::string(kProbeFormat.name))
         throw Error(dir, "manifest.json",
-                    "is not a Specula probe manifest (no \"format\": \"specula-probe\"); "
+                    "is not a Specula probe manifest (no \"format\" named \"specula-probe\"); "
                     "refusing to replace a folder Specula did not write");
     std::map<std::string, std::string> files;
     collectListedFiles(j, files);

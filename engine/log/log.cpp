@@ -1,5 +1,7 @@
 #include "log.h"
 
+#include "engine/core/warning.h"
+
 #include <spdlog/sinks/stdout_sinks.h>
 
 namespace specula {
@@ -14,5 +16,16 @@ spdlog::logger& log() {
     }();
     return logger;
 }
+
+namespace {
+
+// The runtime's warnings (engine/core/warning.h) go to this log in every program that links
+// it: the tools and the tests.
+const bool kWarningsRouted = [] {
+    setWarningHandler([](std::string_view message) { log().warn("{}", message); });
+    return true;
+}();
+
+} // namespace
 
 } // namespace specula

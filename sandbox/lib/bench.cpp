@@ -129,7 +129,9 @@ void writeMarkdown(const BenchReport& r, const std::vector<std::string>& scenePa
          "radiance filtering across silhouettes, (d) the rays whose truth hit the probe centre "
          "cannot see take the truth. A term is the baseline MSE less the experiment's; "
          "residual: all four at once; interaction: baseline - residual - the terms (0 when "
-         "additive); oracle: the lookup handed the truth's hit (the floor of any search). "
+         "additive); oracle: the lookup handed the truth's hit (the floor of any search); "
+         "RGBA16F (e): the baseline's PSNR change with every layer, the composite included, "
+         "stored as half floats (against the float32 composite). "
          "bench.csv: the budget_* columns; error_budget.png.\n\n";
     for (const std::string& scene : scenePaths) {
         const std::string name = fs::path(scene).stem().string();

@@ -1,6 +1,7 @@
 #include "error_budget.h"
 
 #include "assetcooker/lib/scene/probe_setup.h"
+#include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "engine/raytrace/ground_truth.h"
@@ -33,8 +34,8 @@ double squaredError(glm::vec3 c, glm::vec3 truth) {
 // Summed squared errors of the budget's lookups: the 8 combinations of the lookup
 // experiments (index bit 0 exact search, bit 1 same-surface radiance, bit 2 faces 2x), then
 // the same with the hidden rays' errors left out (kSeen + combination), the oracle, and the
-// count of hidden rays.
-constexpr std::size_t kSeen = 8, kOracle = 16, kHidden = 17, kLookups = 18;
+// count of hidden rays, and the baseline on every layer stored as half floats.
+constexpr std::size_t kSeen = 8, kOracle = 16, kHidden = 17, kHalf = 18, kLookups = 19;
 using Sums = std::array<double, kLookups>;
 
 } // namespace
@@ -97,6 +98,15 @@ MethodErrorBudget measureErrorBudget(const std::vector<BudgetRay>& rays,
     const DistanceLookupConfig config = makeLookupConfig(settings, asset);
     const DistanceLookupConfig config2x =
         asset2x ? makeLookupConfig(settings, *asset2x) : DistanceLookupConfig{};
+    // (e) RGBA16F: the composite as well as the object layers rounded to half floats, where
+    // every layer's values are normal halves (allLayersFitHalf).
+    std::optional<DistanceProbeAsset> halfAsset;
+    if (allLayersFitHalf(asset)) {
+        halfAsset = asset;
+        roundAllLayersToHalf(*halfAsset);
+    }
+    const DistanceLookupConfig halfConfig =
+        halfAsset ? makeLookupConfig(settings, *halfAsset) : DistanceLookupConfig{};
     // Deterministic: the same rays sum in the same order, so two budgets compare exactly.
     const Sums sums = tbb::parallel_deterministic_reduce(
         tbb::blocked_range<std::size_t>(0, rays.size(), 256), Sums{},
@@ -111,6 +121,8 @@ MethodErrorBudget measureErrorBudget(const std::vector<BudgetRay>& rays,
                 twins[std::size_t(c)]->setExperiment({(c & 1) != 0, (c & 2) != 0});
             }
             const CpuDistanceProbe& base = *twins[0];
+            std::optional<CpuDistanceProbe> half;
+            if (halfAsset) half.emplace(*halfAsset, halfConfig);
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 const BudgetRay& r = rays[i];
                 // A ray that leaves for the sky is always seen: the probe keeps the sky apart.
@@ -128,6 +140,10 @@ MethodErrorBudget measureErrorBudget(const std::vector<BudgetRay>& rays,
                     if (!((c & 4) ? hidden2x : hidden)) s[kSeen + std::size_t(c)] += e;
                 }
                 s[kHidden] += hidden ? 1.0 : 0.0;
+                if (half) {
+                    int fetches = 0;
+                    s[kHalf] += squaredError(half->radiance(r.x, r.l, fetches), r.truth);
+                }
                 const glm::vec3 oracle = r.hasHit ? v.radiance : base.sky(r.l);
                 s[kOracle] += squaredError(oracle, r.truth);
             }
@@ -146,6 +162,7 @@ MethodErrorBudget measureErrorBudget(const std::vector<BudgetRay>& rays,
     b.sameSurface = sums[2] / n;
     b.seen = sums[kSeen] / n;
     b.oracle = sums[kOracle] / n;
+    if (halfAsset) b.halfFloat = sums[kHalf] / n;
     if (asset2x) b.res2x = sums[4] / n;
     b.all = sums[kSeen + (asset2x ? 7 : 3)] / n;
     // The residual: the least any combination of the experiments leaves.

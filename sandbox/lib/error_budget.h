@@ -68,6 +68,9 @@ struct MethodErrorBudget {
     double oracle = 0;         // the truth's hit handed to the lookup
     double hiddenShare = 0;    // share of rays whose truth hit the centre cannot see
     double gpuMse = kNoFigure; // the GPU row's RMSE squared, for the twin's gap
+    // (e) the baseline with every layer, the composite included, stored as RGBA16F: what
+    // half floats cost against float32 (NaN where the layers do not fit half floats).
+    double halfFloat = kNoFigure;
     std::string res2xNote;     // why res2x is missing, when it is
 
     double termSearch() const { return base - exact; }

@@ -121,7 +121,7 @@ std::string errorBudgetCsvHeader() {
            "budget_mse_same_surface,budget_mse_seen,budget_mse_all,budget_mse_oracle,"
            "budget_hidden_share,budget_term_search,budget_term_resolution,"
            "budget_term_silhouettes,budget_term_disocclusion,budget_interaction,"
-           "budget_dominant,budget_gpu_mse,budget_mse_residual,budget_residual_set";
+           "budget_dominant,budget_gpu_mse,budget_mse_residual,budget_residual_set,budget_mse_half";
 }
 
 std::string errorBudgetCsvValues(const MethodErrorBudget* b) {
@@ -131,7 +131,7 @@ std::string errorBudgetCsvValues(const MethodErrorBudget* b) {
         std::string row = ",0";
         for (int i = 0; i < 13; ++i)
             row += ",nan";
-        return row + ",-,nan,nan,-"; // dominant, GPU MSE, residual, its set
+        return row + ",-,nan,nan,-,nan"; // dominant, GPU MSE, residual, its set, half
     }
     std::ostringstream s;
     s << ',' << b->rays;
@@ -140,7 +140,7 @@ std::string errorBudgetCsvValues(const MethodErrorBudget* b) {
                      b->termDisocclusion(), b->interaction()})
         s << ',' << fmt(v);
     s << ',' << b->dominant() << ',' << fmt(b->gpuMse) << ',' << fmt(b->residual) << ','
-      << b->residualSet;
+      << b->residualSet << ',' << fmt(b->halfFloat);
     return s.str();
 }
 
@@ -156,8 +156,8 @@ std::string errorBudgetMarkdown(const std::vector<MethodErrorBudget>& budgets,
               << "| method | params | base (dB) | GPU dB | search (a) | resolution (b) | "
                  "silhouettes (c) | disocclusion (d) | residual (set) | all four | interaction | "
                  "oracle | "
-                 "hidden % | dominant |\n"
-              << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+                 "hidden % | dominant | RGBA16F dB (e) |\n"
+              << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
         any = true;
         auto term = [&](double t, double experiment) {
             if (std::isnan(t)) return std::string("-");
@@ -170,7 +170,10 @@ std::string errorBudgetMarkdown(const std::vector<MethodErrorBudget>& budgets,
           << " | " << fmt(1e3 * b.residual, "%.3f") << " (" << b.residualSet << ") | "
           << fmt(1e3 * b.all, "%.3f") << " | " << fmt(1e3 * b.interaction(), "%.3f") << " | "
           << fmt(1e3 * b.oracle, "%.3f") << " (" << fmt(psnrOfMse(b.oracle), "%.2f") << ") | "
-          << fmt(100 * b.hiddenShare, "%.1f") << " | " << b.dominant() << " |\n";
+          << fmt(100 * b.hiddenShare, "%.1f") << " | " << b.dominant() << " | "
+          << (std::isnan(b.halfFloat) ? std::string("-")
+                                      : fmt(psnrOfMse(b.halfFloat) - psnrOfMse(b.base), "%+.3f"))
+          << " |\n";
     }
     for (const MethodErrorBudget& b : budgets)
         if (b.scene == scene && !b.res2xNote.empty()) {

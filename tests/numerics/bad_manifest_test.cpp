@@ -68,12 +68,17 @@ TEST_F(BadManifest, GoodOneReads) {
 }
 
 TEST_F(BadManifest, EveryMalformedFieldIsNamed) {
-    expectRefused([](json& m) { m["version"] = 3; }, "version");
-    expectRefused([](json& m) { m["version"] = 1; }, "version"); // format 1: OpenEXR, re-cook
-    expectRefused([](json& m) { m["version"] = 1.5; }, "version");
-    expectRefused([](json& m) { m["version"] = "1"; }, "version");
-    expectRefused([](json& m) { m.erase("version"); }, "version");
+    expectRefused([](json& m) { m["format"]["major"] = 3; }, "format.major");
+    expectRefused([](json& m) { m["format"]["major"] = 1; }, "format.major"); // EXR: re-cook
+    expectRefused([](json& m) { m["format"]["minor"] = 1.5; }, "format.minor");
+    expectRefused([](json& m) { m["format"]["major"] = "2"; }, "format.major");
+    expectRefused([](json& m) { m["format"].erase("minor"); }, "format.minor");
+    expectRefused([](json& m) { m["format"]["name"] = "other"; }, "format");
     expectRefused([](json& m) { m["format"] = "other"; }, "format");
+    // Before 2.1: "format" a string and an integer "version" (the major).
+    expectRefused([](json& m) { m["format"] = "specula-probe", m["version"] = 1; }, "version");
+    expectRefused([](json& m) { m["format"] = "specula-probe", m["version"] = 3; }, "version");
+    expectRefused([](json& m) { m["format"] = "specula-probe"; }, "version");
     expectRefused([](json& m) { m["flavour"] = 3; }, "flavour");
     expectRefused([](json& m) { m["range_D"] = "far"; }, "range_D");
     expectRefused([](json& m) { m["range_D"] = -1; }, "range_D");

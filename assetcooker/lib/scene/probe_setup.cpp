@@ -344,7 +344,7 @@ CookedProbeFacts readCookedProbeFacts(const std::string& manifestPath) {
     const nlohmann::json m = parseManifestJson(readManifestText(manifestPath), manifestPath);
     const ManifestFields r{manifestPath};
     CookedProbeFacts f;
-    f.flavour = r.probeFlavour(m, kProbeFormatVersion);
+    f.flavour = r.probeFlavour(m);
     if (m.contains("source")) f.source = r.string(m, "source", "");
     f.skySourceGiven = m.contains("sky_source");
     if (f.skySourceGiven) f.skySource = r.string(m, "sky_source", "");

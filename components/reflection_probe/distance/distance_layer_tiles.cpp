@@ -38,24 +38,44 @@ float roundToHalf(float v) {
     return glm::unpackHalf1x16(glm::packHalf1x16(v));
 }
 
-bool objectLayersFitHalf(const DistanceProbeAsset& asset) {
-    // Radiance is at most kMaxRadiance (the largest half) and distances at most d_inf, as the
-    // reader checks; d_inf must round to a finite half. Distances below half's smallest
-    // normal (2^-14 m: a scene modelled in kilometres, or scaled down) would lose their
-    // relative precision as subnormals, and the layer order with it: such layers stay float.
+namespace {
+
+// Radiance is at most kMaxRadiance (the largest half) and distances at most d_inf, as the
+// reader checks; d_inf must round to a finite half. Distances below half's smallest normal
+// (2^-14 m: a scene modelled in kilometres, or scaled down) would lose their relative
+// precision as subnormals, and the layer order with it: such layers stay float.
+bool layersFitHalf(const DistanceProbeAsset& asset, std::size_t first) {
     if (!std::isfinite(roundToHalf(asset.dInf))) return false;
-    for (std::size_t L = 1; L < asset.layers.size(); ++L)
+    for (std::size_t L = first; L < asset.layers.size(); ++L)
         for (const Image& face : asset.layers[L].faces)
             for (std::size_t i = 3; i < face.pixels.size(); i += std::size_t(face.channels))
                 if (face.pixels[i] < 0x1p-14f) return false; // RGBA: distance in alpha
     return true;
 }
 
-void roundObjectLayersToHalf(DistanceProbeAsset& asset) {
-    for (std::size_t L = 1; L < asset.layers.size(); ++L)
+void roundLayersToHalf(DistanceProbeAsset& asset, std::size_t first) {
+    for (std::size_t L = first; L < asset.layers.size(); ++L)
         for (Image& face : asset.layers[L].faces)
             for (float& v : face.pixels)
                 v = roundToHalf(v);
+}
+
+} // namespace
+
+bool objectLayersFitHalf(const DistanceProbeAsset& asset) {
+    return layersFitHalf(asset, 1);
+}
+
+bool allLayersFitHalf(const DistanceProbeAsset& asset) {
+    return layersFitHalf(asset, 0);
+}
+
+void roundObjectLayersToHalf(DistanceProbeAsset& asset) {
+    roundLayersToHalf(asset, 1);
+}
+
+void roundAllLayersToHalf(DistanceProbeAsset& asset) {
+    roundLayersToHalf(asset, 0);
 }
 
 LayerTiles tileObjectLayers(const DistanceProbeAsset& asset, int tileSize, bool half) {

@@ -79,9 +79,13 @@ LayerTiles tileObjectLayers(const DistanceProbeAsset& asset, int tileSize = kLay
 // kMaxRadiance, distances <= d_inf) within half's range, and no distance below half's
 // smallest normal (2^-14).
 bool objectLayersFitHalf(const DistanceProbeAsset& asset);
+// The same for every layer, the composite included.
+bool allLayersFitHalf(const DistanceProbeAsset& asset);
 // Rounds every texel of the object layers to the nearest half float, so the CPU twin reads
 // what an RGBA16F atlas holds. The composite and the sky stay as they are.
 void roundObjectLayersToHalf(DistanceProbeAsset& asset);
+// The same for every layer, the composite included (what an RGBA16F composite would hold).
+void roundAllLayersToHalf(DistanceProbeAsset& asset);
 float roundToHalf(float v);
 
 } // namespace specula

@@ -308,11 +308,8 @@ void writeDistanceProbe(const DistanceProbeAsset& baked, const std::string& dir,
                               {"file", name},
                               {"checksum", fileChecksum(path)}});
         }
-        json manifest = {
-            {"format", "specula-probe"},
-            {"version", kProbeFormatVersion},
-            {"flavour", "distance"},
-            {"source", sourceScene},
+        json manifest = probeManifestHeader("distance", sourceScene);
+        manifest.update({
             {"centre", vec3Json(asset.centre)},
             {"range_D", asset.range},
             {"d_inf", asset.dInf},
@@ -321,7 +318,7 @@ void writeDistanceProbe(const DistanceProbeAsset& baked, const std::string& dir,
             {"face_layout", "KTX2 cube map (faceCount 6, RGBA: float32 for the composite, half "
                             "floats for object layers that fit), faces +X -X +Y -Y +Z -Z, RGB "
                             "radiance, A distance from the centre"},
-            {"layers", layers}};
+            {"layers", layers}});
         if (!asset.effectPlan.empty()) manifest["effect_plan"] = json::parse(asset.effectPlan);
         if (!asset.glossyLevels.empty()) manifest["glossy"] = writeGlossyLevels(asset, tmp, dir);
         if (!asset.sky.empty()) {

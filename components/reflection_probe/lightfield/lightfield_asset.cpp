@@ -150,11 +150,8 @@ void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
             intrusions.push_back(
                 {{"object", i.object}, {"region", i.region}, {"depth_m", i.depth}});
         const int n = a.atlasSize();
-        json manifest = {
-            {"format", "specula-probe"},
-            {"version", kProbeFormatVersion},
-            {"flavour", "lightfield"},
-            {"source", sourceScene},
+        json manifest = probeManifestHeader("lightfield", sourceScene);
+        manifest.update({
             {"cell", {{"centre", vec3Json(a.cellCentre)}, {"size", a.cellSize}}},
             {"cameras", a.cameras},
             {"image_res", a.res},
@@ -177,7 +174,7 @@ void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
                            "sampling); disparity_px = camera_spacing / focal_depth * RES / 2"},
             {"bake", {{"tracer", "embree"}, {"seconds", a.bakeSeconds}}},
             {"intrusions", intrusions},
-            {"slabs", slabs}};
+            {"slabs", slabs}});
         return manifest;
     });
 }

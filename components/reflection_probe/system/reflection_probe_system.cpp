@@ -1,5 +1,6 @@
 #include "reflection_probe_system.h"
 
+#include "components/reflection_probe/asset_format.h"
 #include "components/reflection_probe/distance/system/distance_level_store.h"
 #include "components/reflection_probe/distance/system/distance_store.h"
 #include "components/reflection_probe/level_index.h"
@@ -36,11 +37,11 @@ void ReflectionProbeSystem::addFlavour(std::unique_ptr<ProbeFlavourStore> store)
 
 ProbeFlavourStore& ReflectionProbeSystem::storeFor(const ProbeManifest& manifest) const {
     // A level index (level_index.h) goes to its flavour's level store ("distance-level").
-    const bool level = manifest.json.is_object() && manifest.json.contains("format") &&
-                       manifest.json["format"] == "specula-level";
-    const std::string flavour =
-        level ? levelIndexFromJson(manifest.json, manifest.path).flavour + "-level"
-              : ManifestFields{manifest.path}.probeFlavour(manifest.json, kProbeFormatVersion);
+    const ManifestFields r{manifest.path};
+    const bool level = assetFormatName(manifest.json) == std::string(kLevelFormat.name);
+    if (level) readAssetFormat(manifest.json, kLevelFormat, manifest.path);
+    const std::string flavour = level ? r.string(manifest.json, "flavour", "") + "-level"
+                                      : r.probeFlavour(manifest.json);
     std::string known;
     for (const auto& s : stores_) {
         if (s->flavour() == flavour) return *s;

@@ -34,10 +34,9 @@ struct ConstantAsset {
 
 inline void writeConstantProbe(const ConstantAsset& a, const std::string& dir) {
     writeProbeFolder(dir, "constant-colour test", [&](const std::filesystem::path&) {
-        return nlohmann::json{{"format", "specula-probe"},
-                              {"version", kProbeFormatVersion},
-                              {"flavour", "constant"},
-                              {"colour", vec3Json(a.colour)}};
+        nlohmann::json manifest = probeManifestHeader("constant", "");
+        manifest["colour"] = vec3Json(a.colour);
+        return manifest;
     });
 }
 
