@@ -144,6 +144,19 @@ std::string errorBudgetCsvValues(const MethodErrorBudget* b) {
     return s.str();
 }
 
+namespace {
+
+// (e)'s PSNR change in dB; "-" when not measured, and 0 when both MSEs are equal (two
+// infinite PSNRs, an exact probe, differ by nothing rather than by NaN).
+std::string halfFloatChange(const MethodErrorBudget& b) {
+    if (std::isnan(b.halfFloat)) return "-";
+    if (b.halfFloat == b.base) return "+0.000";
+    const double change = psnrOfMse(b.halfFloat) - psnrOfMse(b.base);
+    return std::isnan(change) ? "-" : fmt(change, "%+.3f");
+}
+
+} // namespace
+
 std::string errorBudgetMarkdown(const std::vector<MethodErrorBudget>& budgets,
                                 const std::string& scene) {
     std::ostringstream s;
@@ -171,9 +184,7 @@ std::string errorBudgetMarkdown(const std::vector<MethodErrorBudget>& budgets,
           << fmt(1e3 * b.all, "%.3f") << " | " << fmt(1e3 * b.interaction(), "%.3f") << " | "
           << fmt(1e3 * b.oracle, "%.3f") << " (" << fmt(psnrOfMse(b.oracle), "%.2f") << ") | "
           << fmt(100 * b.hiddenShare, "%.1f") << " | " << b.dominant() << " | "
-          << (std::isnan(b.halfFloat) ? std::string("-")
-                                      : fmt(psnrOfMse(b.halfFloat) - psnrOfMse(b.base), "%+.3f"))
-          << " |\n";
+          << halfFloatChange(b) << " |\n";
     }
     for (const MethodErrorBudget& b : budgets)
         if (b.scene == scene && !b.res2xNote.empty()) {
