@@ -21,9 +21,10 @@ namespace specula::cook {
 namespace {
 
 constexpr const char* kBakeDescription =
-    "Bakes the reflection probe of SCENE (.gltf/.glb) into DIR: manifest.json plus one float\n"
-    "EXR cube map per layer (N x 6N, faces +X -X +Y -Y +Z -Z top to bottom; RGB radiance, A\n"
-    "distance from the probe centre). Rays are traced with Embree on all cores.\n"
+    "Bakes the reflection probe of SCENE (.gltf/.glb) into DIR: manifest.json plus one KTX2\n"
+    "cube map per layer (RGBA32F composite, RGBA16F object layers where every value fits a\n"
+    "half; RGB radiance, A distance from the probe centre; docs/formats.md). Rays are traced\n"
+    "with Embree on all cores.\n"
     "\n"
     "Probe placement: --probe, else the first node whose extras hold \"specula_probe\": {...}\n"
     "(members: cell_size), else the centre of the reflectors. Reflectors are the nodes with\n"
@@ -42,7 +43,8 @@ constexpr const char* kBakeDescription =
     "the environment's distance cube (--geometry distance) or its bounding box (box),\n"
     "each inferred by least squares from the ray-traced reflections (self- and\n"
     "inter-reflections included) of S x S rays per reflector pixel of a WxH camera image; one\n"
-    "float EXR per sample. The bake measures its maps against the ray tracer at the samples\n"
+    "RGB32F KTX2 cube per sample. The bake measures its maps against the ray tracer at the "
+    "samples\n"
     "and half-way between them and prints both PSNRs.\n"
     "The options of one flavour are refused with another.\n"
     "\n"

@@ -70,7 +70,12 @@ LevelIndex levelIndexFromJson(const json& j, const std::string& file) {
 }
 
 LevelIndex readLevelIndex(const std::string& path) {
-    return levelIndexFromJson(parseManifestJson(readManifestText(path), path), path);
+    LevelIndex index = levelIndexFromJson(parseManifestJson(readManifestText(path), path), path);
+    // A level bakes no PEM (docs/formats/level.schema.json); a farm's shard list does.
+    if (index.flavour != "distance" && index.flavour != "lightfield")
+        throw Error(path, "flavour",
+                    "expected \"distance\" or \"lightfield\", got \"" + index.flavour + "\"");
+    return index;
 }
 
 void writeLevelIndex(const LevelIndex& index, const std::string& path) {

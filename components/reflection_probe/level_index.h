@@ -40,9 +40,11 @@ struct LevelIndex {
 };
 
 nlohmann::json toJson(const LevelIndex& index);
-// Throws Error naming `file` and the field when it is no level index of this version.
+// Throws Error naming `file` and the field when it is no level index of this version (any
+// flavour: a farm's shard list holds a PEM one).
 LevelIndex levelIndexFromJson(const nlohmann::json& j, const std::string& file);
-// DIR/level.json read and parsed (readManifestText's limits); throws Error naming the file.
+// DIR/level.json read and parsed (readManifestText's limits), its flavour distance or
+// lightfield; throws Error naming the file and the field.
 LevelIndex readLevelIndex(const std::string& path);
 // Written atomically (writeFileAtomically): a reader sees the old index or the new one.
 void writeLevelIndex(const LevelIndex& index, const std::string& path);

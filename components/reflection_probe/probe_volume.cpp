@@ -167,6 +167,9 @@ ProbeVolume probeVolumeFromJson(const json& j, const std::string& file, const st
     v.position = vec3Member(j, "position", file, field);
     v.proxy = boxMember(j.value("proxy", json()), file, field + ".proxy", glm::vec3(0.f));
     const json& inf = j.value("influence", json());
+    // One shape: a volume holding both would be read as whichever was tried first.
+    if (inf.is_object() && inf.contains("sphere") && inf.contains("box"))
+        throw Error(file, field + ".influence", "expected a box or a sphere, not both");
     if (inf.is_object() && inf.contains("sphere")) {
         v.influence.shape = ProbeInfluence::Shape::Sphere;
         v.influence.centre = vec3Member(inf["sphere"], "centre", file, field + ".influence.sphere");

@@ -16,6 +16,7 @@
 #include "engine/image_io/compare.h"
 #include "engine/image_io/contact_sheet.h"
 #include "engine/image_io/image_io.h"
+#include "sandbox/lib/chase_path.h"
 #include "sandbox/lib/level_timing.h"
 #include "sandbox/lib/reflection_scene.h"
 
@@ -37,51 +38,6 @@ namespace {
 
 constexpr std::array<LevelBlend, 3> kBlends{LevelBlend::Nearest, LevelBlend::Engine,
                                             LevelBlend::Visibility};
-
-// Arc-length parameterised polyline.
-struct Polyline {
-    std::vector<glm::vec3> points;
-    std::vector<float> cumulative; // length up to each point
-
-    explicit Polyline(std::vector<glm::vec3> p) : points(std::move(p)) {
-        cumulative.push_back(0.f);
-        for (std::size_t i = 1; i < points.size(); ++i)
-            cumulative.push_back(cumulative.back() + glm::distance(points[i - 1], points[i]));
-    }
-    float length() const { return cumulative.back(); }
-    // Point and unit tangent at fraction u in [0, 1] of the length.
-    std::pair<glm::vec3, glm::vec3> at(float u) const {
-        const float s = std::clamp(u, 0.f, 1.f) * length();
-        std::size_t i = 1;
-        while (i + 1 < points.size() && cumulative[i] < s)
-            ++i;
-        const float span = cumulative[i] - cumulative[i - 1];
-        const float f = span > 0.f ? (s - cumulative[i - 1]) / span : 0.f;
-        const glm::vec3 d = points[i] - points[i - 1];
-        const float len = glm::length(d);
-        return {glm::mix(points[i - 1], points[i], f), len > 0.f ? d / len : glm::vec3(1, 0, 0)};
-    }
-};
-
-// The chase camera: beside the path at `side` (+1 or -1), slightly above, looking at p.
-CameraView chaseCamera(glm::vec3 p, glm::vec3 tangent, float side, int width, int height) {
-    glm::vec3 across = glm::cross(tangent, glm::vec3(0, 1, 0));
-    across = glm::length(across) > 1e-4f ? glm::normalize(across) : glm::vec3(0, 0, 1);
-    const glm::vec3 eye = p + side * 1.5f * across + glm::vec3(0, 0.35f, 0);
-    return CameraView::lookAt(eye, p, glm::vec3(0, 1, 0), glm::radians(50.f), width, height);
-}
-
-// Frames of the walk from which the camera on `side` sees the reflector centre unblocked.
-int unblockedFrames(const EmbreeScene& env, const Polyline& path, float side, int frames) {
-    int clear = 0;
-    for (int f = 0; f < frames; ++f) {
-        const auto [p, t] = path.at(frames > 1 ? float(f) / float(frames - 1) : 0.f);
-        const glm::vec3 eye = chaseCamera(p, t, side, 8, 8).eye();
-        const float d = glm::distance(eye, p);
-        if (!env.intersect(eye, (p - eye) / d, 1e-4f, d - 0.4f)) ++clear;
-    }
-    return clear;
-}
 
 double rmsChange(const Image& a, const Image& b, const Image& maskA, const Image& maskB) {
     double sum = 0;

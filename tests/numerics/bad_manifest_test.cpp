@@ -101,6 +101,8 @@ TEST_F(BadManifest, EveryMalformedFieldIsNamed) {
     expectRefused([](json& m) { m["layers"][0]["avg_distance"] = "x"; }, "layers[0].avg_distance");
     expectRefused([](json& m) { m["layers"][0]["solid_angle_sr"] = 99; },
                   "layers[0].solid_angle_sr");
+    expectRefused([](json& m) { m["layers"][0]["method"] = "bisect"; }, "layers[0].method");
+    expectRefused([](json& m) { m["layers"][0]["method"] = "layered"; }, "layers[0].method");
     expectRefused([](json& m) { m["layers"][0]["file"] = "../etc/passwd"; }, "layers[0].file");
     expectRefused([](json& m) { m["layers"][0]["file"] = "/etc/passwd"; }, "layers[0].file");
     expectRefused([](json& m) { m["layers"][0]["file"] = "missing.ktx2"; }, "layers[0].file");

@@ -45,5 +45,40 @@ TEST(LevelLimits, TheTwinRefusesMoreProbesThanTheShaderHolds) {
     std::filesystem::remove_all(dir);
 }
 
+// A level bakes distance or light-field probes only; a level.json naming another flavour (a
+// farm's PEM shard list holds one) is refused where it is read as a level, naming the field.
+TEST(LevelLimits, ALevelOfAnotherFlavourIsRefused) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("specula-level-flavour-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    LevelIndex index;
+    index.source = "scene.gltf";
+    LevelProbeEntry e;
+    e.volume.name = e.folder = "p";
+    e.volume.proxy = e.volume.influence.box = Aabb{glm::vec3(-1.f), glm::vec3(1.f)};
+    index.probes.push_back(e);
+    const std::string path = (dir / "level.json").string();
+    for (const char* flavour : {"pem", "Distance", ""}) {
+        index.flavour = flavour;
+        writeLevelIndex(index, path);
+        try {
+            readLevelIndex(path);
+            ADD_FAILURE() << "a level of flavour '" << flavour << "' was read";
+        } catch (const Error& err) {
+            EXPECT_NE(std::string(err.what())
+                          .find(path + ": flavour: expected \"distance\" or "
+                                       "\"lightfield\""),
+                      std::string::npos)
+                << err.what();
+        }
+    }
+    for (const char* flavour : {"distance", "lightfield"}) {
+        index.flavour = flavour;
+        writeLevelIndex(index, path);
+        EXPECT_EQ(readLevelIndex(path).flavour, flavour);
+    }
+    std::filesystem::remove_all(dir);
+}
+
 } // namespace
 } // namespace specula

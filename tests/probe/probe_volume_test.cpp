@@ -144,6 +144,35 @@ TEST(ProbeVolume, ZeroSizeOrInvertedVolumesAreErrorsNamingTheField) {
     EXPECT_EQ(errorOf(R"({"influence": {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}}})"), "");
 }
 
+// A level.json influence holding a box and a sphere used to be read as the sphere; both readers
+// (the level's and the markup's) now refuse it naming the field.
+TEST(ProbeVolume, AnInfluenceWithBothShapesIsAnError) {
+    ProbeVolume v;
+    v.name = "p";
+    v.proxy = v.influence.box = Aabb{glm::vec3(-1.f), glm::vec3(1.f)};
+    json level = toJson(v);
+    level["influence"]["sphere"] = {{"centre", {0, 0, 0}}, {"radius", 1}};
+    ASSERT_TRUE(level["influence"].contains("box"));
+    try {
+        probeVolumeFromJson(level, "level.json", "probes[0]");
+        ADD_FAILURE() << "an influence with a box and a sphere was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("level.json: probes[0].influence: expected a box or "
+                                             "a sphere, not both"),
+                  std::string::npos)
+            << e.what();
+    }
+    level["influence"].erase("box");
+    EXPECT_EQ(probeVolumeFromJson(level, "level.json", "probes[0]").influence.shape,
+              ProbeInfluence::Shape::Sphere);
+    ProbeVolume markup = v;
+    EXPECT_THROW(applyProbeMarkup(markup,
+                                  json::parse(R"({"influence": {"box": {"min": [0, 0, 0], "max": )"
+                                              R"([1, 1, 1]}, "sphere": {"radius": 1}}})"),
+                                  "s.gltf", "p"),
+                 Error);
+}
+
 // A hand-edited level.json's priority past an int (issue 34) used to wrap (2^32 + 1 read as 1,
 // silently reordering the blend); both readers refuse it naming the field, and keep the ends.
 TEST(ProbeVolume, APriorityPastAnIntIsAnErrorNotAWrap) {

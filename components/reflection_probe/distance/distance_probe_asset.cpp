@@ -5,6 +5,7 @@
 #include "components/reflection_probe/probe_folder.h"
 
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
+#include "components/reflection_probe/distance/distance_probe.h"
 #include "engine/core/error.h"
 #include "engine/core/regular_file.h"
 #include "engine/image/ktx2.h"
@@ -365,6 +366,13 @@ DistanceProbeAsset readDistanceProbe(const ProbeManifest& manifest) {
         L.maxDistance = float(r.number(j, "max_distance", path, 0.0, 1e9));
         L.solidAngle = float(r.number(j, "solid_angle_sr", path, 0.0, 13.0));
         L.method = r.string(j, "method", path);
+        // A method of the table, never a mode: a planned lookup refuses any other, and a
+        // layered one would draw an unknown name as bisection without a word.
+        if (const DistanceMethodInfo* m = findDistanceMethod(L.method); !m || m->glslIndex < 0)
+            throw Error(manifestPath, path + "method",
+                        "expected a lookup method (envmap, boxproj, bisection, secant, avgdist, "
+                        "march), got '" +
+                            L.method + "'");
         L.boxMin = r.vec3(j, "box_min", path, FLT_MAX);
         L.boxMax = r.vec3(j, "box_max", path, FLT_MAX);
         const json& objects = r.member(j, "objects", path);

@@ -1,8 +1,9 @@
 #pragma once
 // A cooked distance-cubemap probe: the manifest plus one cube map per layer. On disk each
-// layer is a float KTX2 cube of N x 6N pixels, the six faces stacked top to bottom in OpenGL order
-// (+X -X +Y -Y +Z -Z, each face's row 0 first), RGB radiance and A the Euclidean distance
-// from the probe centre (d_inf where the layer sees nothing).
+// layer is a KTX2 cube (RGBA32F for the composite, RGBA16F for an object layer whose every
+// value fits a half, docs/formats.md); in memory an N x 6N image, the six faces stacked top to
+// bottom in OpenGL order (+X -X +Y -Y +Z -Z, each face's row 0 first), RGB radiance and A the
+// Euclidean distance from the probe centre (d_inf where the layer sees nothing).
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/image/image.h"
 
