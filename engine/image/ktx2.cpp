@@ -1,5 +1,7 @@
 #include "engine/image/ktx2.h"
 
+#include "engine/image/bc6h.h"
+
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/regular_file.h"
@@ -31,14 +33,27 @@ constexpr std::uint32_t kFloatFormats[4] = {100, 103, 106, 109};
 constexpr std::uint32_t kChannelIds[4] = {0, 1, 2, 15};
 constexpr std::uint32_t kQualifierFloatSigned = 0x80 | 0x40;
 constexpr std::uint32_t kFloatMinusOne = 0xBF800000u, kFloatOne = 0x3F800000u;
+// VK_FORMAT_BC6H_UFLOAT_BLOCK and its colour model, KHR_DF_MODEL_BC6H.
+constexpr std::uint32_t kBc6hFormat = 131, kBc6hModel = 133;
 
 struct Layout {
     int channels = 4;
     bool half = false;
-    std::size_t texelBytes() const { return std::size_t(channels) * (half ? 2 : 4); }
-    // Level data starts at a multiple of lcm(texel size, 4) (the spec's mip padding).
+    bool bc6h = false; // 16-byte blocks of 4x4 RGB texels
+    // Bytes of a texel, or of a block.
+    std::size_t texelBytes() const {
+        return bc6h ? kBc6hBlockBytes : std::size_t(channels) * (half ? 2 : 4);
+    }
+    std::uint32_t typeSize() const { return bc6h ? 1 : half ? 2 : 4; }
+    // Level data starts at a multiple of lcm(texel or block size, 4) (the spec's mip padding).
     std::size_t alignment() const { return std::lcm(texelBytes(), std::size_t(4)); }
-    std::uint32_t vkFormat() const { return (half ? kHalfFormats : kFloatFormats)[channels - 1]; }
+    std::uint32_t vkFormat() const {
+        return bc6h ? kBc6hFormat : (half ? kHalfFormats : kFloatFormats)[channels - 1];
+    }
+    // Bytes of one face of a level of w x h.
+    std::size_t faceBytes(int w, int h) const {
+        return bc6h ? bc6hBytes(w, h) : std::size_t(w) * std::size_t(h) * texelBytes();
+    }
 };
 
 std::size_t alignUp(std::size_t n, std::size_t a) {
@@ -47,6 +62,18 @@ std::size_t alignUp(std::size_t n, std::size_t a) {
 
 // The one-block DFD of a layout, words after dfdTotalSize included.
 std::vector<std::uint32_t> dataFormatDescriptor(const Layout& l) {
+    if (l.bc6h) // one 128-bit sample of the colour channel (0), float, unsigned; 4x4 texels
+        return {44,
+                0,
+                2u | 40u << 16,
+                kBc6hModel | 1u << 8 | 1u << 16,
+                3u | 3u << 8,
+                16,
+                0,
+                127u << 16 | 0x80u << 24,
+                0,
+                0,
+                kFloatOne};
     const std::uint32_t blockBytes = 24 + 16 * std::uint32_t(l.channels);
     std::vector<std::uint32_t> w = {4 + blockBytes,
                                     0,                     // vendor Khronos, type basic
@@ -81,6 +108,38 @@ int faceCount(const Ktx2Texture& t) {
     return t.cube ? 6 : 1;
 }
 
+// The faces of a stacked level (N x faces N) one by one: a face whose side is no multiple of 4
+// has blocks of its own.
+Image faceOf(const Image& level, int face, int faces) {
+    const int h = level.height / faces;
+    Image f(level.width, h, level.channels);
+    const auto rowValues = std::ptrdiff_t(level.width) * level.channels;
+    std::copy(level.pixels.begin() + std::ptrdiff_t(face) * h * rowValues,
+              level.pixels.begin() + std::ptrdiff_t(face + 1) * h * rowValues, f.pixels.begin());
+    return f;
+}
+
+std::vector<std::uint8_t> encodeFaces(const Image& level, int faces) {
+    std::vector<std::uint8_t> blocks;
+    for (int f = 0; f < faces; ++f) {
+        const std::vector<std::uint8_t> b = encodeBC6H(faceOf(level, f, faces));
+        blocks.insert(blocks.end(), b.begin(), b.end());
+    }
+    return blocks;
+}
+
+Image decodeFaces(std::span<const std::uint8_t> blocks, int w, int faceH, int faces) {
+    Image level(w, faceH * faces, 3);
+    const std::size_t faceBytes = bc6hBytes(w, faceH);
+    for (int f = 0; f < faces; ++f) {
+        const Image face =
+            decodeBC6H(blocks.subspan(std::size_t(f) * faceBytes, faceBytes), w, faceH);
+        std::copy(face.pixels.begin(), face.pixels.end(),
+                  level.pixels.begin() + std::ptrdiff_t(f) * std::ptrdiff_t(face.pixels.size()));
+    }
+    return level;
+}
+
 void appendLevel(std::string& out, const Image& image, bool half) {
     if (!half) {
         out.append(reinterpret_cast<const char*>(image.pixels.data()), image.pixels.size() * 4);
@@ -112,12 +171,14 @@ Header readHeader(const std::string& b, const std::string& name) {
 }
 
 Layout layoutOf(const Header& h, const std::string& name) {
+    if (h.vkFormat == kBc6hFormat) return {3, false, true};
     for (int c = 1; c <= 4; ++c) {
         if (h.vkFormat == kFloatFormats[c - 1]) return {c, false};
         if (h.vkFormat == kHalfFormats[c - 1]) return {c, true};
     }
     throw Error(name, "vkFormat",
-                std::to_string(h.vkFormat) + " is not a 16- or 32-bit float R/RG/RGB/RGBA format");
+                std::to_string(h.vkFormat) +
+                    " is not a 16- or 32-bit float R/RG/RGB/RGBA format, nor BC6H unsigned");
 }
 
 void checkRange(std::uint64_t offset, std::uint64_t length, std::size_t fileSize,
@@ -132,8 +193,8 @@ void checkDfd(const std::string& b, const Header& h, const Layout& l, const std:
     const std::vector<std::uint32_t> want = dataFormatDescriptor(l);
     if (h.dfdLength != want.size() * 4 || get<std::uint32_t>(b, h.dfdOffset) != h.dfdLength)
         throw Error(name, "dfd",
-                    "expected one basic descriptor block of " + std::to_string(l.channels) +
-                        " samples");
+                    "expected one basic descriptor block of " +
+                        std::to_string(l.bc6h ? 1 : l.channels) + " samples");
     auto word = [&](std::size_t i) { return get<std::uint32_t>(b, h.dfdOffset + 4 * i); };
     // Vendor, type, version, model, primaries, transfer, block size, bytes per plane, and
     // per sample its bits, channel and float qualifier: what decoding depends on. The
@@ -144,7 +205,9 @@ void checkDfd(const std::string& b, const Header& h, const Layout& l, const std:
         if (!bounds && (word(i) & mask) != (want[i] & mask))
             throw Error(name, "dfd",
                         "word " + std::to_string(i) + " does not describe vkFormat " +
-                            std::to_string(h.vkFormat) + " (linear RGBSDA float samples)");
+                            std::to_string(h.vkFormat) +
+                            (l.bc6h ? " (linear BC6H unsigned float blocks)"
+                                    : " (linear RGBSDA float samples)"));
     }
 }
 
@@ -174,8 +237,8 @@ std::map<std::string, std::string> readKeyValues(const std::string& b, const Hea
 Ktx2Texture parseKtx2(const std::string& b, const std::string& name, const Ktx2ReadLimits& limits) {
     const Header h = readHeader(b, name);
     const Layout l = layoutOf(h, name);
-    if (h.typeSize != (l.half ? 2u : 4u))
-        throw Error(name, "typeSize", "expected " + std::to_string(l.half ? 2 : 4));
+    if (h.typeSize != l.typeSize())
+        throw Error(name, "typeSize", "expected " + std::to_string(l.typeSize()));
     if (h.width == 0 || h.height == 0) throw Error(name, "pixelHeight", "a 2D image has a height");
     if (h.width > kMaxDimension || h.height > kMaxDimension)
         throw Error(name, "pixelWidth",
@@ -213,6 +276,7 @@ Ktx2Texture parseKtx2(const std::string& b, const std::string& name, const Ktx2R
     Ktx2Texture t;
     t.cube = h.faces == 6;
     t.halfFloat = l.half;
+    t.bc6h = l.bc6h;
     t.keyValues = readKeyValues(b, h, name);
     std::uint64_t values = 0;
     for (std::uint32_t k = 0; k < h.levels; ++k) {
@@ -228,9 +292,9 @@ Ktx2Texture parseKtx2(const std::string& b, const std::string& name, const Ktx2R
         const std::size_t at = kHeaderBytes + kLevelIndexBytes * k;
         const std::uint64_t offset = get<std::uint64_t>(b, at),
                             length = get<std::uint64_t>(b, at + 8);
-        const int w = int(std::max(1u, h.width >> k)),
-                  hh = int(std::max(1u, h.height >> k)) * int(h.faces);
-        const std::uint64_t expected = std::uint64_t(w) * std::uint64_t(hh) * l.texelBytes();
+        const int w = int(std::max(1u, h.width >> k)), faceH = int(std::max(1u, h.height >> k));
+        const int hh = faceH * int(h.faces);
+        const std::uint64_t expected = std::uint64_t(l.faceBytes(w, faceH)) * h.faces;
         if (length != expected || get<std::uint64_t>(b, at + 16) != expected)
             throw Error(name, field,
                         std::to_string(length) + " bytes, expected " + std::to_string(expected));
@@ -239,6 +303,13 @@ Ktx2Texture parseKtx2(const std::string& b, const std::string& name, const Ktx2R
                         "offset " + std::to_string(offset) + " is not a multiple of " +
                             std::to_string(l.alignment()));
         checkRange(offset, length, b.size(), name, field);
+        if (l.bc6h) {
+            const auto* first = reinterpret_cast<const std::uint8_t*>(b.data()) + offset;
+            t.blocks.emplace_back(first, first + length);
+            if (limits.decodeBlocks)
+                t.levels.push_back(decodeFaces(t.blocks.back(), w, faceH, int(h.faces)));
+            continue;
+        }
         Image image(w, hh, l.channels);
         if (l.half) {
             for (std::size_t i = 0; i < image.pixels.size(); ++i)
@@ -266,16 +337,16 @@ std::string encodeKtx2(const Ktx2Texture& t, const std::string& name, const std:
         throw Error(name, "channels", std::to_string(base.channels) + " (1 to 4)");
     if (base.width < 1 || base.height % faces != 0 || (t.cube && base.height != 6 * base.width))
         throw Error(name, "size", t.cube ? "a cube level is N x 6N" : "an empty image");
-    const Layout l{base.channels, t.halfFloat};
+    const Layout l{t.bc6h ? 3 : base.channels, t.halfFloat && !t.bc6h, t.bc6h};
     for (std::size_t k = 0; k < t.levels.size(); ++k) {
         const Image& m = t.levels[k];
         const int w = std::max(1, base.width >> k),
                   h = std::max(1, base.height / faces >> k) * faces;
-        if (m.width != w || m.height != h || m.channels != l.channels ||
-            m.pixels.size() != std::size_t(w) * h * l.channels)
+        if (m.width != w || m.height != h || m.channels != base.channels ||
+            m.pixels.size() != std::size_t(w) * h * std::size_t(base.channels))
             throw Error(name, "level " + std::to_string(k),
                         "expected " + std::to_string(w) + " x " + std::to_string(h) + " x " +
-                            std::to_string(l.channels));
+                            std::to_string(base.channels));
     }
     std::map<std::string, std::string> kv = t.keyValues;
     kv["KTXwriter"] = writer;
@@ -293,7 +364,7 @@ std::string encodeKtx2(const Ktx2Texture& t, const std::string& name, const std:
     const std::size_t dfdOffset = kHeaderBytes + kLevelIndexBytes * t.levels.size();
     const std::size_t kvdOffset = dfdOffset + dfd.size() * 4;
     // Level data, smallest level first, each at the layout's alignment.
-    std::vector<std::size_t> offsets(t.levels.size());
+    std::vector<std::size_t> offsets(t.levels.size()), sizes(t.levels.size());
     std::string data;
     std::size_t at = kvdOffset + kvd.size();
     for (std::size_t k = t.levels.size(); k-- > 0;) {
@@ -301,20 +372,26 @@ std::string encodeKtx2(const Ktx2Texture& t, const std::string& name, const std:
         data.append(aligned - at, '\0');
         offsets[k] = aligned;
         const std::size_t before = data.size();
-        appendLevel(data, t.levels[k], l.half);
+        if (l.bc6h) {
+            const std::vector<std::uint8_t> blocks = encodeFaces(t.levels[k], faces);
+            data.append(reinterpret_cast<const char*>(blocks.data()), blocks.size());
+        } else {
+            appendLevel(data, t.levels[k], l.half);
+        }
+        sizes[k] = data.size() - before;
         at = aligned + (data.size() - before);
     }
     std::string out(reinterpret_cast<const char*>(kIdentifier), sizeof kIdentifier);
     for (std::uint32_t v :
-         {l.vkFormat(), std::uint32_t(l.half ? 2 : 4), std::uint32_t(base.width),
-          std::uint32_t(base.height / faces), 0u, 0u, std::uint32_t(faces),
-          std::uint32_t(t.levels.size()), 0u, std::uint32_t(dfdOffset),
-          std::uint32_t(dfd.size() * 4), std::uint32_t(kvdOffset), std::uint32_t(kvd.size())})
+         {l.vkFormat(), l.typeSize(), std::uint32_t(base.width), std::uint32_t(base.height / faces),
+          0u, 0u, std::uint32_t(faces), std::uint32_t(t.levels.size()), 0u,
+          std::uint32_t(dfdOffset), std::uint32_t(dfd.size() * 4), std::uint32_t(kvdOffset),
+          std::uint32_t(kvd.size())})
         put(out, v);
     put(out, std::uint64_t(0));
     put(out, std::uint64_t(0));
     for (std::size_t k = 0; k < t.levels.size(); ++k) {
-        const std::uint64_t bytes = t.levels[k].pixels.size() * (l.half ? 2 : 4);
+        const std::uint64_t bytes = sizes[k];
         put(out, std::uint64_t(offsets[k]));
         put(out, bytes);
         put(out, bytes);

@@ -2,11 +2,12 @@
 // Khronos KTX 2.0 files of linear float images: the container every cooked probe texture is
 // stored in, read by the runtime without any image library. What is written and accepted:
 //  - vkFormat R/RG/RGB/RGBA in 32-bit float (100, 103, 106, 109) or 16-bit half float (76,
-//    83, 90, 97), uncompressed, no supercompression;
+//    83, 90, 97), or BC6H unsigned float blocks (131, engine/image/bc6h.h); no supercompression;
 //  - a 2D image (faceCount 1) or a cube map (faceCount 6, faces +X -X +Y -Y +Z -Z), each with
 //    one or more mip levels;
 //  - a Data Format Descriptor of one basic block (RGBSDA colour model, BT.709 primaries,
-//    linear transfer, one float sample per channel) and key/value data (KTXwriter,
+//    linear transfer, one float sample per channel; for BC6H the BC6H model, a 4x4 texel block
+//    of 16 bytes, one float sample of 128 bits) and key/value data (KTXwriter,
 //    KTXorientation "rd" for 2D images, any of the caller's keys).
 // In memory a cube level is one Image of N x 6N, the faces stacked top to bottom in the order
 // above: exactly the level's bytes in the file, so upload is a copy. Row 0 is the top row.
@@ -25,9 +26,15 @@ namespace specula {
 struct Ktx2Texture {
     bool cube = false;
     bool halfFloat = false; // stored as 16-bit half floats (read: what the file held)
+    // Stored as BC6H blocks: written by encoding `levels` (RGB; a fourth channel is dropped);
+    // read as `blocks` plus, unless Ktx2ReadLimits::decodeBlocks is off, `levels` decoded (RGB).
+    bool bc6h = false;
     // Level 0 first; each halves the one before (at least 1), a cube's stacked as N x 6N.
     std::vector<Image> levels{};
     std::map<std::string, std::string> keyValues{}; // KTXwriter etc.; values without their NUL
+    // BC6H files, read: each level's blocks as stored (faces in order, a face's blocks row by
+    // row), what glCompressedTexSubImage uploads.
+    std::vector<std::vector<std::uint8_t>> blocks{};
 };
 
 struct Ktx2ReadLimits {
@@ -39,6 +46,7 @@ struct Ktx2ReadLimits {
     int height = 0;
     int faces = 0;    // when > 0: 1 (2D) or 6 (cube)
     int channels = 0; // when > 0: exactly this many
+    bool decodeBlocks = true; // BC6H: decode the blocks into `levels` too
 };
 
 // The 12 bytes every KTX 2.0 file begins with.
