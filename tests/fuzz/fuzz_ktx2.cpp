@@ -2,7 +2,7 @@
 // through) on arbitrary bytes, unrestricted and with the exact-size limits a probe layer is read
 // with. Any specula::Error is the expected refusal; anything else escaping, a crash or a
 // sanitizer report is a finding. Seeds: the committed probe's layers
-// (tests/fuzz/data/probe/*.ktx2, face-res 2) and tests/fuzz/corpus/ktx2/.
+// (tests/fuzz/data/probe/*.ktx2, face-res 2) and tests/fuzz/corpus/ktx2/ (BC6H files).
 //
 // The unrestricted read is capped at 2^22 values (a 1024^2 RGBA image): a header may declare
 // any size, and an allocation past the cap means a limit was not checked before the pixels.
