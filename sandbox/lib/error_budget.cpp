@@ -1,6 +1,7 @@
 #include "error_budget.h"
 
 #include "assetcooker/lib/scene/probe_setup.h"
+#include "components/reflection_probe/distance/distance_compression.h"
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
@@ -34,8 +35,9 @@ double squaredError(glm::vec3 c, glm::vec3 truth) {
 // Summed squared errors of the budget's lookups: the 8 combinations of the lookup
 // experiments (index bit 0 exact search, bit 1 same-surface radiance, bit 2 faces 2x), then
 // the same with the hidden rays' errors left out (kSeen + combination), the oracle, and the
-// count of hidden rays, and the baseline on every layer stored as half floats.
-constexpr std::size_t kSeen = 8, kOracle = 16, kHidden = 17, kHalf = 18, kLookups = 19;
+// count of hidden rays, the baseline on every layer stored as half floats, and on every layer
+// compressed (BC6H radiance, half distance).
+constexpr std::size_t kSeen = 8, kOracle = 16, kHidden = 17, kHalf = 18, kBc6h = 19, kLookups = 20;
 using Sums = std::array<double, kLookups>;
 
 } // namespace
@@ -107,6 +109,10 @@ MethodErrorBudget measureErrorBudget(const std::vector<BudgetRay>& rays,
     }
     const DistanceLookupConfig halfConfig =
         halfAsset ? makeLookupConfig(settings, *halfAsset) : DistanceLookupConfig{};
+    // (f) compressed: every layer's radiance through BC6H, its distance as half floats.
+    DistanceProbeAsset bc6hAsset = asset;
+    roundTripLayersThroughBc6h(bc6hAsset);
+    const DistanceLookupConfig bc6hConfig = makeLookupConfig(settings, bc6hAsset);
     // Deterministic: the same rays sum in the same order, so two budgets compare exactly.
     const Sums sums = tbb::parallel_deterministic_reduce(
         tbb::blocked_range<std::size_t>(0, rays.size(), 256), Sums{},
@@ -123,6 +129,7 @@ MethodErrorBudget measureErrorBudget(const std::vector<BudgetRay>& rays,
             const CpuDistanceProbe& base = *twins[0];
             std::optional<CpuDistanceProbe> half;
             if (halfAsset) half.emplace(*halfAsset, halfConfig);
+            const CpuDistanceProbe bc6h(bc6hAsset, bc6hConfig);
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 const BudgetRay& r = rays[i];
                 // A ray that leaves for the sky is always seen: the probe keeps the sky apart.
@@ -144,6 +151,8 @@ MethodErrorBudget measureErrorBudget(const std::vector<BudgetRay>& rays,
                     int fetches = 0;
                     s[kHalf] += squaredError(half->radiance(r.x, r.l, fetches), r.truth);
                 }
+                int fetches = 0;
+                s[kBc6h] += squaredError(bc6h.radiance(r.x, r.l, fetches), r.truth);
                 const glm::vec3 oracle = r.hasHit ? v.radiance : base.sky(r.l);
                 s[kOracle] += squaredError(oracle, r.truth);
             }
@@ -163,6 +172,11 @@ MethodErrorBudget measureErrorBudget(const std::vector<BudgetRay>& rays,
     b.seen = sums[kSeen] / n;
     b.oracle = sums[kOracle] / n;
     if (halfAsset) b.halfFloat = sums[kHalf] / n;
+    b.bc6h = sums[kBc6h] / n;
+    const std::size_t cubes = asset.layers.size();
+    b.bytesFloat = cubes * cubeBytesRgba32f(asset.faceRes);
+    b.bytesHalf = cubes * cubeBytesRgba16f(asset.faceRes);
+    b.bytesBc6h = cubes * cubeBytesBc6hR16f(asset.faceRes);
     if (asset2x) b.res2x = sums[4] / n;
     b.all = sums[kSeen + (asset2x ? 7 : 3)] / n;
     // The residual: the least any combination of the experiments leaves.

@@ -71,6 +71,11 @@ struct MethodErrorBudget {
     // (e) the baseline with every layer, the composite included, stored as RGBA16F: what
     // half floats cost against float32 (NaN where the layers do not fit half floats).
     double halfFloat = kNoFigure;
+    // (f) the baseline with every layer compressed as `--compress bc6h` stores it: radiance
+    // in BC6H, distance in half floats (distance_compression.h).
+    double bc6h = kNoFigure;
+    // The probe's layers on the GPU (cubes without mips) as RGBA32F, RGBA16F and BC6H + R16F.
+    std::size_t bytesFloat = 0, bytesHalf = 0, bytesBc6h = 0;
     std::string res2xNote;     // why res2x is missing, when it is
 
     double termSearch() const { return base - exact; }

@@ -121,7 +121,8 @@ std::string errorBudgetCsvHeader() {
            "budget_mse_same_surface,budget_mse_seen,budget_mse_all,budget_mse_oracle,"
            "budget_hidden_share,budget_term_search,budget_term_resolution,"
            "budget_term_silhouettes,budget_term_disocclusion,budget_interaction,"
-           "budget_dominant,budget_gpu_mse,budget_mse_residual,budget_residual_set,budget_mse_half";
+           "budget_dominant,budget_gpu_mse,budget_mse_residual,budget_residual_set,budget_mse_half,"
+           "budget_mse_bc6h,budget_bytes_rgba32f,budget_bytes_rgba16f,budget_bytes_bc6h";
 }
 
 std::string errorBudgetCsvValues(const MethodErrorBudget* b) {
@@ -131,7 +132,8 @@ std::string errorBudgetCsvValues(const MethodErrorBudget* b) {
         std::string row = ",0";
         for (int i = 0; i < 13; ++i)
             row += ",nan";
-        return row + ",-,nan,nan,-,nan"; // dominant, GPU MSE, residual, its set, half
+        // dominant, GPU MSE, residual, its set, half, bc6h, the three byte counts
+        return row + ",-,nan,nan,-,nan,nan,0,0,0";
     }
     std::ostringstream s;
     s << ',' << b->rays;
@@ -140,18 +142,24 @@ std::string errorBudgetCsvValues(const MethodErrorBudget* b) {
                      b->termDisocclusion(), b->interaction()})
         s << ',' << fmt(v);
     s << ',' << b->dominant() << ',' << fmt(b->gpuMse) << ',' << fmt(b->residual) << ','
-      << b->residualSet << ',' << fmt(b->halfFloat);
+      << b->residualSet << ',' << fmt(b->halfFloat) << ',' << fmt(b->bc6h) << ',' << b->bytesFloat
+      << ',' << b->bytesHalf << ',' << b->bytesBc6h;
     return s.str();
 }
 
 namespace {
 
-// (e)'s PSNR change in dB; "-" when not measured, and 0 when both MSEs are equal (two
-// infinite PSNRs, an exact probe, differ by nothing rather than by NaN).
-std::string halfFloatChange(const MethodErrorBudget& b) {
-    if (std::isnan(b.halfFloat)) return "-";
-    if (b.halfFloat == b.base) return "+0.000";
-    const double change = psnrOfMse(b.halfFloat) - psnrOfMse(b.base);
+// A storage experiment's PSNR change in dB against the baseline ((e), (f)); "-" when not
+// measured, and 0 when both MSEs are equal (two infinite PSNRs, an exact probe, differ by
+// nothing rather than by NaN).
+std::string mib(std::size_t bytes) {
+    return fmt(double(bytes) / (1024.0 * 1024.0), "%.2f");
+}
+
+std::string storageChange(double mse, double base) {
+    if (std::isnan(mse)) return "-";
+    if (mse == base) return "+0.000";
+    const double change = psnrOfMse(mse) - psnrOfMse(base);
     return std::isnan(change) ? "-" : fmt(change, "%+.3f");
 }
 
@@ -169,8 +177,10 @@ std::string errorBudgetMarkdown(const std::vector<MethodErrorBudget>& budgets,
               << "| method | params | base (dB) | GPU dB | search (a) | resolution (b) | "
                  "silhouettes (c) | disocclusion (d) | residual (set) | all four | interaction | "
                  "oracle | "
-                 "hidden % | dominant | RGBA16F dB (e) |\n"
-              << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n";
+                 "hidden % | dominant | RGBA16F dB (e) | BC6H dB (f) | MiB f32 / f16 / BC6H |\n"
+              << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---"
+                 ":|"
+                 "\n";
         any = true;
         auto term = [&](double t, double experiment) {
             if (std::isnan(t)) return std::string("-");
@@ -184,7 +194,8 @@ std::string errorBudgetMarkdown(const std::vector<MethodErrorBudget>& budgets,
           << fmt(1e3 * b.all, "%.3f") << " | " << fmt(1e3 * b.interaction(), "%.3f") << " | "
           << fmt(1e3 * b.oracle, "%.3f") << " (" << fmt(psnrOfMse(b.oracle), "%.2f") << ") | "
           << fmt(100 * b.hiddenShare, "%.1f") << " | " << b.dominant() << " | "
-          << halfFloatChange(b) << " |\n";
+          << storageChange(b.halfFloat, b.base) << " | " << storageChange(b.bc6h, b.base) << " | "
+          << mib(b.bytesFloat) << " / " << mib(b.bytesHalf) << " / " << mib(b.bytesBc6h) << " |\n";
     }
     for (const MethodErrorBudget& b : budgets)
         if (b.scene == scene && !b.res2xNote.empty()) {
