@@ -295,7 +295,9 @@ void writeDistanceProbe(const DistanceProbeAsset& baked, const std::string& dir,
             const DistanceProbeLayer& L = asset.layers[i];
             const std::string name = layerFileName(i);
             const std::string path = (tmp / name).string();
-            writeKtx2(path, Ktx2Texture{true, i > 0 && halfObjectLayers, {stackFaces(L.faces)}});
+            writeKtx2(path, Ktx2Texture{.cube = true,
+                                        .halfFloat = i > 0 && halfObjectLayers,
+                                        .levels = {stackFaces(L.faces)}});
             layers.push_back({{"name", L.name},
                               {"order", i},
                               {"objects", L.objects},
