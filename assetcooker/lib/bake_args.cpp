@@ -53,6 +53,7 @@ CookOptions cookOptions(const BakeArgs& a) {
                 throw UsageError("--max-error", e.message());
             }
         }
+        s.maxMibPerProbe = a.maxMibPerProbe;
         s.glossy = a.glossy == "on"    ? GlossyBake::On
                    : a.glossy == "off" ? GlossyBake::Off
                                        : GlossyBake::Auto; // validated by the option
@@ -136,6 +137,8 @@ std::string optionsText(const BakeArgs& a) {
       << " cell_size " << (a.cellSize ? *a.cellSize : 0.f) << " cameras " << a.cameras
       << " image_res " << a.imageRes << " compress " << a.compress << " glossy " << a.glossy
       << " plan " << a.plan << " max_error " << a.maxError.value_or("-");
+    // Only when given: the text of every bake before the option existed stays the same.
+    if (a.maxMibPerProbe) t << " max_mib_per_probe " << *a.maxMibPerProbe;
     return t.str();
 }
 
@@ -222,6 +225,13 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
                          "measured plan's budget over reflector rays: a PSNR (\"32dB\") or an "
                          "RMSE (\"rmse:0.03\"); default: the probe node's max_error"),
          "distance");
+    only(
+        sub->add_option("--max-mib-per-probe", a.maxMibPerProbe,
+                        "measured plan: the most MiB a probe's textures may take on the GPU (cube "
+                        "maps and sky); "
+                        "candidates over it are left out, and the smallest is used when none fits"),
+        "distance")
+        ->check(cli::finiteRange(0.01, 1e6));
     only(sub->add_option("--glossy", a.glossy,
                          "the composite's GGX prefiltered chain for glossy reflectors (5 levels, "
                          "roughness 0.2 .. 1, layer_00_ggx_<i>.ktx2): auto (default) when a "

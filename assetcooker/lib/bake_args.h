@@ -23,6 +23,7 @@ struct BakeArgs {
     std::string layers = "plan", glossy = "auto";
     std::string plan = "measured";       // --plan measured|analytic
     std::optional<std::string> maxError; // --max-error "32dB" | "rmse:0.03"
+    std::optional<double> maxMibPerProbe; // --max-mib-per-probe
     // lightfield
     std::optional<float> cellSize;
     std::optional<std::string> cellCentre;

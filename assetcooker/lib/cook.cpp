@@ -85,6 +85,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
             m.proxy = o.proxy;
             m.eyes = sceneEyes(scene);
             m.viewShare = kDefaultViewShare;
+            m.maxMibPerProbe = s.maxMibPerProbe.value_or(0.0);
             // The second sample only measures the noise (`specula-cook plan` reports it): the
             // cook keeps its time for the choice.
             m.measureNoise = false;

@@ -38,6 +38,8 @@ struct DistanceCookSettings {
     bool measuredPlan = true;
     // The measured plan's error budget (--max-error); unset: the probe node's max_error.
     std::optional<ErrorBudget> maxError;
+    // The measured plan's memory budget (--max-mib-per-probe, MeasuredPlanOptions); unset: none.
+    std::optional<double> maxMibPerProbe;
     std::uint32_t planSeed = 1;
     GlossyBake glossy = GlossyBake::Auto;
     // The chain when glossy (its levels, level 0 included: the default 6 writes 5 glossy

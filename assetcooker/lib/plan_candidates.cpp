@@ -128,22 +128,43 @@ double comparedCost(const PlanCandidate& c) {
 }
 
 int choosePlanCandidate(std::vector<PlanCandidate>& cs, const ErrorBudget& budget,
-                        std::string& reason, std::string& warning) {
+                        std::string& reason, std::string& warning, double maxMib) {
     reason.clear();
     warning.clear();
+    const auto fits = [maxMib](const PlanCandidate& c) { return maxMib <= 0.0 || c.mib <= maxMib; };
+    const std::string memoryText =
+        maxMib > 0.0 ? " in at most " + fixed(maxMib, 1) + " MiB per probe" : "";
     int best = -1;
     for (int i = 0; i < int(cs.size()); ++i) {
         const PlanCandidate& c = cs[std::size_t(i)];
-        if (!c.measured()) continue;
+        if (!c.measured() || !fits(c)) continue;
         if (best < 0 || c.psnr > cs[std::size_t(best)].psnr ||
             (c.psnr == cs[std::size_t(best)].psnr &&
              comparedCost(c) < comparedCost(cs[std::size_t(best)])))
             best = i;
     }
-    if (best < 0) return -1;
+    if (best < 0) {
+        // Nothing measured fits the memory budget: the smallest measured, said so.
+        int smallest = -1;
+        for (int i = 0; i < int(cs.size()); ++i) {
+            const PlanCandidate& c = cs[std::size_t(i)];
+            cs[std::size_t(i)].meets = false;
+            if (c.measured() &&
+                (smallest < 0 ||
+                 std::make_pair(c.mib, -c.psnr) < std::make_pair(cs[std::size_t(smallest)].mib,
+                                                                 -cs[std::size_t(smallest)].psnr)))
+                smallest = i;
+        }
+        if (smallest < 0) return -1;
+        const PlanCandidate& s = cs[std::size_t(smallest)];
+        warning = "no candidate fits --max-mib-per-probe " + fixed(maxMib, 1) +
+                  " MiB: the smallest, " + s.label() + " at " + fixed(s.mib, 1) + " MiB, is used";
+        reason = "fewest MiB; nothing fits" + memoryText;
+        return smallest;
+    }
     const double bestPsnr = cs[std::size_t(best)].psnr;
     for (PlanCandidate& c : cs)
-        c.meets = c.measured() &&
+        c.meets = c.measured() && fits(c) &&
                   (budget.kind == ErrorBudget::Kind::None ? c.psnr >= bestPsnr - kNoBudgetSlackDb
                                                           : budget.met(c.psnr, c.rmse));
     // At equal predicted time a budget lets memory decide (anything meeting it is good
@@ -162,11 +183,11 @@ int choosePlanCandidate(std::vector<PlanCandidate>& cs, const ErrorBudget& budge
         ++meeting;
         if (win < 0 || key(cs[std::size_t(i)]) < key(cs[std::size_t(win)])) win = i;
     }
-    const std::string budgetText = budget.kind == ErrorBudget::Kind::None
-                                       ? "within " + fixed(kNoBudgetSlackDb, 1) +
-                                             " dB of the best measured (" + fixed(bestPsnr, 2) +
-                                             " dB, no max_error given)"
-                                       : "max_error " + budget.text() + " (" + budget.source + ")";
+    const std::string budgetText =
+        budget.kind == ErrorBudget::Kind::None
+            ? "within " + fixed(kNoBudgetSlackDb, 1) + " dB of the best measured (" +
+                  fixed(bestPsnr, 2) + " dB, no max_error given)" + memoryText
+            : "max_error " + budget.text() + " (" + budget.source + ")" + memoryText;
     if (win < 0) {
         const PlanCandidate& b = cs[std::size_t(best)];
         warning = "no candidate meets max_error " + budget.text() + " (" + budget.source +
@@ -188,8 +209,9 @@ int choosePlanCandidate(std::vector<PlanCandidate>& cs, const ErrorBudget& budge
     }
     if (cheaper >= 0) {
         const PlanCandidate& c = cs[std::size_t(cheaper)];
-        reason += "; the next cheaper, " + c.label() + " (" + fixed(c.cost, 2) + "x), reaches " +
-                  fixed(c.psnr, 2) + " dB / rmse " + fixed(c.rmse, 4);
+        reason += "; the next cheaper, " + c.label() + " (" + fixed(c.cost, 2) + "x), " +
+                  (fits(c) ? "reaches " + fixed(c.psnr, 2) + " dB / rmse " + fixed(c.rmse, 4)
+                           : "takes " + fixed(c.mib, 1) + " MiB");
     }
     return win;
 }

@@ -48,11 +48,13 @@ void scoreCandidates(std::vector<PlanCandidate>& candidates, const DistanceProbe
 // printed (0.01 x envmap), then with a budget the fewest MiB and the higher PSNR, without one
 // the higher PSNR and the fewest MiB, then list order. Sets
 // `meets` on every candidate. No candidate meeting the budget: the best PSNR wins (cost
-// breaks ties) and `warning` says so, naming max_error. Returns the winner's index (-1 when
-// nothing was measured); `reason` says why it won.
+// breaks ties) and `warning` says so, naming max_error. A memory budget (`maxMib` > 0,
+// --max-mib-per-probe) leaves out every candidate whose textures take more: they neither meet
+// nor set the best PSNR; when none fits, the smallest measured one wins and `warning` says
+// so. Returns the winner's index (-1 when nothing was measured); `reason` says why it won.
 inline constexpr double kNoBudgetSlackDb = 0.5;
 int choosePlanCandidate(std::vector<PlanCandidate>& candidates, const ErrorBudget& budget,
-                        std::string& reason, std::string& warning);
+                        std::string& reason, std::string& warning, double maxMib = 0.0);
 
 // The cost compared by the choice: predicted cost rounded to 0.01 x envmap.
 double comparedCost(const PlanCandidate& c);

@@ -17,6 +17,7 @@ struct PlanArgs {
     std::string scene;
     std::optional<std::string> probe, sky, maxError;
     std::optional<float> maxErrorDeg, cellSize;
+    std::optional<double> maxMibPerProbe;
     std::string plan = "measured";
     int faceRes = 256, rays = 32768;
     float viewShare = kDefaultViewShare;
@@ -54,6 +55,7 @@ int runPlan(const PlanArgs& a, std::ostream& out) {
         m.cellSize = cell;
         m.eyes = sceneEyes(scene);
         m.viewShare = a.viewShare;
+        m.maxMibPerProbe = a.maxMibPerProbe.value_or(0.0);
         plan = applyMeasurement(plan,
                                 measurePlan(scene.registry, scene.markup, plan, centre, reach, m));
     }
@@ -108,6 +110,11 @@ void addPlanCommand(cli::ToolCli& tool) {
         "--max-error", a->maxError,
         "measured plan: the error budget, a PSNR (\"32dB\") or an RMSE (\"rmse:0.03\")\n"
         "over reflector rays (default: the markup's max_error, else none)");
+    sub->add_option("--max-mib-per-probe", a->maxMibPerProbe,
+                    "measured plan: the most MiB a probe's textures may take on the GPU (cube maps "
+                    "and sky); "
+                    "candidates over it are left out, and the smallest is used when none fits")
+        ->check(cli::finiteRange(0.01, 1e6));
     sub->add_option("--face-res", a->faceRes, "measured plan: the cook's face resolution")
         ->check(CLI::Range(8, 4096));
     sub->add_option("--rays", a->rays, "measured plan: reflector rays sampled")

@@ -130,7 +130,8 @@ MeasuredPlan measurePlan(ecs::Registry& registry, const SceneMarkup& markup,
                 m.noiseGapDb = std::max(m.noiseGapDb, std::abs((a - bestA) - (b - bestB)));
         }
     }
-    m.winner = choosePlanCandidate(m.candidates, m.budget, m.reason, m.warning);
+    m.maxMibPerProbe = o.maxMibPerProbe;
+    m.winner = choosePlanCandidate(m.candidates, m.budget, m.reason, m.warning, m.maxMibPerProbe);
     m.seconds = secondsSince(start);
     return m;
 }
@@ -199,6 +200,7 @@ nlohmann::json MeasuredPlan::toJson() const {
                                    {"meets", c.meets},
                                    {"analytic", c.analytic},
                                    {"note", c.note}});
+    if (maxMibPerProbe > 0.0) j["max_mib_per_probe"] = maxMibPerProbe;
     j["winner"] = winner;
     j["reason"] = reason;
     if (!warning.empty()) j["warning"] = warning;
@@ -221,6 +223,8 @@ std::string MeasuredPlan::toText() const {
       << (budget.kind == ErrorBudget::Kind::None ? "none: within 0.5 dB of the best"
                                                  : budget.text() + " (" + budget.source + ")")
       << "\n";
+    if (maxMibPerProbe > 0.0)
+        s << "memory  at most " << fixed(maxMibPerProbe, 1) << " MiB per probe\n";
     char line[256];
     std::snprintf(line, sizeof line, "  %-26s %8s %8s %8s %6s %8s %9s  %s\n", "candidate",
                   "PSNR dB", "RMSE", "fetches", "layers", "MiB", "x envmap", "");

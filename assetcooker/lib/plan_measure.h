@@ -28,6 +28,9 @@ struct MeasuredPlanOptions {
     std::optional<Aabb> proxy;
     std::vector<glm::vec3> eyes; // view points (plan_rays.h); empty: the hemisphere alone
     float viewShare = 0.f;
+    // The memory budget (--max-mib-per-probe): candidates whose textures take more are left
+    // out (choosePlanCandidate). 0: none.
+    double maxMibPerProbe = 0.0;
 };
 
 // The view points of a scene (its camera node, else the default view the sandbox and bench
@@ -43,6 +46,7 @@ struct MeasuredPlan {
     int winner = -1; // index into candidates; -1: no reflector ray (the analytic plan stands)
     std::string reason, warning;
     ErrorBudget budget;
+    double maxMibPerProbe = 0.0; // 0: no memory budget
     CostModel model;
     int rays = 0, rejected = 0;
     std::uint32_t seed = 1;

@@ -10,13 +10,28 @@ using nlohmann::json;
 
 namespace {
 
+// Every distance setting is listed here: the structured binding names them all, so a setting
+// added to DistanceCookSettings stops this from compiling until it is carried (the measured
+// plan's choice, seed and budgets were once left out, so a sharded bake planned under the
+// defaults what the plain bake planned under the user's flags).
 json settingsJson(const DistanceCookSettings& s) {
-    const GgxPrefilterOptions& p = s.prefilter;
+    const auto& [faceRes, planned, recordPlan, measuredPlan, maxError, maxMibPerProbe, planSeed,
+                 glossy, prefilter] = s;
+    const GgxPrefilterOptions& p = prefilter;
+    json budget = nullptr;
+    if (maxError)
+        budget = {{"kind", maxError->kind == ErrorBudget::Kind::Psnr ? "psnr" : "rmse"},
+                  {"value", maxError->value},
+                  {"source", maxError->source}};
     return {{"flavour", "distance"},
-            {"face_res", s.faceRes},
-            {"planned", s.planned},
-            {"record_plan", s.recordPlan},
-            {"glossy", toString(s.glossy)},
+            {"face_res", faceRes},
+            {"planned", planned},
+            {"record_plan", recordPlan},
+            {"measured_plan", measuredPlan},
+            {"max_error", budget},
+            {"max_mib_per_probe", maxMibPerProbe ? json(*maxMibPerProbe) : json(nullptr)},
+            {"plan_seed", planSeed},
+            {"glossy", toString(glossy)},
             {"prefilter",
              {{"levels", p.levels},
               {"samples", p.samples},
@@ -72,6 +87,27 @@ CookFlavour cookSettingsFromJson(const json& j, const std::string& file) {
         s.faceRes = jsonMember<int>(j, "face_res", file, "settings.");
         s.planned = jsonMember<bool>(j, "planned", file, "settings.");
         s.recordPlan = jsonMember<bool>(j, "record_plan", file, "settings.");
+        // A shard list from before these were carried planned under the defaults.
+        if (j.contains("measured_plan"))
+            s.measuredPlan = jsonMember<bool>(j, "measured_plan", file, "settings.");
+        if (j.contains("plan_seed"))
+            s.planSeed = jsonMember<std::uint32_t>(j, "plan_seed", file, "settings.");
+        if (j.contains("max_error") && !j["max_error"].is_null()) {
+            const json& b = j["max_error"];
+            const std::string kind =
+                jsonMember<std::string>(b, "kind", file, "settings.max_error.");
+            if (kind != "psnr" && kind != "rmse")
+                throw Error(file, "settings.max_error.kind", "expected psnr or rmse");
+            ErrorBudget budget;
+            budget.kind = kind == "psnr" ? ErrorBudget::Kind::Psnr : ErrorBudget::Kind::Rmse;
+            budget.value = jsonMember<double>(b, "value", file, "settings.max_error.");
+            budget.source = jsonMember<std::string>(b, "source", file, "settings.max_error.");
+            if (!(budget.value > 0.0) || !std::isfinite(budget.value))
+                throw Error(file, "settings.max_error.value", "expected a positive number");
+            s.maxError = budget;
+        }
+        if (j.contains("max_mib_per_probe") && !j["max_mib_per_probe"].is_null())
+            s.maxMibPerProbe = jsonMember<double>(j, "max_mib_per_probe", file, "settings.");
         const std::string glossy = jsonMember<std::string>(j, "glossy", file, "settings.");
         s.glossy = glossy == "on"    ? GlossyBake::On
                    : glossy == "off" ? GlossyBake::Off
