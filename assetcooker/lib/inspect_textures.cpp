@@ -41,7 +41,12 @@ nlohmann::json inspectTextures(const std::string& path, const std::string& exrDi
     if (!fs::exists(root)) throw Error(path, "", "no such file or folder");
     nlohmann::json list = nlohmann::json::array(), exr = nlohmann::json::array();
     std::uintmax_t total = 0;
-    for (const fs::path& file : ktx2Files(root)) {
+    const std::vector<fs::path> files = ktx2Files(root);
+    if (files.empty())
+        throw Error(path, "",
+                    "no KTX2 texture in this folder (inspect takes a glTF/GLB scene, a "
+                    "cooked probe or level folder, or a .ktx2 file)");
+    for (const fs::path& file : files) {
         const Ktx2Texture t = readKtx2(file.string());
         const std::string rel =
             fs::is_directory(root) ? fs::relative(file, root).string() : file.filename().string();

@@ -15,7 +15,8 @@ bool isCookedTexturePath(const std::string& path);
 // "bytes"}: every .ktx2 under `path` (a folder, searched recursively, in path order) or
 // `path` itself. With a non-empty `exrDir`, also writes each texture's levels as
 // <exrDir>/<file without .ktx2>[_mipK].exr (a cube level as its N x 6N strip of faces, BC6H
-// decoded) and lists them under "exr". Throws Error naming the file that cannot be read.
+// decoded) and lists them under "exr". Throws Error naming the file that cannot be read, or
+// the folder when it holds no .ktx2.
 nlohmann::json inspectTextures(const std::string& path, const std::string& exrDir = "");
 
 } // namespace specula::cook

@@ -118,6 +118,7 @@ protected:
         std::ofstream(root_ / "notimage.exr") << "not an EXR";
         const std::string exr = slurp(root_ / "work" / "probe" / "layer_00.ktx2");
         std::ofstream(root_ / "truncated.exr", std::ios::binary) << exr.substr(0, exr.size() / 3);
+        std::ofstream(root_ / "truncated.ktx2", std::ios::binary) << exr.substr(0, exr.size() / 3);
         std::ofstream(root_ / "afile") << "x";
         before_ = snapshot(root_ / "work" / "probe");
     }
@@ -171,7 +172,13 @@ TEST_F(BadInput, InspectArguments) {
     expectRefused({"inspect", p(root_ / "wrongtypes.gltf")}, "wrongtypes.gltf", 1);
     expectRefused({"inspect", p(root_ / "version3.gltf")}, "version3.gltf", 1);
     expectRefused({"inspect", p(root_ / "hugecount.gltf")}, "hugecount.gltf", 1);
-    expectRefused({"inspect", p(root_)}, root_.filename().string(), 1);
+    // A folder is inspected as cooked textures: one without any is refused, naming it, and so
+    // is a damaged texture.
+    fs::create_directories(root_ / "no-textures");
+    expectRefused({"inspect", p(root_ / "no-textures")}, "no-textures", 1);
+    expectRefused({"inspect", p(root_ / "truncated.ktx2")}, "truncated.ktx2", 1);
+    expectRefused({"inspect", p(kScenes / "box/Box.glb"), "--dump-exr", p(root_ / "dump")},
+                  "--dump-exr", 2);
 }
 
 TEST_F(BadInput, BakeArguments) {
