@@ -5,10 +5,11 @@
 //
 // The decoder reads every mode of the format (fourteen, one or two regions, transformed
 // endpoints) bit-exactly as the Khronos Data Format specification decodes them: the runtime's
-// CPU twins read compressed probes through it. The encoder writes one mode, the one-region
-// 10-bit one (mode 11), fitted in the half floats' bit space (where a step is a constant
-// share of the value, as the eye and an HDR error measure weigh it), so a bake's bytes are
-// the same on every machine, whatever its GL driver.
+// CPU twins read compressed probes through it. The encoder (bc6h_encode.cpp) fits the
+// one-region 10-bit mode and the two-region modes on the block's two best partitions in the
+// half floats' bit space (where a step is a constant share of the value, as the eye and an
+// HDR error measure weigh it) and keeps the better; it is ours, so a bake's bytes are the same
+// on every machine, whatever its GL driver.
 #include "engine/image/image.h"
 
 #include <cstddef>
