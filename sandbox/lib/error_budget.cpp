@@ -94,24 +94,32 @@ double psnrOfMse(double mse) {
     return mse > 0 ? -10.0 * std::log10(mse) : std::numeric_limits<double>::infinity();
 }
 
+StoredProbeVariants storedProbeVariants(const DistanceProbeAsset& asset) {
+    StoredProbeVariants v{std::nullopt, asset};
+    if (allLayersFitHalf(asset)) {
+        v.half = asset;
+        roundAllLayersToHalf(*v.half);
+    }
+    roundTripLayersThroughBc6h(v.bc6h);
+    return v;
+}
+
 MethodErrorBudget measureErrorBudget(const std::vector<BudgetRay>& rays,
                                      const DistanceProbe& settings, const DistanceProbeAsset& asset,
-                                     const DistanceProbeAsset* asset2x) {
+                                     const DistanceProbeAsset* asset2x,
+                                     const StoredProbeVariants* stored) {
     const DistanceLookupConfig config = makeLookupConfig(settings, asset);
     const DistanceLookupConfig config2x =
         asset2x ? makeLookupConfig(settings, *asset2x) : DistanceLookupConfig{};
     // (e) RGBA16F: the composite as well as the object layers rounded to half floats, where
-    // every layer's values are normal halves (allLayersFitHalf).
-    std::optional<DistanceProbeAsset> halfAsset;
-    if (allLayersFitHalf(asset)) {
-        halfAsset = asset;
-        roundAllLayersToHalf(*halfAsset);
-    }
+    // every layer's values are normal halves (allLayersFitHalf); (f) compressed: every layer's
+    // radiance through BC6H, its distance as half floats.
+    std::optional<StoredProbeVariants> made;
+    if (!stored) stored = &made.emplace(storedProbeVariants(asset));
+    const std::optional<DistanceProbeAsset>& halfAsset = stored->half;
+    const DistanceProbeAsset& bc6hAsset = stored->bc6h;
     const DistanceLookupConfig halfConfig =
         halfAsset ? makeLookupConfig(settings, *halfAsset) : DistanceLookupConfig{};
-    // (f) compressed: every layer's radiance through BC6H, its distance as half floats.
-    DistanceProbeAsset bc6hAsset = asset;
-    roundTripLayersThroughBc6h(bc6hAsset);
     const DistanceLookupConfig bc6hConfig = makeLookupConfig(settings, bc6hAsset);
     // Deterministic: the same rays sum in the same order, so two budgets compare exactly.
     const Sums sums = tbb::parallel_deterministic_reduce(

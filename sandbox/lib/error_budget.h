@@ -26,6 +26,7 @@
 #include <glm/glm.hpp>
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -93,9 +94,19 @@ struct MethodErrorBudget {
 // bench row's), `asset2x` the same scene baked with faces twice as large (null: res2x is
 // left NaN and `all` runs at the asset's own size). Throws Error naming the asset when the
 // method needs data it lacks (makeLookupConfig).
-MethodErrorBudget measureErrorBudget(const std::vector<BudgetRay>& rays,
-                                     const DistanceProbe& settings, const DistanceProbeAsset& asset,
-                                     const DistanceProbeAsset* asset2x);
+// The probe as the storage experiments hold it ((e) RGBA16F where every layer fits, (f) BC6H
+// + half distance): made once per probe, as BC6H encoding takes seconds, and shared by its
+// methods' budgets.
+struct StoredProbeVariants {
+    std::optional<DistanceProbeAsset> half;
+    DistanceProbeAsset bc6h;
+};
+StoredProbeVariants storedProbeVariants(const DistanceProbeAsset& asset);
+
+MethodErrorBudget
+measureErrorBudget(const std::vector<BudgetRay>& rays, const DistanceProbe& settings,
+                   const DistanceProbeAsset& asset, const DistanceProbeAsset* asset2x,
+                   const StoredProbeVariants* stored = nullptr); // null: made here
 
 // error_budget.png: one panel per scene, one stacked bar per method, its height the
 // baseline MSE taken as 1: the four terms (negative ones left out), then the residual (the

@@ -54,12 +54,14 @@ void appendErrorBudgets(ReflectionScene& scene, const CameraView& cam, const Ben
     const std::vector<BudgetRay> rays =
         traceBudgetRays(scene, cam, truth.mask, truth.env.color, asset.centre);
     const std::string d01 = formatTolerance(0.01f);
+    const StoredProbeVariants stored = storedProbeVariants(asset); // once for every method
     for (const MethodVariant& v : variants) {
         if (v.kind != VariantKind::Probe || v.lightField >= 0 || v.planned) continue;
         if (v.params != "-" && v.params != d01) continue;
         MethodErrorBudget b;
         try {
-            b = measureErrorBudget(rays, v.distance, asset, note.empty() ? &asset2x : nullptr);
+            b = measureErrorBudget(rays, v.distance, asset, note.empty() ? &asset2x : nullptr,
+                                   &stored);
         } catch (const Error& e) {
             log << "  " << sceneName << " budget " << v.method << ": skipped (" << e.what()
                 << ")\n";
