@@ -54,6 +54,8 @@ CookOptions cookOptions(const BakeArgs& a) {
             }
         }
         s.maxMibPerProbe = a.maxMibPerProbe;
+        s.compression =
+            a.compress == "bc6h" ? DistanceCompression::Bc6h : DistanceCompression::None;
         s.glossy = a.glossy == "on"    ? GlossyBake::On
                    : a.glossy == "off" ? GlossyBake::Off
                                        : GlossyBake::Auto; // validated by the option
@@ -93,6 +95,14 @@ CLI::Validator multipleOfFour() {
 
 CookOptions checkedCookOptions(const BakeArgs& a) {
     refuseOtherFlavoursOptions(a);
+    if (a.compress == "bc6h" && a.flavour != "distance")
+        throw UsageError("--compress", "bc6h applies to --flavour distance (a light field "
+                                       "compresses with bc1), not to --flavour " +
+                                           a.flavour);
+    if (a.compress == "bc1" && a.flavour != "lightfield")
+        throw UsageError("--compress", "bc1 applies to --flavour lightfield (a distance probe "
+                                       "compresses with bc6h), not to --flavour " +
+                                           a.flavour);
     if (a.flavour == "lightfield" && a.cameras * a.imageRes > 16384)
         throw UsageError("--cameras",
                          "NUM x --image-res RES = " + std::to_string(a.cameras * a.imageRes) +
@@ -253,9 +263,12 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
         ->check(CLI::Range(4, 4096))
         ->check(multipleOfFour());
     only(sub->add_option("--compress", a.compress,
-                         "none: sRGB RGB8; bc1: DXT1 (bc7 is not supported: no BC7 encoder)"),
-         "lightfield")
-        ->check(CLI::IsMember({"none", "bc1"}));
+                         "distance: none (default: RGBA float cubes) or bc6h (the composite's "
+                         "radiance in BC6H, its distance R16F where halves hold it within the "
+                         "lookup's d_e, else R32F: asset format 3.0); light field: none (sRGB "
+                         "RGB8) or bc1 (DXT1; bc7 is not supported: no BC7 encoder)"),
+         "distance|lightfield")
+        ->check(CLI::IsMember({"none", "bc1", "bc6h"}));
     only(sub->add_option("--samples", a.samples,
                          "parameter samples: one inferred map per viewpoint t = k/N (default 8)"),
          "pem")

@@ -3,6 +3,7 @@
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/effect_plan.h"
 #include "assetcooker/lib/plan_measure.h"
+#include "components/reflection_probe/distance/distance_compression.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
 #include "engine/core/progress.h"
@@ -121,6 +122,14 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
         throwIfCancelled(o.out);
     }
     asset.effectPlan = planJson;
+    if (s.compression == DistanceCompression::Bc6h) {
+        const auto compressStart = Clock::now();
+        if (log) *log << "compressing the composite to BC6H..." << std::flush;
+        compressComposite(asset); // about a second a 256^2 cube, no progress of its own
+        if (log)
+            *log << " " << secondsSince(compressStart) << " s (distance "
+                 << (asset.halfCompositeDistance ? "R16F" : "R32F") << ")\n";
+    }
     writeDistanceProbe(asset, o.out, scene.path);
     if (log) *log << planLine;
     result.asset = std::move(asset);

@@ -45,6 +45,8 @@ struct DistanceCookSettings {
     // The chain when glossy (its levels, level 0 included: the default 6 writes 5 glossy
     // levels, the chain a glossy lookup builds itself when an asset has none).
     GgxPrefilterOptions prefilter;
+    // --compress bc6h: the composite stored compressed (distance_compression.h).
+    DistanceCompression compression = DistanceCompression::None;
 };
 
 // Light-field-slab flavour. The cell defaults to the probe markup's (cell_size, else 1.5 m)

@@ -16,7 +16,7 @@ namespace {
 // defaults what the plain bake planned under the user's flags).
 json settingsJson(const DistanceCookSettings& s) {
     const auto& [faceRes, planned, recordPlan, measuredPlan, maxError, maxMibPerProbe, planSeed,
-                 glossy, prefilter] = s;
+                 glossy, prefilter, compression] = s;
     const GgxPrefilterOptions& p = prefilter;
     json budget = nullptr;
     if (maxError)
@@ -32,6 +32,7 @@ json settingsJson(const DistanceCookSettings& s) {
             {"max_mib_per_probe", maxMibPerProbe ? json(*maxMibPerProbe) : json(nullptr)},
             {"plan_seed", planSeed},
             {"glossy", toString(glossy)},
+            {"compression", compression == DistanceCompression::Bc6h ? "bc6h" : "none"},
             {"prefilter",
              {{"levels", p.levels},
               {"samples", p.samples},
@@ -112,6 +113,13 @@ CookFlavour cookSettingsFromJson(const json& j, const std::string& file) {
         s.glossy = glossy == "on"    ? GlossyBake::On
                    : glossy == "off" ? GlossyBake::Off
                                      : GlossyBake::Auto;
+        // Shard lists from before --compress bc6h hold no compression: none.
+        if (j.contains("compression")) {
+            const std::string c = jsonMember<std::string>(j, "compression", file, "settings.");
+            if (c != "bc6h" && c != "none")
+                throw Error(file, "settings.compression", "expected none or bc6h, got " + c);
+            s.compression = c == "bc6h" ? DistanceCompression::Bc6h : DistanceCompression::None;
+        }
         const json& p = j.at("prefilter");
         s.prefilter.levels = jsonMember<int>(p, "levels", file, "settings.prefilter.");
         s.prefilter.samples = jsonMember<int>(p, "samples", file, "settings.prefilter.");

@@ -35,8 +35,10 @@ FormatVersion legacyVersion(const json& m, const std::string& file) {
 
 } // namespace
 
-json formatJson(const AssetFormat& format) {
-    return {{"name", std::string(format.name)}, {"major", format.major}, {"minor", format.minor}};
+json formatJson(const AssetFormat& format, bool newest) {
+    const bool plain = !newest && format.plainVersion.major > 0;
+    const FormatVersion v = plain ? format.plainVersion : FormatVersion{format.major, format.minor};
+    return {{"name", std::string(format.name)}, {"major", v.major}, {"minor", v.minor}};
 }
 
 std::optional<std::string> assetFormatName(const json& m) {
@@ -67,7 +69,8 @@ FormatVersion readAssetFormat(const json& m, const AssetFormat& expected, const 
                     "asset format " + versionText(found) + " is newer than this runtime (" +
                         runtime + "): re-cook it with this release's `specula-cook bake`, or "
                                   "update the runtime");
-    if (found.major < expected.major) {
+    const int oldest = expected.oldestMajor > 0 ? expected.oldestMajor : expected.major;
+    if (found.major < oldest) {
         // Probe format 1 stored its textures as OpenEXR, which only the tools could read.
         const std::string what = expected.name == kProbeFormat.name && found.major == 1
                                      ? " (OpenEXR textures; this runtime reads KTX2)"

@@ -13,33 +13,43 @@
 
 namespace specula {
 
-struct AssetFormat {
-    std::string_view name; // "specula-probe", "specula-level"
-    int major = 0, minor = 0;
-    std::string_view schema; // docs/formats/<schema>.schema.json, "" when chosen per flavour
-};
-
-// Probe manifests, every flavour. 2.0: KTX2 textures (1 stored OpenEXR). 2.1: the format
-// object, the seal, RGBA16F object layers.
-inline constexpr AssetFormat kProbeFormat{"specula-probe", 2, 1, ""};
-// Level indices (level.json). 1.1: the format object.
-inline constexpr AssetFormat kLevelFormat{"specula-level", 1, 1, "level"};
-
 struct FormatVersion {
     int major = 0, minor = 0;
 };
 
-// {"name": ..., "major": ..., "minor": ...}, the "format" member a writer stores.
-nlohmann::json formatJson(const AssetFormat& format);
+struct AssetFormat {
+    std::string_view name; // "specula-probe", "specula-level"
+    int major = 0, minor = 0;
+    std::string_view schema; // docs/formats/<schema>.schema.json, "" when chosen per flavour
+    // The oldest major this runtime still reads (0: only `major`): a new major that only adds
+    // what an older runtime must not misread keeps reading the assets written before it.
+    int oldestMajor = 0;
+    // The version a writer states when the asset uses nothing of the newest major (0.0: the
+    // newest), so runtimes of the older major keep reading it.
+    FormatVersion plainVersion{};
+};
+
+// Probe manifests, every flavour. 2.0: KTX2 textures (1 stored OpenEXR). 2.1: the format
+// object, the seal, RGBA16F object layers. 3.0: compressed distance probes ("compression":
+// "bc6h"; the composite's radiance in BC6H, its distance in a file of its own), which a 2.x
+// runtime refuses as newer instead of misreading; every other probe is still written as 2.1.
+inline constexpr AssetFormat kProbeFormat{"specula-probe", 3, 0, "", 2, {2, 1}};
+// Level indices (level.json). 1.1: the format object.
+inline constexpr AssetFormat kLevelFormat{"specula-level", 1, 1, "level"};
+
+// {"name": ..., "major": ..., "minor": ...}, the "format" member a writer stores: `format`'s
+// newest version, or its plainVersion when the asset uses nothing newer (`newest` false).
+nlohmann::json formatJson(const AssetFormat& format, bool newest = true);
 
 // The format name a manifest states ("format" as an object's "name" or, before 2.1, as a
 // string); nullopt when it states none.
 std::optional<std::string> assetFormatName(const nlohmann::json& manifest);
 
-// The version `manifest` is written in, when it is `expected.name` with expected.major.
-// Throws Error(file, "format" / "format.major" / "version", ...) otherwise: another format, a
-// newer major ("asset format 3.1 is newer than this runtime (2.x): re-cook or update"), an
-// older one (naming what it stored and `specula-cook bake`).
+// The version `manifest` is written in, when it is `expected.name` with a major from
+// expected.oldestMajor to expected.major. Throws Error(file, "format" / "format.major" /
+// "version", ...) otherwise: another format, a newer major ("asset format 4.1 is newer than
+// this runtime (3.x): re-cook or update"), an older one (naming what it stored and
+// `specula-cook bake`).
 FormatVersion readAssetFormat(const nlohmann::json& manifest, const AssetFormat& expected,
                               const std::string& file);
 

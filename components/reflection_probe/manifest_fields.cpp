@@ -56,8 +56,8 @@ json vec3Json(glm::vec3 v) {
     return json::array({v.x, v.y, v.z});
 }
 
-json probeManifestHeader(std::string_view flavour, const std::string& sourceScene) {
-    return json{{"format", formatJson(kProbeFormat)},
+json probeManifestHeader(std::string_view flavour, const std::string& sourceScene, bool newest) {
+    return json{{"format", formatJson(kProbeFormat, newest)},
                 {"flavour", std::string(flavour)},
                 {"source", sourceScene}};
 }
@@ -200,12 +200,13 @@ std::string ManifestFields::probeFlavour(const json& m) const {
     return string(m, "flavour", "");
 }
 
-void ManifestFields::expectFlavour(const json& m, std::string_view flavour) const {
+FormatVersion ManifestFields::expectFlavour(const json& m, std::string_view flavour) const {
     const FormatVersion version = readAssetFormat(m, kProbeFormat, file);
     if (const std::string f = string(m, "flavour", ""); f != flavour)
         throw Error(file, "flavour",
                     "expected \"" + std::string(flavour) + "\", got \"" + f + "\"");
     warnAboutNewerMinor(m, kProbeFormat, version, "probe-" + std::string(flavour), file);
+    return version;
 }
 
 } // namespace specula

@@ -3,6 +3,8 @@
 // manifest as a bounded regular file, parsing it so that even a number JSON cannot hold
 // names its field, and typed, range-checked field access that names the file and the JSON
 // path on every failure.
+#include "components/reflection_probe/asset_format.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -34,9 +36,11 @@ std::string bytesChecksum(const void* data, std::size_t size);
 // A vec3 as the JSON array a manifest stores.
 nlohmann::json vec3Json(glm::vec3 v);
 
-// The members every cooked manifest opens with: "format" (kProbeFormat, asset_format.h),
+// The members every cooked manifest opens with: "format" (kProbeFormat, asset_format.h: its
+// newest version when the asset uses what only that holds, `newest`, else its plainVersion),
 // "flavour" and "source" (the scene it was baked from).
-nlohmann::json probeManifestHeader(std::string_view flavour, const std::string& sourceScene);
+nlohmann::json probeManifestHeader(std::string_view flavour, const std::string& sourceScene,
+                                   bool newest = false);
 
 // The manifest text at `path`, read as a regular file of at most kMaxManifestBytes.
 std::string readManifestText(const std::string& path);
@@ -111,8 +115,8 @@ struct ManifestFields {
     std::string probeFlavour(const nlohmann::json& manifest) const;
     // probeFlavour, which must be `flavour` (every flavour's reader opens with it, so all
     // refuse a foreign manifest with the same message). A newer minor's members this runtime
-    // does not know are listed once in a warning (warnAboutNewerMinor).
-    void expectFlavour(const nlohmann::json& manifest, std::string_view flavour) const;
+    // does not know are listed once in a warning (warnAboutNewerMinor). Returns the version.
+    FormatVersion expectFlavour(const nlohmann::json& manifest, std::string_view flavour) const;
     // Runs `read` on a file the manifest names; an Error it throws (the file is missing, a
     // FIFO, a directory, a symlink loop...) is re-thrown naming the manifest and the field
     // as well.

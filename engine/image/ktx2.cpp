@@ -373,7 +373,16 @@ std::string encodeKtx2(const Ktx2Texture& t, const std::string& name, const std:
         offsets[k] = aligned;
         const std::size_t before = data.size();
         if (l.bc6h) {
-            const std::vector<std::uint8_t> blocks = encodeFaces(t.levels[k], faces);
+            // The caller's blocks when it has them (already encoded, and what it decoded),
+            // else the levels encoded here.
+            const std::vector<std::uint8_t> blocks =
+                k < t.blocks.size() ? t.blocks[k] : encodeFaces(t.levels[k], faces);
+            const int w = std::max(1, base.width >> k), fh = std::max(1, base.height / faces >> k);
+            if (blocks.size() != std::size_t(faces) * bc6hBytes(w, fh))
+                throw Error(name, "level " + std::to_string(k),
+                            "holds " + std::to_string(blocks.size()) + " bytes of blocks, " +
+                                std::to_string(std::size_t(faces) * bc6hBytes(w, fh)) +
+                                " expected");
             data.append(reinterpret_cast<const char*>(blocks.data()), blocks.size());
         } else {
             appendLevel(data, t.levels[k], l.half);

@@ -26,8 +26,10 @@ namespace specula {
 struct Ktx2Texture {
     bool cube = false;
     bool halfFloat = false; // stored as 16-bit half floats (read: what the file held)
-    // Stored as BC6H blocks: written by encoding `levels` (RGB; a fourth channel is dropped);
-    // read as `blocks` plus, unless Ktx2ReadLimits::decodeBlocks is off, `levels` decoded (RGB).
+    // Stored as BC6H blocks: written from `blocks` where it has the level (the caller's
+    // encoding, which must be the level's size in blocks), else by encoding `levels` (RGB; a
+    // fourth channel is dropped); read as `blocks` plus, unless Ktx2ReadLimits::decodeBlocks
+    // is off, `levels` decoded (RGB). `levels` gives the sizes either way.
     bool bc6h = false;
     // Level 0 first; each halves the one before (at least 1), a cube's stacked as N x 6N.
     std::vector<Image> levels{};

@@ -70,6 +70,7 @@ TEST(PlanMemory, EveryDistanceSettingReachesTheShardsAndComesBack) {
     s.planSeed = 7;
     s.glossy = GlossyBake::On;
     s.prefilter.levels = 4;
+    s.compression = DistanceCompression::Bc6h;
     const DistanceCookSettings back =
         std::get<DistanceCookSettings>(cookSettingsFromJson(cookSettingsToJson(s), "shards.json"));
     EXPECT_EQ(back.faceRes, 96);
@@ -84,10 +85,12 @@ TEST(PlanMemory, EveryDistanceSettingReachesTheShardsAndComesBack) {
     EXPECT_EQ(back.planSeed, 7u);
     EXPECT_EQ(back.glossy, GlossyBake::On);
     EXPECT_EQ(back.prefilter.levels, 4);
+    EXPECT_EQ(back.compression, DistanceCompression::Bc6h);
     // Unset budgets stay unset.
     const DistanceCookSettings plain = std::get<DistanceCookSettings>(
         cookSettingsFromJson(cookSettingsToJson(DistanceCookSettings{}), "shards.json"));
     EXPECT_FALSE(plain.maxError.has_value());
     EXPECT_FALSE(plain.maxMibPerProbe.has_value());
     EXPECT_TRUE(plain.measuredPlan);
+    EXPECT_EQ(plain.compression, DistanceCompression::None);
 }

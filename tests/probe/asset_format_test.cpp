@@ -65,14 +65,18 @@ protected:
     json written_;
 };
 
-TEST_F(AssetFormatTest, TheWriterStatesThisRuntimesVersionAndDeclaresEveryMember) {
-    EXPECT_EQ(written_["format"], formatJson(kProbeFormat));
+TEST_F(AssetFormatTest, AnUncompressedProbeStatesTheOlderMajorSoOlderRuntimesReadIt) {
+    // Nothing of 3.0 (compression) is used: 2.1, which a 2.x runtime reads as it always did.
+    EXPECT_EQ(written_["format"], formatJson(kProbeFormat, false));
+    EXPECT_EQ(written_["format"]["major"], 2);
+    EXPECT_EQ(written_["format"]["minor"], 1);
     EXPECT_FALSE(written_.contains("version"));
     EXPECT_EQ(undeclaredMembers(written_, "probe-distance"), std::vector<std::string>{});
 }
 
 TEST_F(AssetFormatTest, ANewerMinorLoadsAndNamesWhatItIgnoresOnce) {
     json m = written_;
+    m["format"]["major"] = kProbeFormat.major;
     m["format"]["minor"] = kProbeFormat.minor + 1;
     m["tint"] = {1, 0.5, 0.25};
     for (json& layer : m["layers"]) layer["anisotropy"] = 0.3;
@@ -83,9 +87,10 @@ TEST_F(AssetFormatTest, ANewerMinorLoadsAndNamesWhatItIgnoresOnce) {
     EXPECT_EQ(read.layers.size(), original_.layers.size());
     ASSERT_EQ(warnings.lines.size(), 1u);
     const std::string& w = warnings.lines[0];
-    const std::string newer = "2." + std::to_string(kProbeFormat.minor + 1);
+    const std::string major = std::to_string(kProbeFormat.major) + ".";
+    const std::string newer = major + std::to_string(kProbeFormat.minor + 1);
     EXPECT_NE(w.find(manifest()), std::string::npos) << w;
-    EXPECT_NE(w.find("asset format " + newer + " is newer than this runtime (2." +
+    EXPECT_NE(w.find("asset format " + newer + " is newer than this runtime (" + major +
                      std::to_string(kProbeFormat.minor) + ")"),
               std::string::npos)
         << w;
@@ -96,6 +101,7 @@ TEST_F(AssetFormatTest, ANewerMinorLoadsAndNamesWhatItIgnoresOnce) {
 
 TEST_F(AssetFormatTest, ANewerMinorWithNothingNewLoadsSilently) {
     json m = written_;
+    m["format"]["major"] = kProbeFormat.major;
     m["format"]["minor"] = kProbeFormat.minor + 4;
     rewrite(m);
     CapturedWarnings warnings;
@@ -105,7 +111,7 @@ TEST_F(AssetFormatTest, ANewerMinorWithNothingNewLoadsSilently) {
 
 TEST_F(AssetFormatTest, ANewerMajorIsRefusedNamingBothVersions) {
     json m = written_;
-    m["format"]["major"] = 3;
+    m["format"]["major"] = 4;
     m["format"]["minor"] = 1;
     rewrite(m);
     try {
@@ -114,7 +120,7 @@ TEST_F(AssetFormatTest, ANewerMajorIsRefusedNamingBothVersions) {
     } catch (const Error& e) {
         EXPECT_EQ(e.field(), "format.major");
         EXPECT_NE(std::string(e.what()).find(
-                      "asset format 3.1 is newer than this runtime (2.x): re-cook it"),
+                      "asset format 4.1 is newer than this runtime (3.x): re-cook it"),
                   std::string::npos)
             << e.what();
     }

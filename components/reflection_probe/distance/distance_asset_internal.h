@@ -1,7 +1,8 @@
 #pragma once
 // What the distance probe's reader and writer share between distance_probe_asset.cpp (the
-// manifest, the layers and the sky) and distance_glossy_asset.cpp (the glossy levels). Not
-// part of the component's API: only those two files include it.
+// manifest, the layers and the sky), distance_asset_checks.cpp (the content checks),
+// distance_glossy_asset.cpp (the glossy levels) and distance_compressed_asset.cpp (a
+// compressed composite). Not part of the component's API: only those files include it.
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/manifest_fields.h"
 
@@ -40,6 +41,21 @@ std::vector<float> faceSolidAngles(int n);
 DistanceLayerContent scanLayer(const std::array<Image, 6>& faces, float dInf,
                                const std::vector<float>& solidAngles, const std::string& file);
 
+// --- the content checks (distance_asset_checks.cpp) ------------------------------------------
+
+// Whether RGB are finite radiances in [0, kMaxRadiance] (false for NaN).
+bool radianceOk(const float* rgb);
+// Throws Error(file, "radiance", ...) for the first RGB channel that is not, naming `where`.
+void refuseRadiance(const float* rgb, const std::string& file, const std::string& where);
+
+// Everything the reader checks of the images' content, the writer too before writing, so a
+// bake never writes a probe its own reader would refuse: every texel, each layer's figures
+// against its image, layer 0 the nearest of the object layers, the glossy levels, the sky.
+// `files[i]` names layer i's image, `glossyFiles[k]` glossy level k + 1's.
+void checkContent(const DistanceProbeAsset& a, const std::string& manifest,
+                  const std::vector<std::string>& files,
+                  const std::vector<std::string>& glossyFiles, const std::string& skyFile);
+
 // --- the glossy levels (distance_glossy_asset.cpp) -------------------------------------------
 
 // The glossy levels against the composite: each level's size, every texel (as a layer's)
@@ -61,5 +77,25 @@ nlohmann::json writeGlossyLevels(const DistanceProbeAsset& asset, const std::fil
 void readGlossyLevels(const ManifestFields& r, const nlohmann::json& glossy,
                       const std::filesystem::path& dir, DistanceProbeAsset& a,
                       std::vector<std::string>& files);
+
+// --- a compressed composite (distance_compressed_asset.cpp) ----------------------------------
+
+// That a Bc6h asset's blocks decode to exactly its composite's radiance, and its distances are
+// half floats when it says so: what the writer checks before writing (errors name `file`).
+void checkCompressedComposite(const DistanceProbeAsset& a, const std::string& file);
+
+// Writes the composite's BC6H radiance as `name` in `tmp` and its distance beside it
+// (name_distance.ktx2); returns the layer's "file", "checksum" and "distance" members.
+nlohmann::json writeCompressedComposite(const DistanceProbeAsset& a,
+                                        const std::filesystem::path& tmp, const std::string& name);
+
+// Reads a Bc6h composite: `radianceFile` (already checksummed, a BC6H cube of face_res) and
+// the layer's "distance" file (path + "distance."); sets a's compression members and returns
+// the faces as a layer holds them (decoded radiance, distance in A).
+std::array<Image, 6> readCompressedComposite(const ManifestFields& r, const nlohmann::json& layer,
+                                             const std::string& path,
+                                             const std::filesystem::path& dir,
+                                             const std::string& radianceFile,
+                                             DistanceProbeAsset& a);
 
 } // namespace specula::distance_asset

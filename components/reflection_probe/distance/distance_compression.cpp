@@ -1,7 +1,13 @@
 #include "distance_compression.h"
 
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
+#include "components/reflection_probe/distance/distance_probe.h"
 #include "engine/image/bc6h.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
 
 namespace specula {
 
@@ -17,6 +23,69 @@ void roundTripLayersThroughBc6h(DistanceProbeAsset& asset) {
                 if (half && face.channels == 4) p[3] = roundToHalf(p[3]);
             }
         }
+}
+
+bool compositeDistanceFitsHalf(const DistanceProbeAsset& asset, float tolerance) {
+    if (asset.layers.empty() || roundToHalf(asset.dInf) != asset.dInf) return false;
+    float farthest = 0.f;
+    for (const Image& face : asset.layers[0].faces)
+        for (std::size_t i = 3; i < face.pixels.size(); i += std::size_t(face.channels)) {
+            const float d = face.pixels[i];
+            if (d < 0x1p-14f) return false;
+            if (d < asset.dInf) farthest = std::max(farthest, d);
+        }
+    const float step = farthest > 0.f ? std::exp2(std::floor(std::log2(farthest)) - 10.f) : 0.f;
+    return step <= tolerance;
+}
+
+float cookedLookupTolerance(const DistanceProbeAsset& asset) {
+    const nlohmann::json plan = nlohmann::json::parse(asset.effectPlan, nullptr, false);
+    if (plan.is_object() && plan.contains("lookup") && plan["lookup"].is_object()) {
+        const nlohmann::json& t = plan["lookup"].value("tolerance", nlohmann::json());
+        if (t.is_number() && t.get<double>() > 0.0 && std::isfinite(t.get<double>()))
+            return t.get<float>();
+    }
+    return DistanceProbe{}.errorTolerance;
+}
+
+void compressComposite(DistanceProbeAsset& asset) {
+    if (asset.compression == DistanceCompression::Bc6h || asset.layers.empty()) return;
+    const bool half = compositeDistanceFitsHalf(asset, cookedLookupTolerance(asset));
+    DistanceProbeLayer& composite = asset.layers[0];
+    std::vector<std::uint8_t> blocks;
+    for (Image& face : composite.faces) {
+        const std::vector<std::uint8_t> b = encodeBC6H(face);
+        const Image radiance = decodeBC6H(b, face.width, face.height);
+        blocks.insert(blocks.end(), b.begin(), b.end());
+        for (std::size_t t = 0; t < std::size_t(face.width) * std::size_t(face.height); ++t) {
+            float* p = &face.pixels[t * std::size_t(face.channels)];
+            for (std::size_t c = 0; c < 3; ++c)
+                p[c] = radiance.pixels[t * 3 + c];
+            if (half) p[3] = roundToHalf(p[3]);
+        }
+    }
+    // A glossy level's A is the nearest of the composite's distances under it: rounded alike
+    // (rounding keeps order), it stays exactly that.
+    if (half)
+        for (std::array<Image, 6>& level : asset.glossyLevels)
+            for (Image& face : level)
+                for (std::size_t i = 3; i < face.pixels.size(); i += std::size_t(face.channels))
+                    face.pixels[i] = roundToHalf(face.pixels[i]);
+    const DistanceLayerContent c = measureDistanceLayer(composite.faces, asset.dInf, "layer 0");
+    composite.minDistance = c.minDistance;
+    composite.maxDistance = c.maxDistance;
+    composite.solidAngle = float(c.solidAngle);
+    if (c.solidAngle > 0.0)
+        composite.avgDistance = std::clamp(composite.avgDistance, c.minDistance, c.maxDistance);
+    asset.compression = DistanceCompression::Bc6h;
+    asset.compositeBlocks = std::move(blocks);
+    asset.halfCompositeDistance = half;
+}
+
+std::size_t compositeBytes(const DistanceProbeAsset& asset) {
+    if (asset.compression == DistanceCompression::None) return cubeBytesRgba32f(asset.faceRes);
+    const std::size_t n = std::size_t(asset.faceRes);
+    return asset.compositeBlocks.size() + 6 * n * n * (asset.halfCompositeDistance ? 2 : 4);
 }
 
 std::size_t cubeBytesRgba32f(int faceRes) {

@@ -1,5 +1,6 @@
 #include "distance_gpu_probe.h"
 
+#include "components/reflection_probe/distance/distance_compression.h"
 #include "components/reflection_probe/distance/shaders/distance_params.glsl.h"
 #include "components/reflection_probe/host_probe.h"
 
@@ -36,6 +37,8 @@ std::vector<std::string> distanceDefines(std::uint32_t features, bool roughnessM
     defines.push_back(std::string("HAS_LAYERS=") + layers);
     // The GPU probe keeps the object layers as tiles (uploadLayerTiles).
     defines.push_back(std::string("LAYER_TILES=") + layers);
+    defines.push_back(std::string("COMPRESSED_COMPOSITE=") +
+                      ((features & kFeatureCompressedComposite) ? "1" : "0"));
     return defines;
 }
 
@@ -54,7 +57,12 @@ bool DistanceGpuProbe::applySettings(const DistanceProbe& settings) {
     const int needed = (made.features & kFeatureLayers) ? int(a.layers.size()) : 1;
     const bool upload = needed > layersUploaded;
     if (upload) {
-        if (layersUploaded == 0) {
+        if (layersUploaded == 0 && a.compression == DistanceCompression::Bc6h) {
+            layers = createCompressedCubeArray(a.faceRes, 1);
+            uploadCompressedCube(layers, 0, a.compositeBlocks);
+            layerDistance = createDistanceArray(a.faceRes, 1, a.halfCompositeDistance);
+            uploadDistance(layerDistance, 0, a.layers.front(), a.halfCompositeDistance);
+        } else if (layersUploaded == 0) {
             layers = createCubeArray(a.faceRes, 1);
             uploadCube(layers, 0, a.layers.front());
         }
@@ -79,7 +87,7 @@ void DistanceGpuProbe::setGlossyChain(std::shared_ptr<const CubeChain> chain) co
 
 std::size_t DistanceGpuProbe::gpuBytes() const {
     const DistanceProbeAsset& a = *asset;
-    return (layersUploaded > 0 ? cubeArrayBytes(a.faceRes, 1) : 0) + tileBytes +
+    return (layersUploaded > 0 ? compositeBytes(a) : 0) + tileBytes +
            (a.sky.empty() ? 0 : skyTextureBytes(a.sky)) +
            (glossyChain ? chainArrayBytes(*glossyChain) : 0);
 }
@@ -87,6 +95,7 @@ std::size_t DistanceGpuProbe::gpuBytes() const {
 void DistanceGpuProbe::bindTo(GLuint program, const DistanceBindings& b, bool glossy,
                               const gpu::Texture* ggxAlbedo) const {
     bindSampler(program, "uLayers", b.layers, layers.id());
+    if (layerDistance) bindSampler(program, "uLayerDistance", b.layerDistance, layerDistance.id());
     bindSampler(program, "uSky", b.sky, sky.id());
     setIntUniform(program, "uHasSky", sky.id() != 0 ? 1 : 0);
     if (config.features & kFeatureLayers) {

@@ -34,7 +34,8 @@ std::vector<std::string> distanceDefines(std::uint32_t features, bool roughnessM
 
 // Texture units and the uniform-buffer binding point the lookup reads from.
 struct DistanceBindings {
-    GLuint layers = 1, sky = 2, chain = 3, ggxAlbedo = 4, tileAtlas = 5, tileTable = 6;
+    GLuint layers = 1, sky = 2, chain = 3, ggxAlbedo = 4, tileAtlas = 5, tileTable = 6,
+           layerDistance = 7;
     GLuint params = GLuint(glsl::kDistanceParamsBinding); // the block's declared binding
 };
 
@@ -43,6 +44,8 @@ struct DistanceGpuProbe {
     DistanceLookupConfig config;
     gpu::UniformBuffer<glsl::DistanceParamsBlock> params; // config's block, as the shader reads it
     gpu::Texture layers;                                  // the composite's cube (layer 0)
+    // A compressed composite's distances (`layers` then holds its radiance in BC6H).
+    gpu::Texture layerDistance;
     int layersUploaded = 0; // layers on the GPU: the composite, or every layer
     // The object layers (1..) as tiles (distance_layer_tiles.h), once layered lookups need
     // them: tile size and tiles per face side.

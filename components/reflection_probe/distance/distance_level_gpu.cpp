@@ -93,7 +93,8 @@ void DistanceLevelGpu::applySettings(const DistanceLevel& settings) {
     for (std::size_t i = 0; i < assets.size(); ++i) {
         const DistanceLookupConfig c = makeLookupConfig(settings.lookup, *assets[i]);
         block.probes[i] = levelProbeParams(volumes[i], c);
-        features = c.features;
+        // The level's composites are one float array whatever each probe stores.
+        features = c.features & ~kFeatureCompressedComposite;
     }
     methodFeature = features;
     params.upload(block);

@@ -60,6 +60,7 @@ std::string distanceFeatureName(std::uint32_t f) {
         add(row.feature, row.label.name);
     add(kFeatureGlossy, "glossy");
     add(kFeatureFresnel, "fresnel");
+    add(kFeatureCompressedComposite, "bc6h");
     return s;
 }
 
@@ -85,7 +86,9 @@ int bisectionSteps(float range, float tolerance) {
     return int(std::clamp(std::ceil(std::log2(ratio)), 1.0, 40.0));
 }
 
-DistanceLookupConfig makeLookupConfig(const DistanceProbe& probe, const DistanceProbeAsset& a) {
+namespace {
+
+DistanceLookupConfig methodConfig(const DistanceProbe& probe, const DistanceProbeAsset& a) {
     const std::string& manifest = a.manifestPath;
     if (a.layers.size() > std::size_t(glsl::kMaxDistanceLayers))
         throw Error(manifest, "layers",
@@ -179,6 +182,14 @@ DistanceLookupConfig makeLookupConfig(const DistanceProbe& probe, const Distance
         c.layers[i].method = row->glslIndex;
         c.features |= row->feature;
     }
+    return c;
+}
+
+} // namespace
+
+DistanceLookupConfig makeLookupConfig(const DistanceProbe& probe, const DistanceProbeAsset& a) {
+    DistanceLookupConfig c = methodConfig(probe, a);
+    if (a.compression == DistanceCompression::Bc6h) c.features |= kFeatureCompressedComposite;
     return c;
 }
 

@@ -51,6 +51,10 @@ inline constexpr std::uint32_t kFeatureFresnel = 1u << 6;
 // A rough reflector (Reflector::roughness > 0): the composite's GGX prefiltered chain read at
 // the hit (shaders/distance_glossy_lookup.glsl.h). Per reflector, like Fresnel.
 inline constexpr std::uint32_t kFeatureGlossy = 1u << 7;
+// The composite is stored compressed (DistanceCompression::Bc6h): radiance sampled from a BC6H
+// array, distance from an array of its own (shaders/distance_probe_gpu.glsl,
+// COMPRESSED_COMPOSITE). Per probe, from its asset.
+inline constexpr std::uint32_t kFeatureCompressedComposite = 1u << 9;
 // The method bits are 1 << 0..4 and 1 << 8 (march, added after the feature bits above).
 
 inline constexpr std::array<DistanceMethodInfo, 8> kDistanceMethods = {{

@@ -27,24 +27,7 @@ namespace specula {
 using namespace distance_asset;
 
 namespace {
-
 constexpr std::uint64_t kMaxSkyFileBytes = 4ull << 30;
-
-bool radianceOk(const float* rgb) {
-    return rgb[0] >= 0.f && rgb[0] <= kMaxRadiance && rgb[1] >= 0.f && rgb[1] <= kMaxRadiance &&
-           rgb[2] >= 0.f && rgb[2] <= kMaxRadiance; // false for NaN too
-}
-
-// Throws for the first RGB channel that is not finite in [0, kMaxRadiance].
-void refuseRadiance(const float* p, const std::string& file, const std::string& where) {
-    for (int c = 0; c < 3; ++c)
-        if (!(p[c] >= 0.f && p[c] <= kMaxRadiance))
-            throw Error(file, "radiance",
-                        where + " channel " + "RGB"[c] + " holds " + shortNumber(p[c]) +
-                            "; expected a finite radiance in [0, " + shortNumber(kMaxRadiance) +
-                            "]");
-}
-
 } // namespace
 
 double cubeTexelSolidAngle(int x, int y, int n) {
@@ -149,96 +132,6 @@ DistanceLayerContent scanLayer(const std::array<Image, 6>& faces, float dInf,
 
 } // namespace distance_asset
 
-// --- content checks: what the images hold, against the manifest -----------------------------
-
-namespace {
-
-// The manifest's figures for a layer against what its image holds. A layer file swapped with
-// another (checksums and all) or edited (checksum updated) fails here.
-void checkFigures(const DistanceProbeLayer& L, const DistanceLayerContent& c,
-                  const std::string& manifest, const std::string& path, const std::string& image) {
-    // Distances pass float -> JSON -> float exactly; the margin only absorbs a writer that
-    // rounds. Solid angles are sums over texels: 1e-3 sr absorbs a writer's own rounding
-    // (and the 12.566 some tools write for 4 pi) while a swapped layer differs by whole texels.
-    auto mismatch = [&](const char* key, double stored, double measured, const char* what) {
-        throw Error(manifest, path + key,
-                    "says " + shortNumber(stored) + " but " + image + " holds " +
-                        shortNumber(measured) + " (" + what +
-                        "); the layer file was swapped or edited");
-    };
-    const double tol = 1e-5 * std::max(1.0, double(c.maxDistance));
-    if (std::fabs(double(L.minDistance) - c.minDistance) > tol)
-        mismatch("min_distance", L.minDistance, c.minDistance, "its nearest hit");
-    if (std::fabs(double(L.maxDistance) - c.maxDistance) > tol)
-        mismatch("max_distance", L.maxDistance, c.maxDistance, "its farthest hit");
-    if (std::fabs(double(L.solidAngle) - c.solidAngle) > 1e-3 + 1e-4 * c.solidAngle)
-        mismatch("solid_angle_sr", L.solidAngle, c.solidAngle, "steradians it hits");
-    if (c.solidAngle > 0.0 &&
-        !(L.avgDistance >= c.minDistance - tol && L.avgDistance <= c.maxDistance + tol))
-        throw Error(manifest, path + "avg_distance",
-                    "says " + shortNumber(L.avgDistance) + ", outside the layer's own range [" +
-                        shortNumber(c.minDistance) + ", " + shortNumber(c.maxDistance) + "]");
-}
-
-// Layer 0, the composite of the whole environment, is per texel the nearest of the object
-// layers (each object layer sees a subset of the same geometry, so never nearer). A layer
-// swapped with the composite fails here even when its manifest entry moved with it.
-void checkCompositeNearest(const DistanceProbeAsset& a, const std::string& manifest,
-                           const std::vector<std::string>& files) {
-    const int n = a.faceRes;
-    for (std::size_t k = 1; k < a.layers.size(); ++k)
-        for (int f = 0; f < 6; ++f)
-            for (int y = 0; y < n; ++y)
-                for (int x = 0; x < n; ++x) {
-                    const float d0 = a.layers[0].faces[std::size_t(f)].at(x, y)[3];
-                    const float dk = a.layers[k].faces[std::size_t(f)].at(x, y)[3];
-                    // 1e-3: the same hit traced through two acceleration structures, and an
-                    // object layer stored as half floats (11 bits: within 2.5e-4 of it) beside
-                    // the float composite. A swapped layer differs by far more.
-                    if (d0 <= dk * (1.f + 1e-3f)) continue;
-                    throw Error(manifest, "layers[0]",
-                                "the composite (" + files[0] + ") is farther than layers[" +
-                                    std::to_string(k) + "] (" + files[k] + ") at " +
-                                    texelName(f, x, y) + ": " + shortNumber(d0) + " vs " +
-                                    shortNumber(dk) +
-                                    "; layer 0 must be the nearest of the object layers "
-                                    "(layers swapped?)");
-                }
-}
-
-// Everything the reader checks of the images' content; the writer runs it too, so a bake
-// never writes a probe its own reader would refuse. `files[i]` names layer i's image,
-// `glossyFiles[k]` glossy level k + 1's.
-void checkContent(const DistanceProbeAsset& a, const std::string& manifest,
-                  const std::vector<std::string>& files,
-                  const std::vector<std::string>& glossyFiles, const std::string& skyFile) {
-    if (a.layers.empty()) throw Error(manifest, "layers", "expected at least the composite");
-    const std::vector<float> solidAngles = faceSolidAngles(a.faceRes);
-    for (std::size_t i = 0; i < a.layers.size(); ++i) {
-        const DistanceProbeLayer& L = a.layers[i];
-        if (L.faces[0].width != a.faceRes)
-            throw Error(files[i], "size",
-                        "expected faces of " + std::to_string(a.faceRes) + " texels, got " +
-                            std::to_string(L.faces[0].width));
-        const DistanceLayerContent c = scanLayer(L.faces, a.dInf, solidAngles, files[i]);
-        checkFigures(L, c, manifest, "layers[" + std::to_string(i) + "].", files[i]);
-    }
-    checkCompositeNearest(a, manifest, files);
-    checkGlossy(a, manifest, glossyFiles);
-    if (a.sky.empty()) return;
-    const int channels = std::min(a.sky.channels, 3);
-    for (int y = 0; y < a.sky.height; ++y)
-        for (int x = 0; x < a.sky.width; ++x) {
-            const float* p = a.sky.at(x, y);
-            const float rgb[3] = {p[0], channels > 1 ? p[1] : p[0], channels > 2 ? p[2] : p[0]};
-            if (!radianceOk(rgb))
-                refuseRadiance(rgb, skyFile,
-                               "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")");
-        }
-}
-
-} // namespace
-
 DistanceLayerContent measureDistanceLayer(const std::array<Image, 6>& faces, float dInf,
                                           const std::string& file) {
     return scanLayer(faces, dInf, faceSolidAngles(faces[0].width), file);
@@ -287,6 +180,8 @@ void writeDistanceProbe(const DistanceProbeAsset& baked, const std::string& dir,
         files.push_back((fs::path(dir) / layerFileName(i)).string());
     checkContent(asset, (fs::path(dir) / "manifest.json").string(), files,
                  glossyFilePaths(asset, dir), (fs::path(dir) / "sky.ktx2").string());
+    const bool compressed = asset.compression == DistanceCompression::Bc6h;
+    if (compressed) checkCompressedComposite(asset, files[0]);
 
     writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
         json layers = json::array();
@@ -294,34 +189,46 @@ void writeDistanceProbe(const DistanceProbeAsset& baked, const std::string& dir,
             throwIfCancelled(dir); // a signal between files wins; nothing is committed
             const DistanceProbeLayer& L = asset.layers[i];
             const std::string name = layerFileName(i);
-            const std::string path = (tmp / name).string();
-            writeKtx2(path, Ktx2Texture{.cube = true,
-                                        .halfFloat = i > 0 && halfObjectLayers,
-                                        .levels = {stackFaces(L.faces)}});
-            layers.push_back({{"name", L.name},
-                              {"order", i},
-                              {"objects", L.objects},
-                              {"avg_distance", L.avgDistance},
-                              {"min_distance", L.minDistance},
-                              {"max_distance", L.maxDistance},
-                              {"solid_angle_sr", L.solidAngle},
-                              {"box_min", vec3Json(L.boxMin)},
-                              {"box_max", vec3Json(L.boxMax)},
-                              {"method", L.method},
-                              {"file", name},
-                              {"checksum", fileChecksum(path)}});
+            json stored;
+            if (i == 0 && compressed) {
+                stored = writeCompressedComposite(asset, tmp, name);
+            } else {
+                const std::string path = (tmp / name).string();
+                writeKtx2(path, Ktx2Texture{.cube = true,
+                                            .halfFloat = i > 0 && halfObjectLayers,
+                                            .levels = {stackFaces(L.faces)}});
+                stored = {{"file", name}, {"checksum", fileChecksum(path)}};
+            }
+            json layer = {{"name", L.name},
+                          {"order", i},
+                          {"objects", L.objects},
+                          {"avg_distance", L.avgDistance},
+                          {"min_distance", L.minDistance},
+                          {"max_distance", L.maxDistance},
+                          {"solid_angle_sr", L.solidAngle},
+                          {"box_min", vec3Json(L.boxMin)},
+                          {"box_max", vec3Json(L.boxMax)},
+                          {"method", L.method}};
+            layer.update(stored);
+            layers.push_back(std::move(layer));
         }
-        json manifest = probeManifestHeader("distance", sourceScene);
-        manifest.update({
-            {"centre", vec3Json(asset.centre)},
-            {"range_D", asset.range},
-            {"d_inf", asset.dInf},
-            {"face_res", asset.faceRes},
-            {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
-            {"face_layout", "KTX2 cube map (faceCount 6, RGBA: float32 for the composite, half "
-                            "floats for object layers that fit), faces +X -X +Y -Y +Z -Z, RGB "
-                            "radiance, A distance from the centre"},
-            {"layers", layers}});
+        json manifest = probeManifestHeader("distance", sourceScene, compressed);
+        if (compressed) manifest["compression"] = "bc6h";
+        manifest.update(
+            {{"centre", vec3Json(asset.centre)},
+             {"range_D", asset.range},
+             {"d_inf", asset.dInf},
+             {"face_res", asset.faceRes},
+             {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
+             {"face_layout", compressed ? "KTX2 cube maps (faceCount 6), faces +X -X +Y -Y +Z "
+                                          "-Z: the composite's radiance BC6H, its distance "
+                                          "from the centre R16F or R32F beside it; object "
+                                          "layers RGBA (half floats where they fit)"
+                                        : "KTX2 cube map (faceCount 6, RGBA: float32 for the "
+                                          "composite, half floats for object layers that fit), "
+                                          "faces +X -X +Y -Y +Z -Z, RGB radiance, A distance "
+                                          "from the centre"},
+             {"layers", layers}});
         if (!asset.effectPlan.empty()) manifest["effect_plan"] = json::parse(asset.effectPlan);
         if (!asset.glossyLevels.empty()) manifest["glossy"] = writeGlossyLevels(asset, tmp, dir);
         if (!asset.sky.empty()) {
@@ -339,10 +246,20 @@ DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {
 
 DistanceProbeAsset readDistanceProbe(const ProbeManifest& manifest) {
     const ManifestFields r{manifest.path};
-    r.expectFlavour(manifest.json, "distance");
+    const FormatVersion version = r.expectFlavour(manifest.json, "distance");
     const std::string& manifestPath = manifest.path;
     const json& m = manifest.json;
     const fs::path dir = fs::path(manifestPath).parent_path();
+    bool compressed = false;
+    if (m.contains("compression")) {
+        if (r.string(m, "compression", "") != "bc6h")
+            throw Error(manifestPath, "compression", "expected \"bc6h\" (or no member)");
+        if (version.major < 3)
+            throw Error(manifestPath, "compression",
+                        "needs asset format 3.0 or newer; the manifest states " +
+                            std::to_string(version.major) + "." + std::to_string(version.minor));
+        compressed = true;
+    }
 
     DistanceProbeAsset a;
     a.manifestPath = manifestPath;
@@ -391,6 +308,12 @@ DistanceProbeAsset readDistanceProbe(const ProbeManifest& manifest) {
         }));
         // The manifest's face_res is the size the header must declare, checked before the
         // pixels are allocated (a forged header could otherwise ask for gigabytes).
+        if (i == 0 && compressed) {
+            L.faces = readCompressedComposite(r, j, path, dir, file, a);
+            a.layers.push_back(std::move(L));
+            files.push_back(file);
+            continue;
+        }
         const Image stacked = readKtx2Cube(file, a.faceRes);
         if (stacked.width != a.faceRes || stacked.height != 6 * a.faceRes || stacked.channels < 4)
             throw Error(file, "size",

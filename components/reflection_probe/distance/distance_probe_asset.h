@@ -38,6 +38,12 @@ struct DistanceProbeLayer {
     std::string checksum; // "fnv1a64:<hex>" of the file's bytes
 };
 
+// How a probe's composite (layer 0) is stored (docs/formats.md). None: one RGBA float cube.
+// Bc6h (`specula-cook bake --compress bc6h`, asset format 3.0): its radiance as BC6H blocks,
+// its distance in a one-channel cube of its own (half floats when they hold every distance
+// within the lookup's tolerance, distance_compression.h, else float32).
+enum class DistanceCompression { None, Bc6h };
+
 struct DistanceProbeAsset {
     std::string manifestPath; // where it was read from (names it in errors); empty if cooked
     glm::vec3 centre{0.f};
@@ -59,6 +65,13 @@ struct DistanceProbeAsset {
     // layer's), listed in the manifest's "glossy": {"levels": [{"file", "checksum",
     // "roughness"}, ...]} (absent when empty).
     std::vector<std::array<Image, 6>> glossyLevels;
+    // Bc6h: layers[0].faces hold the decoded radiance and the stored distances (what the GPU
+    // samples and the CPU twin reads), `compositeBlocks` the blocks as stored (six faces in
+    // order, a face's blocks row by row: what the GPU upload copies), and
+    // `halfCompositeDistance` whether the distances are half floats.
+    DistanceCompression compression = DistanceCompression::None;
+    std::vector<std::uint8_t> compositeBlocks;
+    bool halfCompositeDistance = false;
 
     int objectLayerCount() const { return int(layers.size()) - 1; }
 };

@@ -1,6 +1,7 @@
 #include "distance_textures.h"
 
 #include "engine/core/error.h"
+#include "engine/image/bc6h.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -11,15 +12,70 @@
 
 namespace specula {
 
-gpu::Texture createCubeArray(int faceRes, int cubes) {
+namespace {
+
+// An array of `cubes` x 6 faces in `format`, bilinear, clamped at the face edges.
+gpu::Texture createFaceArray(GLenum format, int faceRes, int cubes) {
     gpu::Texture array = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
     const GLuint tex = array.id();
-    glTextureStorage3D(tex, 1, GL_RGBA32F, faceRes, faceRes, 6 * cubes);
+    glTextureStorage3D(tex, 1, format, faceRes, faceRes, 6 * cubes);
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return array;
+}
+
+} // namespace
+
+gpu::Texture createCubeArray(int faceRes, int cubes) {
+    return createFaceArray(GL_RGBA32F, faceRes, cubes);
+}
+
+gpu::Texture createCompressedCubeArray(int faceRes, int cubes) {
+    return createFaceArray(GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT, faceRes, cubes);
+}
+
+void uploadCompressedCube(const gpu::Texture& array, int cube,
+                          const std::vector<std::uint8_t>& blocks) {
+    GLint n = 0;
+    glGetTextureLevelParameteriv(array.id(), 0, GL_TEXTURE_WIDTH, &n);
+    const std::size_t faceBytes = bc6hBytes(n, n);
+    if (blocks.size() != 6 * faceBytes)
+        throw Error("", "blocks",
+                    "a compressed cube of " + std::to_string(n) + " needs " +
+                        std::to_string(6 * faceBytes) + " bytes, got " +
+                        std::to_string(blocks.size()));
+    glCompressedTextureSubImage3D(array.id(), 0, 0, 0, 6 * cube, n, n, 6,
+                                  GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT, GLsizei(blocks.size()),
+                                  blocks.data());
+}
+
+gpu::Texture createDistanceArray(int faceRes, int cubes, bool half) {
+    return createFaceArray(half ? GL_R16F : GL_R32F, faceRes, cubes);
+}
+
+void uploadDistance(const gpu::Texture& array, int cube, const DistanceProbeLayer& layer,
+                    bool half) {
+    for (int f = 0; f < 6; ++f) {
+        const Image& face = layer.faces[std::size_t(f)];
+        const std::size_t texels = std::size_t(face.width) * std::size_t(face.height);
+        // Converted here, not by the driver, as the half atlas is: the texture then holds
+        // exactly the values the CPU twin reads.
+        std::vector<float> d(texels);
+        for (std::size_t t = 0; t < texels; ++t)
+            d[t] = face.pixels[t * std::size_t(face.channels) + 3];
+        if (half) {
+            std::vector<std::uint16_t> bits(texels);
+            for (std::size_t t = 0; t < texels; ++t)
+                bits[t] = glm::packHalf1x16(d[t]);
+            glTextureSubImage3D(array.id(), 0, 0, 0, 6 * cube + f, face.width, face.height, 1,
+                                GL_RED, GL_HALF_FLOAT, bits.data());
+        } else {
+            glTextureSubImage3D(array.id(), 0, 0, 0, 6 * cube + f, face.width, face.height, 1,
+                                GL_RED, GL_FLOAT, d.data());
+        }
+    }
 }
 
 void uploadCube(const gpu::Texture& array, int cube, const DistanceProbeLayer& layer) {

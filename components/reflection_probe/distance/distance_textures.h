@@ -9,6 +9,7 @@
 #include "engine/image/ggx_prefilter.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace specula {
@@ -18,6 +19,15 @@ gpu::Texture createCubeArray(int faceRes, int cubes);
 // Writes `layer`'s six faces into array layers 6 cube .. 6 cube + 5.
 void uploadCube(const gpu::Texture& array, int cube, const DistanceProbeLayer& layer);
 std::size_t cubeArrayBytes(int faceRes, int cubes);
+// A compressed composite (DistanceCompression::Bc6h): its radiance as a BC6H array
+// (GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT) uploaded from the blocks as stored, and its distances
+// as an R16F (`half`) or R32F array of the same layout, both bilinear and clamped.
+gpu::Texture createCompressedCubeArray(int faceRes, int cubes);
+void uploadCompressedCube(const gpu::Texture& array, int cube,
+                          const std::vector<std::uint8_t>& blocks);
+gpu::Texture createDistanceArray(int faceRes, int cubes, bool half);
+void uploadDistance(const gpu::Texture& array, int cube, const DistanceProbeLayer& layer,
+                    bool half);
 
 // The object layers' tiles on the GPU (shaders/distance_probe_gpu.glsl, LAYER_TILES): the
 // atlas as an RGBA32F or RGBA16F 2D array of `pages` layers, bilinear and clamped, and the

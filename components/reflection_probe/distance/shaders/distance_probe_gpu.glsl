@@ -14,8 +14,35 @@
 #define LAYER_TILES 0
 #endif
 
+// COMPRESSED_COMPOSITE = 1 (a probe cooked with --compress bc6h): uLayers holds radiance
+// alone, as BC6H blocks, and uLayerDistance (R16F or R32F) the distances of the same texels.
+#ifndef COMPRESSED_COMPOSITE
+#define COMPRESSED_COMPOSITE 0
+#endif
+
 // Faces of layer L are array layers 6L .. 6L+5; RGB radiance, A distance.
 uniform sampler2DArray uLayers;
+#if COMPRESSED_COMPOSITE
+uniform sampler2DArray uLayerDistance;
+#endif
+
+// The distance stored at texel t (x, y, array layer) of uLayers, and the 2 x 2 a bilinear
+// fetch at uvw weighs.
+float layerDistanceTexel(ivec3 t) {
+#if COMPRESSED_COMPOSITE
+    return texelFetch(uLayerDistance, t, 0).r;
+#else
+    return texelFetch(uLayers, t, 0).a;
+#endif
+}
+
+vec4 layerDistanceGather(vec3 uvw) {
+#if COMPRESSED_COMPOSITE
+    return textureGather(uLayerDistance, uvw, 0);
+#else
+    return textureGather(uLayers, uvw, 3);
+#endif
+}
 
 layout(std140, binding = kDistanceParamsBinding) uniform DistanceParamsUniforms {
     DistanceParamsBlock uDistance;
@@ -53,7 +80,7 @@ float fetchDistance(int layer, vec3 dir) {
         return texelFetch(uTileAtlas, ivec3(o.xy + texel - tile * uTileGrid.x + 1, o.z), 0).a;
     }
 #endif
-    return texelFetch(uLayers, ivec3(texel, layer * 6 + int(f.z)), 0).a;
+    return layerDistanceTexel(ivec3(texel, layer * 6 + int(f.z)));
 }
 
 // The 2 x 2 stored distances a bilinear fetch at dir weighs (distance_seen.glsl.h).
@@ -62,7 +89,7 @@ vec4 fetchDistanceGather(int layer, vec3 dir) {
 #if LAYER_TILES
     if (layer > 0) return textureGather(uTileAtlas, tileAtlasUv(layer, f), 3);
 #endif
-    return textureGather(uLayers, vec3(f.xy, float(layer * 6) + f.z), 3);
+    return layerDistanceGather(vec3(f.xy, float(layer * 6) + f.z));
 }
 
 vec3 fetchRadiance(int layer, vec3 dir) {
