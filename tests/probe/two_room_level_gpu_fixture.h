@@ -25,14 +25,15 @@ protected:
         context_ = nullptr;
     }
 
-    // The level's index file.
-    std::string bake(ProbeRoom& room) {
+    // The level's index file; `compression` for every probe.
+    std::string bake(ProbeRoom& room, DistanceCompression compression = DistanceCompression::None) {
         LevelCookOptions o;
         o.cook.scene = kTwoRoomsScene;
         o.cook.out = (root_ / "level").string();
         DistanceCookSettings d;
         d.faceRes = 64;
         d.planned = false;
+        d.compression = compression;
         o.cook.flavour = d;
         o.cook.progress = false;
         return cookLevel(room.probeScene(), o, nullptr).index;

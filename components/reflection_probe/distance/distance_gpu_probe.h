@@ -34,8 +34,9 @@ std::vector<std::string> distanceDefines(std::uint32_t features, bool roughnessM
 
 // Texture units and the uniform-buffer binding point the lookup reads from.
 struct DistanceBindings {
+    // (7 is the roughness map's, kRoughnessMapUnit.)
     GLuint layers = 1, sky = 2, chain = 3, ggxAlbedo = 4, tileAtlas = 5, tileTable = 6,
-           layerDistance = 7;
+           layerDistance = 8;
     GLuint params = GLuint(glsl::kDistanceParamsBinding); // the block's declared binding
 };
 

@@ -47,6 +47,8 @@ std::vector<std::string> distanceLevelDefines(std::uint32_t features, int k, Lev
                                               bool roughnessMap) {
     std::vector<std::string> defines = distanceFeatureDefines(features, roughnessMap);
     defines.push_back("HAS_LAYERS=0"); // every probe looks up its composite
+    defines.push_back(std::string("COMPRESSED_COMPOSITE=") +
+                      ((features & kFeatureCompressedComposite) ? "1" : "0"));
     defines.push_back("LEVEL_K=" + std::to_string(k));
     defines.push_back("LEVEL_BLEND=" + std::to_string(int(blend)));
     return defines;
@@ -78,9 +80,27 @@ DistanceLevelGpu DistanceLevelGpu::load(const std::string& path, const LevelInde
         g.assets.push_back(read((dir / e.folder / "manifest.json").string()));
         checkLevelFaceRes(g.assets.back()->faceRes, g.assets.front()->faceRes, path, i);
     }
-    g.composites = createCubeArray(g.assets.front()->faceRes, int(g.assets.size()));
-    for (std::size_t i = 0; i < g.assets.size(); ++i)
-        uploadCube(g.composites, int(i), g.assets[i]->layers.front());
+    const int n = g.assets.front()->faceRes, probes = int(g.assets.size());
+    bool half = true;
+    g.compressed = true;
+    for (const auto& a : g.assets) {
+        g.compressed = g.compressed && a->compression == DistanceCompression::Bc6h;
+        half = half && a->halfCompositeDistance;
+    }
+    if (g.compressed) {
+        g.halfDistances = half;
+        g.composites = createCompressedCubeArray(n, probes);
+        g.distances = createDistanceArray(n, probes, half);
+        for (int i = 0; i < probes; ++i) {
+            uploadCompressedCube(g.composites, i, g.assets[std::size_t(i)]->compositeBlocks);
+            uploadDistance(g.distances, i, g.assets[std::size_t(i)]->layers.front(), half);
+        }
+    } else {
+        // Probes of both kinds: the compressed ones' decoded values, as their twins read.
+        g.composites = createCubeArray(n, probes);
+        for (int i = 0; i < probes; ++i)
+            uploadCube(g.composites, i, g.assets[std::size_t(i)]->layers.front());
+    }
     // The level is baked under one sky: the first probe's.
     if (!g.assets.front()->sky.empty()) g.sky = uploadSkyTexture(g.assets.front()->sky);
     return g;
@@ -93,8 +113,9 @@ void DistanceLevelGpu::applySettings(const DistanceLevel& settings) {
     for (std::size_t i = 0; i < assets.size(); ++i) {
         const DistanceLookupConfig c = makeLookupConfig(settings.lookup, *assets[i]);
         block.probes[i] = levelProbeParams(volumes[i], c);
-        // The level's composites are one float array whatever each probe stores.
+        // One array holds every probe's composite: compressed only when all are.
         features = c.features & ~kFeatureCompressedComposite;
+        if (compressed) features |= kFeatureCompressedComposite;
     }
     methodFeature = features;
     params.upload(block);
@@ -126,8 +147,12 @@ void DistanceLevelGpu::setChains(std::vector<std::shared_ptr<const CubeChain>> m
 
 std::size_t DistanceLevelGpu::gpuBytes() const {
     const DistanceProbeAsset& a = *assets.front();
-    return cubeArrayBytes(a.faceRes, int(assets.size())) +
-           (a.sky.empty() ? 0 : skyTextureBytes(a.sky)) +
+    std::size_t composite = cubeArrayBytes(a.faceRes, int(assets.size()));
+    if (compressed) {
+        const std::size_t texels = std::size_t(a.faceRes) * std::size_t(a.faceRes) * 6;
+        composite = (a.compositeBlocks.size() + texels * (halfDistances ? 2 : 4)) * assets.size();
+    }
+    return composite + (a.sky.empty() ? 0 : skyTextureBytes(a.sky)) +
            (chains.empty() ? 0 : chains.size() * chainArrayBytes(*chains.front()));
 }
 
@@ -143,6 +168,7 @@ void DistanceLevelGpu::bindTo(GLuint program, const DistanceLevelBindings& b,
                               const std::vector<GLint>& candidates, bool glossy,
                               const gpu::Texture* ggxAlbedo) const {
     bindSampler(program, "uLevelLayers", b.layers, composites.id());
+    if (compressed) bindSampler(program, "uLevelDistances", b.distances, distances.id());
     bindSampler(program, "uSky", b.sky, sky.id());
     setIntUniform(program, "uHasSky", sky.id() != 0 ? 1 : 0);
     setIntUniform(program, "uProbeCount", int(volumes.size()));

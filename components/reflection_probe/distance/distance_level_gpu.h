@@ -28,14 +28,14 @@ namespace glsl {
 // kMaxLevelProbes, and GL_MAX_ARRAY_TEXTURE_LAYERS / 6.
 int maxLevelProbes();
 
-// The permutation defines of a level variant: the method's bit, HAS_GLOSSY, HAS_FRESNEL
-// (features), HAS_ROUGHNESS_MAP, LEVEL_K and LEVEL_BLEND.
+// The permutation defines of a level variant: the method's bit, HAS_GLOSSY, HAS_FRESNEL,
+// COMPRESSED_COMPOSITE (features), HAS_ROUGHNESS_MAP, LEVEL_K and LEVEL_BLEND.
 std::vector<std::string> distanceLevelDefines(std::uint32_t features, int k, LevelBlend blend,
                                               bool roughnessMap);
 
 // Texture units and the uniform-buffer binding point the level's lookups read from.
 struct DistanceLevelBindings {
-    GLuint layers = 1, sky = 2, chains = 3, ggxAlbedo = 4;
+    GLuint layers = 1, sky = 2, chains = 3, ggxAlbedo = 4, distances = 5;
     GLuint params = GLuint(glsl::kLevelParamsBinding); // the block's declared binding
 };
 
@@ -48,6 +48,11 @@ struct DistanceLevelGpu {
     std::vector<ProbeVolume> volumes; // blend order (probe_volume.h blendsBefore)
     std::vector<std::shared_ptr<const DistanceProbeAsset>> assets; // (the same order)
     gpu::Texture composites; // probe i's faces are layers 6i .. 6i+5
+    // When every probe is compressed (DistanceCompression::Bc6h): `composites` holds their
+    // radiance as BC6H and `distances` their distances (R16F when every probe's are halves,
+    // else R32F), read by the COMPRESSED_COMPOSITE permutation. Otherwise RGBA32F composites.
+    bool compressed = false, halfDistances = false;
+    gpu::Texture distances;
     gpu::Texture sky;
     gpu::UniformBuffer<glsl::LevelParamsBlock> params;
     std::uint32_t methodFeature = 0; // the permutation bit of the settings' method

@@ -10,7 +10,16 @@
 #include "components/reflection_probe/shaders/probe_influence.glsl.h"
 #include "components/reflection_probe/distance/shaders/distance_level_params.glsl.h"
 
+// COMPRESSED_COMPOSITE = 1 (every probe cooked with --compress bc6h): uLevelLayers holds the
+// radiance as BC6H blocks, uLevelDistances (R16F or R32F) the distances of the same texels.
+#ifndef COMPRESSED_COMPOSITE
+#define COMPRESSED_COMPOSITE 0
+#endif
+
 uniform sampler2DArray uLevelLayers;
+#if COMPRESSED_COMPOSITE
+uniform sampler2DArray uLevelDistances;
+#endif
 layout(std140, binding = kLevelParamsBinding) uniform LevelParamsUniforms {
     LevelParamsBlock uLevel;
 };
@@ -26,12 +35,20 @@ float fetchDistance(int layer, vec3 dir) {
     int faceRes = uLevel.probes[gProbe].lookup.faceRes;
     vec3 f = cubeFaceUv(dir);
     ivec2 texel = min(ivec2(f.xy * float(faceRes)), ivec2(faceRes - 1));
+#if COMPRESSED_COMPOSITE
+    return texelFetch(uLevelDistances, ivec3(texel, probeLayer(f)), 0).r;
+#else
     return texelFetch(uLevelLayers, ivec3(texel, probeLayer(f)), 0).a;
+#endif
 }
 
 vec4 fetchDistanceGather(int layer, vec3 dir) {
     vec3 f = cubeFaceUv(dir);
+#if COMPRESSED_COMPOSITE
+    return textureGather(uLevelDistances, vec3(f.xy, float(probeLayer(f))), 0);
+#else
     return textureGather(uLevelLayers, vec3(f.xy, float(probeLayer(f))), 3);
+#endif
 }
 
 vec3 fetchRadiance(int layer, vec3 dir) {
