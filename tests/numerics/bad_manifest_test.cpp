@@ -68,7 +68,7 @@ TEST_F(BadManifest, GoodOneReads) {
 }
 
 TEST_F(BadManifest, EveryMalformedFieldIsNamed) {
-    expectRefused([](json& m) { m["format"]["major"] = 3; }, "format.major");
+    expectRefused([](json& m) { m["format"]["major"] = 4; }, "format.major"); // newer than 3.x
     expectRefused([](json& m) { m["format"]["major"] = 1; }, "format.major"); // EXR: re-cook
     expectRefused([](json& m) { m["format"]["minor"] = 1.5; }, "format.minor");
     expectRefused([](json& m) { m["format"]["major"] = "2"; }, "format.major");
@@ -77,7 +77,7 @@ TEST_F(BadManifest, EveryMalformedFieldIsNamed) {
     expectRefused([](json& m) { m["format"] = "other"; }, "format");
     // Before 2.1: "format" a string and an integer "version" (the major).
     expectRefused([](json& m) { m["format"] = "specula-probe", m["version"] = 1; }, "version");
-    expectRefused([](json& m) { m["format"] = "specula-probe", m["version"] = 3; }, "version");
+    expectRefused([](json& m) { m["format"] = "specula-probe", m["version"] = 4; }, "version");
     expectRefused([](json& m) { m["format"] = "specula-probe"; }, "version");
     expectRefused([](json& m) { m["flavour"] = 3; }, "flavour");
     expectRefused([](json& m) { m["range_D"] = "far"; }, "range_D");

@@ -77,10 +77,10 @@ TEST_F(CookApi, RefusesAFolderItMayNotReplaceBeforeOpeningTheScene) {
 
 TEST_F(CookApi, ManifestFactsRefuseAnotherFormatVersionNamingTheField) {
     const fs::path m = root_ / "manifest.json";
-    std::ofstream(m) << R"({"format": "specula-probe", "version": 3, "flavour": "distance"})";
+    std::ofstream(m) << R"({"format": "specula-probe", "version": 4, "flavour": "distance"})";
     try {
         readCookedProbeFacts(m.string());
-        FAIL() << "expected version 3 to be refused";
+        FAIL() << "expected version 4 (newer than the runtime's 3.x) to be refused";
     } catch (const Error& e) {
         EXPECT_EQ(e.file(), m.string());
         EXPECT_EQ(e.field(), "version");
