@@ -4,6 +4,7 @@
 // decoded blocks, the stored distances); the half-or-float distance rule is the closed form
 // of distance_compression.h; damaged or inconsistent files are refused naming the field.
 #include "components/reflection_probe/distance/distance_compression.h"
+#include "components/reflection_probe/distance/distance_glossy_chain.h"
 #include "components/reflection_probe/distance/distance_gpu_probe.h"
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "components/reflection_probe/distance/distance_probe.h"
@@ -110,6 +111,78 @@ TEST_F(CompressedProbe, ReadsBackExactlyWhatWasCompressedInFormatThree) {
     EXPECT_EQ(distance.levels[0].channels, 1);
     const int n = back.faceRes;
     EXPECT_EQ(compositeBytes(back), 6 * (bc6hBytes(n, n) + std::size_t(n * n) * 2));
+}
+
+// The committed probe with the GGX chain the bake would cook (glossyChainOf prefilters the
+// float composite, as the bake does before it compresses), then compressed.
+DistanceProbeAsset compressedWithGlossy(const DistanceProbeAsset& original) {
+    DistanceProbeAsset a = original;
+    CubeChain chain = glossyChainOf(a);
+    a.glossyLevels.assign(chain.levels.begin() + 1, chain.levels.end());
+    compressComposite(a);
+    return a;
+}
+
+TEST_F(CompressedProbe, GlossyLevelsAreStoredAsBc6hAndReadBackExactly) {
+    const DistanceProbeAsset glossy = compressedWithGlossy(original_);
+    ASSERT_GE(glossy.glossyLevels.size(), 2u);
+    ASSERT_EQ(glossy.glossyBlocks.size(), glossy.glossyLevels.size());
+    std::size_t blockBytes = 0;
+    for (std::size_t k = 0; k < glossy.glossyLevels.size(); ++k) {
+        const int n = glossy.glossyLevels[k][0].width;
+        EXPECT_EQ(glossy.glossyBlocks[k].size(), 6 * bc6hBytes(n, n)) << "level " << k + 1;
+        blockBytes += glossy.glossyBlocks[k].size();
+    }
+    EXPECT_EQ(compressedGlossyBytes(glossy), blockBytes);
+    writeDistanceProbe(glossy, dir_.string(), "scene.gltf");
+    const DistanceProbeAsset back = readDistanceProbe(manifest());
+    EXPECT_EQ(back.glossyBlocks, glossy.glossyBlocks);
+    ASSERT_EQ(back.glossyLevels.size(), glossy.glossyLevels.size());
+    for (std::size_t k = 0; k < back.glossyLevels.size(); ++k) {
+        // The file holds the blocks alone: RGB is their decoding, A the nearest composite
+        // distance under each texel, bit for bit what compressComposite left in memory.
+        EXPECT_TRUE(
+            readKtx2((dir_ / ("layer_00_ggx_" + std::to_string(k + 1) + ".ktx2")).string()).bc6h)
+            << "level " << k + 1;
+        for (int f = 0; f < 6; ++f)
+            EXPECT_TRUE(sameBits(back.glossyLevels[k][std::size_t(f)].pixels,
+                                 glossy.glossyLevels[k][std::size_t(f)].pixels))
+                << "level " << k + 1 << " face " << f;
+    }
+    // What the blocks hold is the float level's radiance within the codec's error.
+    DistanceProbeAsset floatGlossy = original_;
+    const CubeChain chain = glossyChainOf(floatGlossy);
+    double sumSq = 0.0, sum = 0.0;
+    long count = 0;
+    for (std::size_t k = 0; k < back.glossyLevels.size(); ++k)
+        for (int f = 0; f < 6; ++f) {
+            const Image& want = chain.levels[k + 1][std::size_t(f)];
+            const Image& got = back.glossyLevels[k][std::size_t(f)];
+            for (std::size_t t = 0; t < want.pixels.size(); t += 4)
+                for (std::size_t c = 0; c < 3; ++c) {
+                    const double e = double(got.pixels[t + c]) - want.pixels[t + c];
+                    sumSq += e * e, sum += want.pixels[t + c], ++count;
+                }
+        }
+    const double rmse = std::sqrt(sumSq / double(count)), mean = sum / double(count);
+    EXPECT_LT(rmse, 0.05 * mean) << "rmse " << rmse << " of mean radiance " << mean;
+}
+
+TEST_F(CompressedProbe, TheWriterRefusesGlossyBlocksThatDoNotHoldTheLevelAndWritesNothing) {
+    DistanceProbeAsset glossy = compressedWithGlossy(original_);
+    glossy.glossyLevels[0][4].at(0, 0)[1] += 0.5f;
+    try {
+        writeDistanceProbe(glossy, dir_.string(), "scene.gltf");
+        FAIL() << "written";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.field(), "radiance");
+        EXPECT_NE(std::string(e.what()).find("layer_00_ggx_1.ktx2"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir_));
+    glossy = compressedWithGlossy(original_);
+    glossy.glossyBlocks.pop_back();
+    EXPECT_THROW(writeDistanceProbe(glossy, dir_.string(), "scene.gltf"), Error);
+    EXPECT_FALSE(fs::exists(dir_));
 }
 
 TEST_F(CompressedProbe, CompressionKeepsRadianceCloseAndDistancesWithinHalfAStep) {

@@ -6,6 +6,7 @@
 // now, and the two are compared on the mirror pixels of `mask`.
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "components/reflection_probe/distance/system/distance_store.h"
+#include "engine/image/ggx_albedo.h"
 #include "support/probe_room.h"
 
 #include <algorithm>
@@ -54,6 +55,20 @@ PixelAgreement agreeByPixel(const Image& colour, const Image& pos, const Image& 
             if (err < tolerance) ++a.close;
         }
     return a;
+}
+
+// The glossy shader's colour over the GGX albedo E(|n.v|, roughness) it multiplied in (|n.v|
+// from the OUTPUT 3 frame `nv`, E from the C++ table) on the pixels of `mask`: the prefiltered
+// lighting a glossy twin returns. A shader that applied another E, or none, stays off by it.
+inline Image withoutGgxAlbedo(const Image& colour, const Image& nv, const Image& mask,
+                              float roughness) {
+    Image out = colour;
+    for (int y = 0; y < mask.height; ++y)
+        for (int x = 0; x < mask.width; ++x)
+            if (mask.at(x, y)[0] >= 0.5f)
+                for (int c = 0; c < 3; ++c)
+                    out.at(x, y)[c] = colour.at(x, y)[c] / ggxAlbedo(nv.at(x, y)[0], roughness);
+    return out;
 }
 
 inline TwinAgreement compareWithTwin(RoomRenderer& renderer, const ProbeRoom& scene,

@@ -25,8 +25,9 @@ protected:
         context_ = nullptr;
     }
 
-    // The level's index file; `compression` for every probe.
-    std::string bake(ProbeRoom& room, DistanceCompression compression = DistanceCompression::None) {
+    // The level's index file; `compression` and `glossy` for every probe.
+    std::string bake(ProbeRoom& room, DistanceCompression compression = DistanceCompression::None,
+                     GlossyBake glossy = GlossyBake::Auto) {
         LevelCookOptions o;
         o.cook.scene = kTwoRoomsScene;
         o.cook.out = (root_ / "level").string();
@@ -34,6 +35,7 @@ protected:
         d.faceRes = 64;
         d.planned = false;
         d.compression = compression;
+        d.glossy = glossy;
         o.cook.flavour = d;
         o.cook.progress = false;
         return cookLevel(room.probeScene(), o, nullptr).index;

@@ -80,9 +80,11 @@ void readGlossyLevels(const ManifestFields& r, const nlohmann::json& glossy,
 
 // --- a compressed composite (distance_compressed_asset.cpp) ----------------------------------
 
-// That a Bc6h asset's blocks decode to exactly its composite's radiance, and its distances are
-// half floats when it says so: what the writer checks before writing (errors name `file`).
-void checkCompressedComposite(const DistanceProbeAsset& a, const std::string& file);
+// That a Bc6h asset's blocks decode to exactly its composite's radiance (and its glossy
+// levels'), and its distances are half floats when it says so: what the writer checks before
+// writing (errors name `file`, the composite's, or glossyFiles[k], glossy level k + 1's).
+void checkCompressedComposite(const DistanceProbeAsset& a, const std::string& file,
+                              const std::vector<std::string>& glossyFiles);
 
 // Writes the composite's BC6H radiance as `name` in `tmp` and its distance beside it
 // (name_distance.ktx2); returns the layer's "file", "checksum" and "distance" members.

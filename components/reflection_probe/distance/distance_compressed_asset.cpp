@@ -34,20 +34,23 @@ Image stackedDistance(const std::array<Image, 6>& faces) {
 
 } // namespace
 
-void checkCompressedComposite(const DistanceProbeAsset& a, const std::string& file) {
-    const DistanceProbeLayer& composite = a.layers.at(0);
-    const int n = a.faceRes;
+namespace {
+
+// That `blocks` decode to exactly the faces' RGB, and (`halfDistance`) their A are halves.
+void checkBlocks(const std::array<Image, 6>& faces, const std::vector<std::uint8_t>& stored,
+                 bool halfDistance, const std::string& file) {
+    const int n = faces[0].width;
     const std::size_t faceBytes = bc6hBytes(n, n);
-    if (a.compositeBlocks.size() != 6 * faceBytes)
+    if (stored.size() != 6 * faceBytes)
         throw Error(file, "blocks",
-                    "holds " + std::to_string(a.compositeBlocks.size()) + " bytes of BC6H, " +
+                    "holds " + std::to_string(stored.size()) + " bytes of BC6H, " +
                         std::to_string(6 * faceBytes) + " expected for six faces of " +
                         std::to_string(n));
-    const std::span<const std::uint8_t> blocks(a.compositeBlocks);
+    const std::span<const std::uint8_t> blocks(stored);
     for (int f = 0; f < 6; ++f) {
         const Image decoded =
             decodeBC6H(blocks.subspan(std::size_t(f) * faceBytes, faceBytes), n, n);
-        const Image& face = composite.faces[std::size_t(f)];
+        const Image& face = faces[std::size_t(f)];
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
                 const float* p = face.at(x, y);
@@ -57,12 +60,25 @@ void checkCompressedComposite(const DistanceProbeAsset& a, const std::string& fi
                                 texelName(f, x, y) +
                                     " differs from its BC6H blocks' decoding (compress with "
                                     "compressComposite)");
-                if (a.halfCompositeDistance && roundToHalf(p[3]) != p[3])
+                if (halfDistance && roundToHalf(p[3]) != p[3])
                     throw Error(file, "distance",
                                 texelName(f, x, y) + " holds " + shortNumber(p[3]) +
                                     ", which no half float holds");
             }
     }
+}
+
+} // namespace
+
+void checkCompressedComposite(const DistanceProbeAsset& a, const std::string& file,
+                              const std::vector<std::string>& glossyFiles) {
+    checkBlocks(a.layers.at(0).faces, a.compositeBlocks, a.halfCompositeDistance, file);
+    if (a.glossyBlocks.size() != a.glossyLevels.size())
+        throw Error(file, "glossy",
+                    std::to_string(a.glossyBlocks.size()) + " levels of BC6H blocks for " +
+                        std::to_string(a.glossyLevels.size()) + " glossy levels");
+    for (std::size_t k = 0; k < a.glossyLevels.size(); ++k)
+        checkBlocks(a.glossyLevels[k], a.glossyBlocks[k], false, glossyFiles.at(k));
 }
 
 json writeCompressedComposite(const DistanceProbeAsset& a, const fs::path& tmp,

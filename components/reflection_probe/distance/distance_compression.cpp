@@ -48,12 +48,14 @@ float cookedLookupTolerance(const DistanceProbeAsset& asset) {
     return DistanceProbe{}.errorTolerance;
 }
 
-void compressComposite(DistanceProbeAsset& asset) {
-    if (asset.compression == DistanceCompression::Bc6h || asset.layers.empty()) return;
-    const bool half = compositeDistanceFitsHalf(asset, cookedLookupTolerance(asset));
-    DistanceProbeLayer& composite = asset.layers[0];
+namespace {
+
+// Each face's radiance encoded to BC6H (the blocks, faces in order, returned) and replaced by
+// its decoding; A rounded to half floats when `half`. A glossy level's A is the nearest of the
+// composite's distances under it: rounded alike (rounding keeps order), it stays exactly that.
+std::vector<std::uint8_t> compressRadiance(std::array<Image, 6>& faces, bool half) {
     std::vector<std::uint8_t> blocks;
-    for (Image& face : composite.faces) {
+    for (Image& face : faces) {
         const std::vector<std::uint8_t> b = encodeBC6H(face);
         const Image radiance = decodeBC6H(b, face.width, face.height);
         blocks.insert(blocks.end(), b.begin(), b.end());
@@ -64,13 +66,19 @@ void compressComposite(DistanceProbeAsset& asset) {
             if (half) p[3] = roundToHalf(p[3]);
         }
     }
-    // A glossy level's A is the nearest of the composite's distances under it: rounded alike
-    // (rounding keeps order), it stays exactly that.
-    if (half)
-        for (std::array<Image, 6>& level : asset.glossyLevels)
-            for (Image& face : level)
-                for (std::size_t i = 3; i < face.pixels.size(); i += std::size_t(face.channels))
-                    face.pixels[i] = roundToHalf(face.pixels[i]);
+    return blocks;
+}
+
+} // namespace
+
+void compressComposite(DistanceProbeAsset& asset) {
+    if (asset.compression == DistanceCompression::Bc6h || asset.layers.empty()) return;
+    const bool half = compositeDistanceFitsHalf(asset, cookedLookupTolerance(asset));
+    DistanceProbeLayer& composite = asset.layers[0];
+    std::vector<std::uint8_t> blocks = compressRadiance(composite.faces, half);
+    std::vector<std::vector<std::uint8_t>> glossyBlocks;
+    for (std::array<Image, 6>& level : asset.glossyLevels)
+        glossyBlocks.push_back(compressRadiance(level, half));
     const DistanceLayerContent c = measureDistanceLayer(composite.faces, asset.dInf, "layer 0");
     composite.minDistance = c.minDistance;
     composite.maxDistance = c.maxDistance;
@@ -79,7 +87,15 @@ void compressComposite(DistanceProbeAsset& asset) {
         composite.avgDistance = std::clamp(composite.avgDistance, c.minDistance, c.maxDistance);
     asset.compression = DistanceCompression::Bc6h;
     asset.compositeBlocks = std::move(blocks);
+    asset.glossyBlocks = std::move(glossyBlocks);
     asset.halfCompositeDistance = half;
+}
+
+std::size_t compressedGlossyBytes(const DistanceProbeAsset& asset) {
+    std::size_t bytes = 0;
+    for (const std::vector<std::uint8_t>& b : asset.glossyBlocks)
+        bytes += b.size();
+    return bytes;
 }
 
 std::size_t compositeBytes(const DistanceProbeAsset& asset) {

@@ -28,8 +28,9 @@ float cookedLookupTolerance(const DistanceProbeAsset& asset);
 
 // Stores the composite as `--compress bc6h` does (DistanceCompression::Bc6h): its radiance
 // encoded to compositeBlocks and replaced by their decoding, its distances rounded to half
-// floats where compositeDistanceFitsHalf(cookedLookupTolerance) holds (the glossy levels'
-// distances with them), and layer 0's figures
+// floats where compositeDistanceFitsHalf(cookedLookupTolerance) holds, the glossy levels'
+// radiance likewise (glossyBlocks; their distances rounded with the composite's), and layer
+// 0's figures
 // (nearest and farthest hit, solid angle) restated from what is stored, as the reader
 // measures them. An asset already compressed is left as it is.
 void compressComposite(DistanceProbeAsset& asset);
@@ -40,5 +41,7 @@ std::size_t cubeBytesRgba16f(int faceRes);
 std::size_t cubeBytesBc6hR16f(int faceRes); // BC6H radiance + R16F distance
 // The composite's bytes as `asset` stores it (RGBA32F, or BC6H plus R16F or R32F distance).
 std::size_t compositeBytes(const DistanceProbeAsset& asset);
+// The compressed glossy levels' blocks, what the GPU holds of them (0 when uncompressed).
+std::size_t compressedGlossyBytes(const DistanceProbeAsset& asset);
 
 } // namespace specula

@@ -45,22 +45,29 @@ void footprintOf(int x, int m, int n, int& lo, int& hi) {
     hi = int(((std::int64_t(x) + 1) * n + m - 1) / m) - 1;
 }
 
-// A glossy level's A holds, per texel, the nearest finite distance of the composite under it
-// (d_inf where it hits nothing there): a level swapped with another probe's fails here.
+// The nearest distance of the composite under texel (x, y) of face f of a level of m texels
+// a side (d_inf where it hits nothing there): what the level's A holds.
+float nearestUnder(const std::array<Image, 6>& composite, int f, int x, int y, int m, float dInf) {
+    const int n = composite[0].width;
+    int x0, x1, y0, y1;
+    footprintOf(x, m, n, x0, x1);
+    footprintOf(y, m, n, y0, y1);
+    float nearest = dInf;
+    for (int sy = y0; sy <= y1; ++sy)
+        for (int sx = x0; sx <= x1; ++sx)
+            nearest = std::min(nearest, composite[std::size_t(f)].at(sx, sy)[3]);
+    return nearest;
+}
+
+// A glossy level's A holds, per texel, the nearest finite distance of the composite under it:
+// a level swapped with another probe's fails here.
 void checkGlossyDistance(const std::array<Image, 6>& level, const std::array<Image, 6>& composite,
                          float dInf, const std::string& file) {
-    const int n = composite[0].width, m = level[0].width;
+    const int m = level[0].width;
     for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < m; ++y) {
-            int y0, y1;
-            footprintOf(y, m, n, y0, y1);
+        for (int y = 0; y < m; ++y)
             for (int x = 0; x < m; ++x) {
-                int x0, x1;
-                footprintOf(x, m, n, x0, x1);
-                float nearest = dInf;
-                for (int sy = y0; sy <= y1; ++sy)
-                    for (int sx = x0; sx <= x1; ++sx)
-                        nearest = std::min(nearest, composite[std::size_t(f)].at(sx, sy)[3]);
+                const float nearest = nearestUnder(composite, f, x, y, m, dInf);
                 const float d = level[std::size_t(f)].at(x, y)[3];
                 if (d != nearest)
                     throw Error(file, "distance",
@@ -70,12 +77,35 @@ void checkGlossyDistance(const std::array<Image, 6>& level, const std::array<Ima
                                     "; expected the min distance over its footprint (a level "
                                     "of another probe?)");
             }
-        }
 }
 
 // Glossy level i (1 ..): the composite's (layer 0's) chain.
 std::string glossyFileName(std::size_t i) {
     return "layer_00_ggx_" + std::to_string(i) + ".ktx2";
+}
+
+// A compressed probe's glossy level: BC6H radiance (its blocks appended to a.glossyBlocks), A
+// the nearest of the composite's distances under each texel, as an uncompressed level stores.
+std::array<Image, 6> readCompressedGlossyLevel(const std::string& file, int n,
+                                               DistanceProbeAsset& a) {
+    Ktx2Texture t = readKtx2(file, {.width = n, .height = n, .faces = 6, .channels = 3});
+    if (!t.bc6h)
+        throw Error(file, "vkFormat",
+                    "expected BC6H blocks: the manifest's compression is \"bc6h\"");
+    const Image& rgb = t.levels[0];
+    std::array<Image, 6> faces;
+    for (int f = 0; f < 6; ++f) {
+        faces[std::size_t(f)] = Image(n, n, 4);
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                float* p = faces[std::size_t(f)].at(x, y);
+                const float* c = rgb.at(x, f * n + y);
+                p[0] = c[0], p[1] = c[1], p[2] = c[2];
+                p[3] = nearestUnder(a.layers[0].faces, f, x, y, n, a.dInf);
+            }
+    }
+    a.glossyBlocks.push_back(std::move(t.blocks[0]));
+    return faces;
 }
 
 } // namespace
@@ -117,7 +147,13 @@ json writeGlossyLevels(const DistanceProbeAsset& asset, const fs::path& tmp,
         throwIfCancelled(dir);
         const std::string name = glossyFileName(k + 1);
         const std::string path = (tmp / name).string();
-        writeKtx2Cube(path, stackFaces(asset.glossyLevels[k]));
+        if (asset.compression == DistanceCompression::Bc6h)
+            writeKtx2(path, Ktx2Texture{.cube = true,
+                                        .bc6h = true,
+                                        .levels = {stackFaces(asset.glossyLevels[k])},
+                                        .blocks = {asset.glossyBlocks.at(k)}});
+        else
+            writeKtx2Cube(path, stackFaces(asset.glossyLevels[k]));
         levels.push_back({{"file", name},
                           {"checksum", fileChecksum(path)},
                           {"roughness", double(k + 1) / double(count)}});
@@ -147,6 +183,10 @@ void readGlossyLevels(const ManifestFields& r, const json& glossy, const fs::pat
         const int n = glossyFaceRes(a.faceRes, k + 1);
         const ManifestFields::CheckedFile file = r.checkedFile(j, path, dir, maxLayerFileBytes(n));
         namedGlossy(k, [&] {
+            if (a.compression == DistanceCompression::Bc6h) {
+                a.glossyLevels.push_back(readCompressedGlossyLevel(file.path, n, a));
+                return;
+            }
             const Image stacked = readKtx2Cube(file.path, n);
             if (stacked.width != n || stacked.height != 6 * n || stacked.channels < 4)
                 throw Error(file.path, "size",

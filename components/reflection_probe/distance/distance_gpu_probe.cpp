@@ -81,7 +81,13 @@ bool DistanceGpuProbe::applySettings(const DistanceProbe& settings) {
 
 void DistanceGpuProbe::setGlossyChain(std::shared_ptr<const CubeChain> chain) const {
     if (glossyChain) return;
-    glossyTexture = uploadChainArray(*chain);
+    // The asset's own chain of a compressed probe goes up as its blocks; a chain prefiltered at
+    // load (an asset without glossy levels) as floats.
+    glossyCompressed = asset->compression == DistanceCompression::Bc6h &&
+                       !asset->glossyBlocks.empty() &&
+                       chain->levels.size() == asset->glossyBlocks.size() + 1;
+    glossyTexture = glossyCompressed ? uploadChainArrays({chain.get()}, {&asset->glossyBlocks})
+                                     : uploadChainArray(*chain);
     glossyChain = std::move(chain);
 }
 
@@ -89,7 +95,7 @@ std::size_t DistanceGpuProbe::gpuBytes() const {
     const DistanceProbeAsset& a = *asset;
     return (layersUploaded > 0 ? compositeBytes(a) : 0) + tileBytes +
            (a.sky.empty() ? 0 : skyTextureBytes(a.sky)) +
-           (glossyChain ? chainArrayBytes(*glossyChain) : 0);
+           (glossyChain ? chainArrayBytes(*glossyChain, glossyCompressed) : 0);
 }
 
 void DistanceGpuProbe::bindTo(GLuint program, const DistanceBindings& b, bool glossy,

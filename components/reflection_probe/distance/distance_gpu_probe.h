@@ -59,6 +59,7 @@ struct DistanceGpuProbe {
     // from hooks that get the probe const).
     mutable std::shared_ptr<const CubeChain> glossyChain;
     mutable gpu::Texture glossyTexture;
+    mutable bool glossyCompressed = false; // glossyTexture holds the asset's BC6H blocks
 
     // The sky's texture; the layers wait for applySettings.
     static DistanceGpuProbe load(std::shared_ptr<const DistanceProbeAsset> stored);

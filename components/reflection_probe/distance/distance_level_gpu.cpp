@@ -139,9 +139,17 @@ std::vector<std::shared_ptr<const CubeChain>> DistanceLevelGpu::makeChains() con
 void DistanceLevelGpu::setChains(std::vector<std::shared_ptr<const CubeChain>> made) const {
     if (!chains.empty()) return;
     std::vector<const CubeChain*> all;
-    for (const auto& c : made)
-        all.push_back(c.get());
-    chainTexture = uploadChainArrays(all);
+    ChainBlocks blocks;
+    for (std::size_t i = 0; i < made.size(); ++i) {
+        all.push_back(made[i].get());
+        blocks.push_back(&assets[i]->glossyBlocks);
+    }
+    // BC6H when every probe's chain is its asset's compressed levels (one array holds all).
+    chainsCompressed = std::all_of(assets.begin(), assets.end(), [&](const auto& a) {
+        return a->compression == DistanceCompression::Bc6h && !a->glossyBlocks.empty() &&
+               a->glossyBlocks.size() + 1 == made.front()->levels.size();
+    });
+    chainTexture = uploadChainArrays(all, chainsCompressed ? blocks : ChainBlocks{});
     chains = std::move(made);
 }
 
@@ -153,7 +161,8 @@ std::size_t DistanceLevelGpu::gpuBytes() const {
         composite = (a.compositeBlocks.size() + texels * (halfDistances ? 2 : 4)) * assets.size();
     }
     return composite + (a.sky.empty() ? 0 : skyTextureBytes(a.sky)) +
-           (chains.empty() ? 0 : chains.size() * chainArrayBytes(*chains.front()));
+           (chains.empty() ? 0
+                           : chains.size() * chainArrayBytes(*chains.front(), chainsCompressed));
 }
 
 std::vector<GLint> DistanceLevelGpu::candidatesFor(const Aabb& bounds) const {

@@ -61,6 +61,7 @@ struct DistanceLevelGpu {
     // makes them from hooks that get the level const).
     mutable std::vector<std::shared_ptr<const CubeChain>> chains;
     mutable gpu::Texture chainTexture;
+    mutable bool chainsCompressed = false; // chainTexture is BC6H (every probe's glossyBlocks)
 
     // The index's probes in blend order, their composites and the sky uploaded. Throws Error
     // naming the index and field: another flavour, no probe, more than maxLevelProbes(),

@@ -181,7 +181,7 @@ void writeDistanceProbe(const DistanceProbeAsset& baked, const std::string& dir,
     checkContent(asset, (fs::path(dir) / "manifest.json").string(), files,
                  glossyFilePaths(asset, dir), (fs::path(dir) / "sky.ktx2").string());
     const bool compressed = asset.compression == DistanceCompression::Bc6h;
-    if (compressed) checkCompressedComposite(asset, files[0]);
+    if (compressed) checkCompressedComposite(asset, files[0], glossyFilePaths(asset, dir));
 
     writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
         json layers = json::array();

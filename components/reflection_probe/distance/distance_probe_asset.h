@@ -69,8 +69,12 @@ struct DistanceProbeAsset {
     // samples and the CPU twin reads), `compositeBlocks` the blocks as stored (six faces in
     // order, a face's blocks row by row: what the GPU upload copies), and
     // `halfCompositeDistance` whether the distances are half floats.
+    // The glossy levels are BC6H too: glossyBlocks[k] level k + 1's blocks (faces in order),
+    // glossyLevels their decoding with A the nearest composite distance under each texel
+    // (derived, as the file stores radiance alone).
     DistanceCompression compression = DistanceCompression::None;
     std::vector<std::uint8_t> compositeBlocks;
+    std::vector<std::vector<std::uint8_t>> glossyBlocks;
     bool halfCompositeDistance = false;
 
     int objectLayerCount() const { return int(layers.size()) - 1; }

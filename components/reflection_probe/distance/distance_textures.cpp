@@ -139,54 +139,15 @@ int chainMips(const CubeChain& chain) {
     return mips;
 }
 
-} // namespace
-
-gpu::Texture uploadChainArray(const CubeChain& chain) {
-    return uploadChainArrays({&chain});
-}
-
-gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains) {
-    if (chains.empty() || chains.front()->levels.size() < 2) return {};
-    const CubeChain& first = *chains.front();
-    // The shader computes level i's size from the composite's (chainFaceRes).
-    const int n = first.levels[0][0].width;
-    for (std::size_t c = 0; c < chains.size(); ++c) {
-        const std::string chain = chains.size() > 1 ? "chain " + std::to_string(c) + " " : "";
-        if (chains[c]->levels.size() != first.levels.size() || chains[c]->levels[0][0].width != n)
-            throw Error("", chain + "levels",
-                        "every chain of one array has chain 0's " +
-                            std::to_string(first.levels.size()) + " levels of " +
-                            std::to_string(n) + "^2 faces");
-        for (std::size_t i = 1; i < first.levels.size(); ++i) {
-            const int want = std::max(1, n >> std::min(int(i), 30));
-            for (int f = 0; f < 6; ++f) {
-                const Image& face = chains[c]->levels[i][std::size_t(f)];
-                if (face.width != want || face.height != want || face.channels != 4)
-                    throw Error("",
-                                chain + "glossy level " + std::to_string(i) + " face " +
-                                    std::to_string(f),
-                                "expected " + std::to_string(want) + "x" + std::to_string(want) +
-                                    " RGBA, got " + std::to_string(face.width) + "x" +
-                                    std::to_string(face.height) + " with " +
-                                    std::to_string(face.channels) + " channels");
-            }
-        }
-    }
-    const int base = first.levels[1][0].width, mips = chainMips(first);
-    const int slots = int(first.levels.size()) - mips; // level i at slot i - 1 - mip
+// The array of `chains` chains shaped as `chain` (level 1's faces as mip 0, its mips,
+// chainArraySlots slots each) in `format`, read by texelFetch only: nearest filters keep it
+// complete at every mip.
+gpu::Texture createChainArray(GLenum format, const CubeChain& chain, int chains) {
+    const int base = chain.levels[1][0].width, mips = chainMips(chain);
+    const int slots = int(chain.levels.size()) - mips;
     gpu::Texture array = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
     const GLuint tex = array.id();
-    glTextureStorage3D(tex, mips, GL_RGBA32F, base, base, 6 * slots * int(chains.size()));
-    for (std::size_t c = 0; c < chains.size(); ++c)
-        for (std::size_t i = 1; i < first.levels.size(); ++i) {
-            const int mip = std::min(int(i) - 1, mips - 1), slot = int(i) - 1 - mip;
-            for (int f = 0; f < 6; ++f) {
-                const Image& face = chains[c]->levels[i][std::size_t(f)];
-                glTextureSubImage3D(tex, mip, 0, 0, 6 * (int(c) * slots + slot) + f, face.width,
-                                    face.height, 1, GL_RGBA, GL_FLOAT, face.pixels.data());
-            }
-        }
-    // Read by texelFetch only; nearest filters keep the texture complete at every mip.
+    glTextureStorage3D(tex, mips, format, base, base, 6 * slots * chains);
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -194,18 +155,100 @@ gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains) {
     return array;
 }
 
+} // namespace
+
+gpu::Texture uploadChainArray(const CubeChain& chain) {
+    return uploadChainArrays({&chain});
+}
+
+namespace {
+
+// That every chain has chain 0's levels, each max(1, n >> i) square RGBA, and (when `blocks`
+// are given) that chain c's level i has 6 faces of BC6H blocks of that size.
+void checkChains(const std::vector<const CubeChain*>& chains, const ChainBlocks& blocks) {
+    const CubeChain& first = *chains.front();
+    // The shader computes level i's size from the composite's (chainFaceRes).
+    const int n = first.levels[0][0].width;
+    if (!blocks.empty() && blocks.size() != chains.size())
+        throw Error("", "glossy blocks",
+                    std::to_string(blocks.size()) + " chains of blocks for " +
+                        std::to_string(chains.size()) + " chains");
+    for (std::size_t c = 0; c < chains.size(); ++c) {
+        const std::string chain = chains.size() > 1 ? "chain " + std::to_string(c) + " " : "";
+        if (chains[c]->levels.size() != first.levels.size() || chains[c]->levels[0][0].width != n)
+            throw Error("", chain + "levels",
+                        "every chain of one array has chain 0's " +
+                            std::to_string(first.levels.size()) + " levels of " +
+                            std::to_string(n) + "^2 faces");
+        if (!blocks.empty() && blocks[c]->size() != first.levels.size() - 1)
+            throw Error("", chain + "glossy blocks",
+                        std::to_string(blocks[c]->size()) + " levels of blocks for " +
+                            std::to_string(first.levels.size() - 1) + " glossy levels");
+        for (std::size_t i = 1; i < first.levels.size(); ++i) {
+            const int want = std::max(1, n >> std::min(int(i), 30));
+            const std::string level = chain + "glossy level " + std::to_string(i);
+            for (int f = 0; f < 6; ++f) {
+                const Image& face = chains[c]->levels[i][std::size_t(f)];
+                if (face.width != want || face.height != want || face.channels != 4)
+                    throw Error("", level + " face " + std::to_string(f),
+                                "expected " + std::to_string(want) + "x" + std::to_string(want) +
+                                    " RGBA, got " + std::to_string(face.width) + "x" +
+                                    std::to_string(face.height) + " with " +
+                                    std::to_string(face.channels) + " channels");
+            }
+            if (!blocks.empty() && (*blocks[c])[i - 1].size() != 6 * bc6hBytes(want, want))
+                throw Error("", level,
+                            "holds " + std::to_string((*blocks[c])[i - 1].size()) +
+                                " bytes of blocks, " + std::to_string(6 * bc6hBytes(want, want)) +
+                                " expected");
+        }
+    }
+}
+
+} // namespace
+
+gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains,
+                               const ChainBlocks& blocks) {
+    if (chains.empty() || chains.front()->levels.size() < 2) return {};
+    checkChains(chains, blocks);
+    const CubeChain& first = *chains.front();
+    const int mips = chainMips(first);
+    const int slots = int(first.levels.size()) - mips; // level i at slot i - 1 - mip
+    const bool bc6h = !blocks.empty();
+    gpu::Texture array = createChainArray(bc6h ? GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT : GL_RGBA32F,
+                                          first, int(chains.size()));
+    const GLuint tex = array.id();
+    for (std::size_t c = 0; c < chains.size(); ++c)
+        for (std::size_t i = 1; i < first.levels.size(); ++i) {
+            const int mip = std::min(int(i) - 1, mips - 1), slot = int(i) - 1 - mip;
+            const int layer = 6 * (int(c) * slots + slot), w = first.levels[i][0].width;
+            if (bc6h) { // the six faces' blocks in order: one upload of six layers
+                const std::vector<std::uint8_t>& b = (*blocks[c])[i - 1];
+                glCompressedTextureSubImage3D(tex, mip, 0, 0, layer, w, w, 6,
+                                              GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT,
+                                              GLsizei(b.size()), b.data());
+                continue;
+            }
+            for (int f = 0; f < 6; ++f)
+                glTextureSubImage3D(tex, mip, 0, 0, layer + f, w, w, 1, GL_RGBA, GL_FLOAT,
+                                    chains[c]->levels[i][std::size_t(f)].pixels.data());
+        }
+    return array;
+}
+
 int chainArraySlots(const CubeChain& chain) {
     return chain.levels.size() < 2 ? 0 : int(chain.levels.size()) - chainMips(chain);
 }
 
-std::size_t chainArrayBytes(const CubeChain& chain) {
+std::size_t chainArrayBytes(const CubeChain& chain, bool bc6h) {
     if (chain.levels.size() < 2) return 0;
     const int base = chain.levels[1][0].width, mips = chainMips(chain);
     const int slots = int(chain.levels.size()) - mips;
     std::size_t bytes = 0;
     for (int m = 0; m < mips; ++m) {
-        const std::size_t n = std::size_t(std::max(1, base >> m));
-        bytes += n * n * 6 * std::size_t(slots) * 16;
+        const int n = std::max(1, base >> m);
+        const std::size_t face = bc6h ? bc6hBytes(n, n) : std::size_t(n) * std::size_t(n) * 16;
+        bytes += face * 6 * std::size_t(slots);
     }
     return bytes;
 }

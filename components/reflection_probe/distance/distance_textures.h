@@ -51,9 +51,15 @@ gpu::Texture uploadChainArray(const CubeChain& chain);
 // chain / 6) and s the level's slot in its mip as above; chain 0 is laid out exactly as
 // uploadChainArray lays out a single chain. Throws Error naming the chain when one differs in
 // levels or face size from chain 0. Its bytes: chainArrayBytes(chain 0) x chains.
-gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains);
+// With `blocks` (compressed probes, DistanceProbeAsset::glossyBlocks: blocks[c][k] chain c's
+// level k + 1, six faces in order) the array is BC6H uploaded from them, its RGB what the
+// shader reads; Error when they do not fit the chains' levels.
+using ChainBlocks = std::vector<const std::vector<std::vector<std::uint8_t>>*>;
+gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains,
+                               const ChainBlocks& blocks = {});
 int chainArraySlots(const CubeChain& chain);
-std::size_t chainArrayBytes(const CubeChain& chain);
+// The array's bytes as uploaded: RGBA32F, or BC6H blocks (`bc6h`, uploadCompressedChainArray).
+std::size_t chainArrayBytes(const CubeChain& chain, bool bc6h = false);
 
 // The equirectangular sky, bilinear, repeating around the horizon.
 gpu::Texture uploadSkyTexture(const Image& sky);
