@@ -130,16 +130,24 @@ ShardList readShardList(const std::string& dir) {
         throw Error(file, "",
                     "missing: no shard list (run specula-cook shards SCENE --out " + dir +
                         " first)");
-    const json doc = parseManifestJson(readManifestText(file), file);
-    if (!doc.is_object() || doc.value("format", "") != "specula-shards" ||
-        doc.value("version", 0) != kShardListVersion)
+    return shardListFromJson(parseManifestJson(readManifestText(file), file), file);
+}
+
+ShardList shardListFromJson(const json& doc, const std::string& file) {
+    if (!doc.is_object() || !doc.contains("format") || !doc["format"].is_string() ||
+        !doc.contains("version") || !doc["version"].is_number_integer() ||
+        doc.value("format", "") != "specula-shards" || doc.value("version", 0) != kShardListVersion)
         throw Error(file, "format",
                     "expected a specula-shards list of version " +
                         std::to_string(kShardListVersion));
+    const auto member = [&](const char* key) -> const json& {
+        if (!doc.contains(key)) throw Error(file, key, "missing");
+        return doc[key];
+    };
     ShardList list;
     list.scene = jsonMember<std::string>(doc, "scene", file, "");
     list.sky = jsonMember<std::string>(doc, "sky", file, "");
-    list.settings = doc.at("settings");
+    list.settings = member("settings");
     const CookFlavour flavour = cookSettingsFromJson(list.settings, file); // validated here
     list.shardRows = jsonMember<int>(doc, "shard_rows", file, "");
     const int cameras = listCameras(list);
@@ -147,8 +155,8 @@ ShardList readShardList(const std::string& dir) {
     if (lightField ? list.shardRows < 1 || list.shardRows > cameras : list.shardRows != 0)
         throw Error(file, "shard_rows",
                     lightField ? "expected 1 .. " + std::to_string(cameras) : "expected 0");
-    list.level = levelIndexFromJson(doc.at("level"), file);
-    const json& shards = doc.at("shards");
+    list.level = levelIndexFromJson(member("level"), file);
+    const json& shards = member("shards");
     if (!shards.is_array()) throw Error(file, "shards", "expected an array");
     for (std::size_t i = 0; i < shards.size(); ++i) {
         const std::string field = "shards[" + std::to_string(i) + "].";

@@ -113,6 +113,9 @@ ShardList writeShardList(ProbeScene& scene, const LevelCookOptions& options, std
                          int shardRows = 0);
 // DIR's shard list; throws Error naming it when it is missing or no shard list.
 ShardList readShardList(const std::string& dir);
+// A shard list's JSON (the text of `file`) checked and read: what readShardList does once
+// the file is parsed. Throws Error naming `file` and the field.
+ShardList shardListFromJson(const nlohmann::json& doc, const std::string& file);
 
 struct ShardOutcome {
     bool skipped = false; // the store already held a shard with this hash

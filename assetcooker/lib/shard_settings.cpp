@@ -120,7 +120,9 @@ CookFlavour cookSettingsFromJson(const json& j, const std::string& file) {
                 throw Error(file, "settings.compression", "expected none or bc6h, got " + c);
             s.compression = c == "bc6h" ? DistanceCompression::Bc6h : DistanceCompression::None;
         }
-        const json& p = j.at("prefilter");
+        if (!j.contains("prefilter") || !j["prefilter"].is_object())
+            throw Error(file, "settings.prefilter", "expected an object");
+        const json& p = j["prefilter"];
         s.prefilter.levels = jsonMember<int>(p, "levels", file, "settings.prefilter.");
         s.prefilter.samples = jsonMember<int>(p, "samples", file, "settings.prefilter.");
         s.prefilter.maxSamples = jsonMember<int>(p, "max_samples", file, "settings.prefilter.");

@@ -13,9 +13,11 @@
 #include "tools/level_files.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -405,6 +407,69 @@ TEST_F(ShardBake, ShardRowsOutOfRangeAreRefusedAndTheCountIsSixBlocksASlabPlusTh
               2);
     EXPECT_NE(err.str().find("--shard-rows: applies to --flavour lightfield"), std::string::npos)
         << err.str();
+}
+
+// The shard list is read on every farm node from a shared disk (issue 34): a damaged list is
+// an Error naming the list, never a crash or a stray exception. A distance and a light-field
+// list the cooker writes, and a PEM's (the fuzz corpus's), are each damaged in 300 seeded
+// ways, one member at a time (removed, or given a value of another type or range), and read.
+TEST_F(ShardBake, EveryDamagedMemberOfAShardListIsAnErrorNamingTheList) {
+    ProbeScene scene(kTwoRooms, "");
+    std::mt19937 random(34);
+    int refused = 0, read = 0;
+    const std::string file = shardListPath((root_ / "level").string());
+    std::vector<nlohmann::json> lists;
+    for (const CookFlavour& flavour : {distance(), lightField()}) {
+        writeShardList(scene, options("level", flavour), nullptr, 1);
+        lists.push_back(nlohmann::json::parse(std::ifstream(file)));
+    }
+    // A PEM's list, as `specula-cook shards` wrote it for the room's camera path.
+    lists.push_back(nlohmann::json::parse(
+        std::ifstream(SPECULA_SOURCE_DIR "/tests/fuzz/corpus/shards/pem.json")));
+    for (const nlohmann::json& good : lists) {
+        EXPECT_NO_THROW(shardListFromJson(good, file));
+        // Every member's JSON pointer, the root's children first.
+        std::vector<nlohmann::json::json_pointer> members;
+        const nlohmann::json flat = good.flatten();
+        for (auto it = flat.begin(); it != flat.end(); ++it) {
+            nlohmann::json::json_pointer p(it.key());
+            for (; !p.empty(); p = p.parent_pointer())
+                members.push_back(p);
+        }
+        const nlohmann::json others[] = {nullptr,
+                                         -1,
+                                         0,
+                                         1e300,
+                                         2147483648.0,
+                                         "",
+                                         "../x",
+                                         "shards",
+                                         true,
+                                         7,
+                                         0.5,
+                                         nlohmann::json::array(),
+                                         nlohmann::json::object()};
+        for (int trial = 0; trial < 300; ++trial) {
+            nlohmann::json bad = good;
+            const nlohmann::json::json_pointer& p = members[random() % members.size()];
+            if (random() % 4 == 0)
+                bad[p.parent_pointer()].is_object() ? (void)bad[p.parent_pointer()].erase(p.back())
+                                                    : (void)(bad[p] = nullptr);
+            else
+                bad[p] = others[random() % std::size(others)];
+            try {
+                shardListFromJson(bad, file);
+                ++read;
+            } catch (const Error& e) {
+                EXPECT_EQ(e.file(), file) << e.what();
+                ++refused;
+            } catch (const std::exception& e) {
+                ADD_FAILURE() << p.to_string() << ": " << e.what() << " escaped the reader";
+            }
+        }
+    }
+    std::printf("900 damaged shard lists: %d refused, %d still read\n", refused, read);
+    EXPECT_GT(refused, 600);
 }
 
 } // namespace
