@@ -2,7 +2,9 @@
 
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/effect_plan.h"
+#include "assetcooker/lib/level_bake.h"
 #include "assetcooker/lib/plan_measure.h"
+#include "assetcooker/lib/shard_settings.h"
 #include "components/reflection_probe/distance/distance_compression.h"
 #include "components/reflection_probe/probe_folder.h"
 #include "engine/core/error.h"
@@ -130,6 +132,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
             *log << " " << secondsSince(compressStart) << " s (distance "
                  << (asset.halfCompositeDistance ? "R16F" : "R32F") << ")\n";
     }
+    asset.inputs = cookedProbeInputs(scene, cookSettingsToJson(o.flavour), asset.centre);
     writeDistanceProbe(asset, o.out, scene.path);
     if (log) *log << planLine;
     result.asset = std::move(asset);
@@ -147,6 +150,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const LightFieldCookSetti
     // A cooked folder's bytes depend on its inputs only (a sharded bake merges to the same
     // bytes, shard_bake.h): the time is the result's, not the manifest's.
     asset.bakeSeconds = 0.0;
+    asset.inputs = cookedProbeInputs(scene, cookSettingsToJson(o.flavour), asset.cellCentre);
     writeLightFieldProbe(asset, o.out, scene.path);
     result.cellCentre = b.cellCentre;
     result.cellSize = b.cellSize;
@@ -165,6 +169,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const PemCookSettings& s,
     PemAsset asset =
         bakeShared(o, "inferring PEMs", b, result, log, [&] { return cookPemAsset(scene, s, b); });
     result.bakeSeconds = secondsSince(start);
+    asset.inputs = cookedProbeInputs(scene, cookSettingsToJson(o.flavour), asset.centre);
     writePemProbe(asset, o.out, scene.path);
     result.asset = std::move(asset);
 }
@@ -217,6 +222,12 @@ CookResult cookProbe(ProbeScene& scene, const CookOptions& options, std::ostream
     o.scene = scene.path;
     prepareOutput(o, log);
     return cookPrepared(scene, o, log);
+}
+
+ProbeInputs cookedProbeInputs(const ProbeScene& scene, const nlohmann::json& settings,
+                              glm::vec3 centre) {
+    const nlohmann::json options = {{"settings", settings}, {"centre", vec3Json(centre)}};
+    return sceneProbeInputs(scene, options.dump());
 }
 
 } // namespace specula

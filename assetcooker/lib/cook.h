@@ -99,6 +99,11 @@ struct CookResult {
     std::vector<PemSampleFit> pemFits;
 };
 
+// What a probe cooked from `scene` with `settings` (cookSettingsToJson) at `centre` records
+// as its "inputs" (sceneProbeInputs): the same whether one process or a farm's shards cook it.
+ProbeInputs cookedProbeInputs(const ProbeScene& scene, const nlohmann::json& settings,
+                              glm::vec3 centre);
+
 // Repairs what killed bakes left beside options.out and refuses an out that may not be
 // replaced (before any work), opens options.scene and options.sky, bakes and writes. On
 // `log` (may be null): the repairs and the placement warnings. Throws Error naming the file

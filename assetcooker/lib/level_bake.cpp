@@ -156,6 +156,30 @@ std::string staleReason(const std::optional<LevelIndex>& previous, const fs::pat
 
 } // namespace
 
+namespace {
+
+// The inputs of `within` (meshes by entity index: a deterministic order) and every reflector's
+// markup, `options` as given, and the sky's bytes.
+ProbeInputs inputsOf(const ProbeScene& scene, const std::map<std::uint32_t, ecs::Entity>& within,
+                     const std::string& options) {
+    std::string geometry;
+    for (const auto& [index, e] : within)
+        geometry += meshKey(scene.registry, e) + '\n';
+    // The reflectors' markup decides what the bake makes too (Fresnel in the plan, the glossy
+    // chain under --glossy auto), whatever their materials say.
+    for (const ReflectorMarkup& r : scene.markup.reflectors) {
+        const float figures[] = {r.f0, r.roughness};
+        geometry += r.node + ' ' + bytesChecksum(figures, sizeof figures);
+        if (r.roughnessMap) geometry += ' ' + checksumOf(r.roughnessMap->pixels);
+        geometry += '\n';
+    }
+    return {bytesChecksum(geometry.data(), geometry.size()),
+            bytesChecksum(options.data(), options.size()),
+            scene.skyPath.empty() ? "none" : fileChecksum(scene.skyPath)};
+}
+
+} // namespace
+
 LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& env,
                                   const ProbeVolume& probe, const std::string& options) {
     const ecs::Registry& reg = scene.registry;
@@ -178,21 +202,17 @@ LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& env,
                     if (const std::optional<Hit> hit = env.intersect(probe.position, d))
                         within.emplace(hit->entity.index, hit->entity);
                 }
-    std::string geometry;
-    for (const auto& [index, e] : within)
-        geometry += meshKey(reg, e) + '\n';
-    // The reflectors' markup decides what the bake makes too (Fresnel in the plan, the glossy
-    // chain under --glossy auto), whatever their materials say.
-    for (const ReflectorMarkup& r : scene.markup.reflectors) {
-        const float figures[] = {r.f0, r.roughness};
-        geometry += r.node + ' ' + bytesChecksum(figures, sizeof figures);
-        if (r.roughnessMap) geometry += ' ' + checksumOf(r.roughnessMap->pixels);
-        geometry += '\n';
-    }
-    const std::string opts = options + '\n' + toJson(probe).dump();
-    return {bytesChecksum(geometry.data(), geometry.size()),
-            bytesChecksum(opts.data(), opts.size()),
-            scene.skyPath.empty() ? "none" : fileChecksum(scene.skyPath)};
+    return inputsOf(scene, within, options + '\n' + toJson(probe).dump());
+}
+
+ProbeInputs sceneProbeInputs(const ProbeScene& scene, const std::string& options) {
+    const ecs::Registry& reg = scene.registry;
+    std::map<std::uint32_t, ecs::Entity> every;
+    for (ecs::Entity e : scene.markup.mirrorEntities)
+        every.emplace(e.index, e);
+    for (ecs::Entity e : scene.loaded.entities)
+        if (reg.has<Mesh>(e) && reg.has<Transform>(e)) every.emplace(e.index, e);
+    return inputsOf(scene, every, options);
 }
 
 std::vector<std::string> levelStaleness(ProbeScene& scene, const LevelIndex& index,

@@ -23,6 +23,10 @@ namespace specula {
 // without the reflectors, built once for all probes of a level.
 LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& environment,
                                   const ProbeVolume& probe, const std::string& options);
+// The same for a probe cooked on its own, over the whole scene (every mesh, with its
+// material, and every reflector's markup): what its manifest records ("inputs"), and what a
+// tool loading it against a scene compares.
+ProbeInputs sceneProbeInputs(const ProbeScene& scene, const std::string& options);
 
 // What differs between `scene` and the scene the level `index` (read from `indexPath`) was
 // baked from: one line per probe whose geometry within reach or sky checksum differs, naming

@@ -1,5 +1,6 @@
 #include "shard_pem.h"
 
+#include "assetcooker/lib/cook.h"
 #include "assetcooker/lib/pem_shard_files.h"
 #include "assetcooker/lib/shard_install.h"
 #include "components/reflection_probe/pem/pem_asset.h"
@@ -157,8 +158,9 @@ std::vector<std::string> installPemShards(const std::string& dir, const ShardLis
         throw Error(shardListPath(dir), "camera",
                     "no parameter sample's view holds a reflector pixel: nothing to infer a map "
                     "from");
-    writePemProbe(bake.assemble(decision, std::move(maps)), (fs::path(dir) / kPemFolder).string(),
-                  list.scene);
+    PemAsset asset = bake.assemble(decision, std::move(maps));
+    asset.inputs = cookedProbeInputs(scene, list.settings, asset.centre);
+    writePemProbe(asset, (fs::path(dir) / kPemFolder).string(), list.scene);
     return warnings;
 }
 

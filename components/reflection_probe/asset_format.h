@@ -32,8 +32,9 @@ struct AssetFormat {
 // Probe manifests, every flavour. 2.0: KTX2 textures (1 stored OpenEXR). 2.1: the format
 // object, the seal, RGBA16F object layers. 3.0: compressed distance probes ("compression":
 // "bc6h"; the composite's radiance in BC6H, its distance in a file of its own), which a 2.x
-// runtime refuses as newer instead of misreading; every other probe is still written as 2.1.
-inline constexpr AssetFormat kProbeFormat{"specula-probe", 3, 0, "", 2, {2, 1}};
+// runtime refuses as newer instead of misreading; every other probe is still written as 2.x.
+// 2.2 / 3.1: "inputs", the checksums of what the cooker baked the probe from.
+inline constexpr AssetFormat kProbeFormat{"specula-probe", 3, 1, "", 2, {2, 2}};
 // Level indices (level.json). 1.1: the format object.
 inline constexpr AssetFormat kLevelFormat{"specula-level", 1, 1, "level"};
 

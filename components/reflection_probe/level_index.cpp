@@ -28,8 +28,7 @@ json toJson(const LevelIndex& index) {
         json p = toJson(e.volume);
         p["folder"] = e.folder;
         p["manifest_checksum"] = e.manifestChecksum;
-        p["inputs"] = {
-            {"geometry", e.inputs.geometry}, {"options", e.inputs.options}, {"sky", e.inputs.sky}};
+        p["inputs"] = toJson(e.inputs);
         probes.push_back(std::move(p));
     }
     return {{"format", formatJson(kLevelFormat)},
@@ -57,12 +56,8 @@ LevelIndex levelIndexFromJson(const json& j, const std::string& file) {
             e.folder.find('/') != std::string::npos || e.folder.find('\\') != std::string::npos)
             throw Error(file, field + ".folder", "expected a folder name inside the level");
         e.manifestChecksum = stringMember(p, "manifest_checksum", file, field + ".");
-        if (!p.contains("inputs") || !p["inputs"].is_object())
-            throw Error(file, field + ".inputs", "expected an object");
-        const std::string in = field + ".inputs.";
-        e.inputs.geometry = stringMember(p["inputs"], "geometry", file, in);
-        e.inputs.options = stringMember(p["inputs"], "options", file, in);
-        e.inputs.sky = stringMember(p["inputs"], "sky", file, in);
+        if (!p.contains("inputs")) throw Error(file, field + ".inputs", "expected an object");
+        e.inputs = probeInputsFromJson(p["inputs"], file, field + ".inputs");
         index.probes.push_back(std::move(e));
     }
     warnAboutNewerMinor(j, kLevelFormat, version, kLevelFormat.schema, file);

@@ -10,6 +10,7 @@
 //                "blend_distance": .., "priority": .., "cell_size": .., "folder": "name",
 //                "manifest_checksum": "fnv1a64:..",
 //                "inputs": {"geometry": "fnv1a64:..", "options": "..", "sky": ".."}}]}
+#include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/probe_volume.h"
 
 #include <string>
@@ -17,14 +18,7 @@
 
 namespace specula {
 
-// What a probe was baked from, each as a checksum: a changed one names why it is re-baked.
-struct LevelProbeInputs {
-    std::string geometry; // the meshes within the probe's reach, in world space
-    std::string options;  // the flavour, its settings and the probe's volumes
-    std::string sky;      // the sky image's bytes ("none" without one)
-
-    bool operator==(const LevelProbeInputs&) const = default;
-};
+using LevelProbeInputs = ProbeInputs; // manifest_fields.h
 
 struct LevelProbeEntry {
     ProbeVolume volume;

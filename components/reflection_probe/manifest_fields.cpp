@@ -56,10 +56,33 @@ json vec3Json(glm::vec3 v) {
     return json::array({v.x, v.y, v.z});
 }
 
-json probeManifestHeader(std::string_view flavour, const std::string& sourceScene, bool newest) {
-    return json{{"format", formatJson(kProbeFormat, newest)},
+json toJson(const ProbeInputs& inputs) {
+    return {{"geometry", inputs.geometry}, {"options", inputs.options}, {"sky", inputs.sky}};
+}
+
+ProbeInputs probeInputsFromJson(const json& j, const std::string& file, const std::string& field) {
+    if (!j.is_object()) throw Error(file, field, "expected an object");
+    const auto member = [&](const char* key) {
+        const auto it = j.find(key);
+        if (it == j.end() || !it->is_string())
+            throw Error(file, field + "." + key, "expected a string");
+        return it->get<std::string>();
+    };
+    return {member("geometry"), member("options"), member("sky")};
+}
+
+json probeManifestHeader(std::string_view flavour, const std::string& sourceScene,
+                         const ProbeInputs& inputs, bool newest) {
+    json header{{"format", formatJson(kProbeFormat, newest)},
                 {"flavour", std::string(flavour)},
                 {"source", sourceScene}};
+    if (inputs.recorded()) header["inputs"] = toJson(inputs);
+    return header;
+}
+
+ProbeInputs manifestProbeInputs(const json& manifest, const std::string& file) {
+    const auto it = manifest.find("inputs");
+    return it == manifest.end() ? ProbeInputs{} : probeInputsFromJson(*it, file, "inputs");
 }
 
 std::string readManifestText(const std::string& path) {

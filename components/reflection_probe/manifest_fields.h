@@ -33,14 +33,35 @@ std::string fileChecksum(const std::string& path, std::uint64_t maxBytes = 16ull
 // The same checksum of bytes in memory.
 std::string bytesChecksum(const void* data, std::size_t size);
 
+// What a probe was baked from, each as a checksum (the cooker computes them): a changed one
+// says why a level's probe is re-baked, or that a probe is loaded against another scene.
+// Empty (geometry "") where nothing was recorded: a probe of an older cooker, or written by
+// hand.
+struct ProbeInputs {
+    std::string geometry; // the meshes and reflectors within the probe's reach, in world space
+    std::string options;  // the flavour, its settings and the probe's volumes
+    std::string sky;      // the sky image's bytes ("none" without one)
+
+    bool operator==(const ProbeInputs&) const = default;
+    bool recorded() const { return !geometry.empty(); }
+};
+// {"geometry", "options", "sky"}, the "inputs" member of a manifest or a level's probe.
+nlohmann::json toJson(const ProbeInputs& inputs);
+// `j` as ProbeInputs; throws Error(file, field + member) unless it is an object of three
+// strings.
+ProbeInputs probeInputsFromJson(const nlohmann::json& j, const std::string& file,
+                                const std::string& field);
+
 // A vec3 as the JSON array a manifest stores.
 nlohmann::json vec3Json(glm::vec3 v);
 
 // The members every cooked manifest opens with: "format" (kProbeFormat, asset_format.h: its
 // newest version when the asset uses what only that holds, `newest`, else its plainVersion),
-// "flavour" and "source" (the scene it was baked from).
+// "flavour", "source" (the scene it was baked from) and, when recorded, "inputs".
 nlohmann::json probeManifestHeader(std::string_view flavour, const std::string& sourceScene,
-                                   bool newest = false);
+                                   const ProbeInputs& inputs, bool newest = false);
+// A manifest's optional "inputs" (empty when absent); Error naming "inputs.*" when malformed.
+ProbeInputs manifestProbeInputs(const nlohmann::json& manifest, const std::string& file);
 
 // The manifest text at `path`, read as a regular file of at most kMaxManifestBytes.
 std::string readManifestText(const std::string& path);

@@ -1,5 +1,6 @@
 #include "probe_source.h"
 
+#include "assetcooker/lib/level_bake.h"
 #include "components/reflection_probe/manifest_fields.h"
 
 #include "engine/core/error.h"
@@ -79,13 +80,39 @@ std::string pemSky(const std::string& manifest, const CookedProbeFacts& facts) {
     return fs::exists(s) || s.is_absolute() || !fs::exists(beside) ? s.string() : beside.string();
 }
 
+// A cooked probe walked in another scene than it was baked from measures nothing true: what
+// differs, one line each on `log` (errors, or warnings with `allowStale`), then an Error
+// unless allowed. The sky is compared when the walk lights the scene with a sky of its own.
+void checkProbeFitsScene(const std::string& manifest, const CookedProbeFacts& facts,
+                         const ProbeSource& src, bool compareSky, bool allowStale,
+                         std::ostream* log) {
+    if (!facts.inputs.recorded()) return; // cooked before probes recorded their inputs
+    const ProbeScene scene(src.scenePath, compareSky ? src.skyPath : "");
+    const ProbeInputs now = sceneProbeInputs(scene, "");
+    std::vector<std::string> stale;
+    if (now.geometry != facts.inputs.geometry)
+        stale.push_back(manifest + ": inputs.geometry: the probe was baked from " + facts.source +
+                        " with other meshes, materials or reflectors than " + src.scenePath +
+                        " has");
+    if (compareSky && now.sky != facts.inputs.sky)
+        stale.push_back(manifest + ": inputs.sky: the probe was baked under sky " +
+                        facts.inputs.sky + ", the walk's sky is " + now.sky);
+    for (const std::string& line : stale)
+        if (log) *log << (allowStale ? "warning: " : "error: ") << line << '\n';
+    if (!stale.empty() && !allowStale)
+        throw Error(manifest, "inputs",
+                    std::to_string(stale.size()) +
+                        " input(s) differ from the scene walked (listed above): re-bake the "
+                        "probe with specula-cook bake, or pass --allow-stale");
+}
+
 } // namespace
 
 ProbeSource resolveProbeSource(const std::string& input,
                                const std::optional<std::string>& sceneOverride,
                                const std::optional<std::string>& skyOverride,
                                const std::string& bakeDir, SourceBakeSize size, bool showProgress,
-                               SourceBake bake, std::ostream* log) {
+                               SourceBake bake, std::ostream* log, bool allowStale) {
     std::error_code ec; // a symlink loop or unreadable parent is an error naming the input
     if (!fs::exists(input, ec))
         throw Error(input, "", ec ? "cannot open: " + ec.message() : "no such file");
@@ -116,6 +143,7 @@ ProbeSource resolveProbeSource(const std::string& input,
                       : src.lightField ? defaultSkyPath()
                       : src.pem        ? pemSky(input, facts)
                                        : facts.skyFile;
+        checkProbeFitsScene(input, facts, src, skyOverride.has_value(), allowStale, log);
         return src;
     }
     if (ext != ".gltf" && ext != ".glb")

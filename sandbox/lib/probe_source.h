@@ -50,11 +50,15 @@ struct SourceBakeSize {
 // A scene is baked with Embree into `bakeDir` (replaced): a distance probe with size.faceRes,
 // a light field (16 cameras of 32^2 pixels a slab) or a PEM (sandboxPemSettings(size)). Throws
 // Error naming the file on bad input. `log`: the bake's warnings (null: dropped).
+// A manifest that records its inputs (cooked since format 2.2) must fit the scene: its meshes,
+// materials and reflectors, and the sky when `skyOverride` is given; what differs is listed
+// on `log` and refused as Error(manifest, "inputs") unless `allowStale` (then warnings).
 ProbeSource resolveProbeSource(const std::string& input,
                                const std::optional<std::string>& sceneOverride,
                                const std::optional<std::string>& skyOverride,
                                const std::string& bakeDir, SourceBakeSize size, bool showProgress,
-                               SourceBake bake = SourceBake::Distance, std::ostream* log = nullptr);
+                               SourceBake bake = SourceBake::Distance, std::ostream* log = nullptr,
+                               bool allowStale = false);
 
 // The PEM the sandbox bakes: `samples` viewpoints t = k/samples on the walk's camera orbit,
 // one ray per pixel of the frame it is drawn at, size.faceRes^2 faces.

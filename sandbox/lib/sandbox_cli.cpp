@@ -141,6 +141,10 @@ void addWalkCommand(cli::ToolCli& tool) {
     sub->add_option("--out", o.outDir, "output folder")->check(cli::nonEmpty("a folder"));
     sub->add_option("--size", a->size, "frame size (default 640x480)")->check(cli::sizeText());
     sub->add_option("--scene", o.scene, "the scene of a manifest (overrides its \"source\")");
+    sub->add_flag("--allow-stale", o.allowStale,
+                  "walk a manifest whose recorded inputs differ from the scene's (other "
+                  "meshes, materials, reflectors or --sky) with a warning each, instead of "
+                  "refusing it");
     tool.allowEmpty(sub->add_option(
         "--sky", o.sky, "equirectangular panorama (default: the bundled field.jpg; '': black)"));
     sub->add_option("--face-res", o.faceRes, "cube face resolution when baking a scene")

@@ -100,7 +100,7 @@ int runWalkHeadless(const WalkOptions& o, std::ostream& out) {
     const ProbeSource src = resolveProbeSource(
         o.input, o.scene, o.sky, (fs::path(o.outDir) / "probe").string(),
         SourceBakeSize{o.faceRes, o.width, o.height, o.pemByReflector, o.path, o.cameraPath},
-        o.progress, walkSourceBake(o), &out);
+        o.progress, walkSourceBake(o), &out, o.allowStale);
     if (src.baked) out << "baked " << src.manifest << " in " << src.bakeSeconds << " s\n";
     auto context = gpu::GlContext::createHeadless();
     ReflectionScene scene(src.scenePath, src.skyPath);

@@ -43,6 +43,9 @@ struct WalkOptions {
     // Test mirrors added to the scene wherever it is opened (--add-reflector; the walk
     // functions open it inside an AddedReflectorsScope of these).
     std::vector<AddedReflector> addedReflectors;
+    // A cooked manifest baked from another scene (its "inputs" differ): walked with warnings
+    // instead of refused.
+    bool allowStale = false;
 };
 
 // What a walk frame moves: the reflectors along a path and/or the camera along its orbit. A

@@ -138,7 +138,7 @@ int runWalkWindow(const WalkOptions& o, std::ostream& out) {
     const ProbeSource src =
         resolveProbeSource(o.input, o.scene, o.sky, bakeDir.string(),
                            {o.faceRes, o.width, o.height, o.pemByReflector, o.path, o.cameraPath},
-                           o.progress, walkSourceBake(o), &out);
+                           o.progress, walkSourceBake(o), &out, o.allowStale);
     const WalkMotion motion = walkMotion(src, o);
     auto context = gpu::GlContext::createWindow(o.width, o.height, "specula-sandbox walk");
     GLFWwindow* window = context->window();

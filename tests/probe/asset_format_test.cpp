@@ -66,10 +66,10 @@ protected:
 };
 
 TEST_F(AssetFormatTest, AnUncompressedProbeStatesTheOlderMajorSoOlderRuntimesReadIt) {
-    // Nothing of 3.0 (compression) is used: 2.1, which a 2.x runtime reads as it always did.
+    // Nothing of 3.x (compression) is used: 2.x, which a 2.x runtime reads as it always did.
     EXPECT_EQ(written_["format"], formatJson(kProbeFormat, false));
     EXPECT_EQ(written_["format"]["major"], 2);
-    EXPECT_EQ(written_["format"]["minor"], 1);
+    EXPECT_EQ(written_["format"]["minor"], kProbeFormat.plainVersion.minor);
     EXPECT_FALSE(written_.contains("version"));
     EXPECT_EQ(undeclaredMembers(written_, "probe-distance"), std::vector<std::string>{});
 }
@@ -79,7 +79,8 @@ TEST_F(AssetFormatTest, ANewerMinorLoadsAndNamesWhatItIgnoresOnce) {
     m["format"]["major"] = kProbeFormat.major;
     m["format"]["minor"] = kProbeFormat.minor + 1;
     m["tint"] = {1, 0.5, 0.25};
-    for (json& layer : m["layers"]) layer["anisotropy"] = 0.3;
+    for (json& layer : m["layers"])
+        layer["anisotropy"] = 0.3;
     rewrite(m);
     CapturedWarnings warnings;
     const DistanceProbeAsset read = readDistanceProbe(manifest());
@@ -171,7 +172,8 @@ TEST(AssetFormat, ALevelOfANewerMinorNamesItsNewMembers) {
     EXPECT_EQ(j["format"], formatJson(kLevelFormat));
     EXPECT_EQ(undeclaredMembers(j, "level"), std::vector<std::string>{});
     j["format"]["minor"] = kLevelFormat.minor + 1;
-    for (json& p : j["probes"]) p["lod_bias"] = 1;
+    for (json& p : j["probes"])
+        p["lod_bias"] = 1;
     j["streaming"] = {{"budget_mib", 64}};
     CapturedWarnings warnings;
     EXPECT_EQ(levelIndexFromJson(j, "level.json").probes.size(), 2u);

@@ -29,11 +29,12 @@ using namespace specula::test;
 const ToolSubcommand level{kSandbox, "level"};
 const ToolSubcommand glossy{kSandbox, "glossy"};
 
-// The two rooms with every material black, under no sky: the truth and every lookup are
-// black on every reflector pixel, so no frame measures anything (ImageStats::hasPsnr).
-fs::path blackTwoRooms(const fs::path& dir) {
-    fs::copy(kTwoRooms.parent_path(), dir);
-    const fs::path scene = dir / kTwoRooms.filename();
+// A copy of `original`'s folder in `dir` with every material black. For the two rooms under
+// no sky: the truth and every lookup are black on every reflector pixel, so no frame
+// measures anything (ImageStats::hasPsnr).
+fs::path blackScene(const fs::path& dir, const fs::path& original = kTwoRooms) {
+    fs::copy(original.parent_path(), dir);
+    const fs::path scene = dir / original.filename();
     nlohmann::json gltf = nlohmann::json::parse(std::ifstream(scene));
     for (nlohmann::json& m : gltf["materials"])
         m["pbrMetallicRoughness"]["baseColorFactor"] = {0.0, 0.0, 0.0, 1.0};
@@ -86,7 +87,7 @@ TEST(SandboxInput, ALevelWithoutProbesIsAnErrorNotACrash) {
 
 TEST(SandboxInput, ALevelWalkThatMeasuresNothingSaysNone) {
     TempDir dir("level-none");
-    const fs::path out = dir.path / "out", scene = blackTwoRooms(dir.path / "scene");
+    const fs::path out = dir.path / "out", scene = blackScene(dir.path / "scene");
     const ToolRun r = level(shellQuote(scene.string()) + " --sky '' --face-res 8 --frames 2 " +
                             "--size 32x24 --no-timing --out " + shellQuote(out.string()));
     ASSERT_EQ(r.status, 0) << r.err;
@@ -109,7 +110,7 @@ TEST(SandboxInput, ALevelWalkThatMeasuresNothingSaysNone) {
 
 TEST(SandboxInput, AGlossyBenchThatMeasuresNothingSaysNone) {
     TempDir dir("glossy-none");
-    const fs::path out = dir.path / "out", scene = blackTwoRooms(dir.path / "scene");
+    const fs::path out = dir.path / "out", scene = blackScene(dir.path / "scene");
     const ToolRun r = glossy(shellQuote(scene.string()) + " --sky '' --roughness 0.3 " +
                              "--size 32x24 --face-res 8 --samples 4 --no-timing --out " +
                              shellQuote(out.string()));
@@ -132,7 +133,7 @@ TEST(SandboxInput, ALevelBakedFromAnotherSceneIsRefusedUnlessAllowStale) {
         runShellTool(kCook, "bake " + shellQuote(kTwoRooms.string()) + " --face-res 8 --out " +
                                 shellQuote(baked.string()));
     ASSERT_EQ(cook.status, 0) << cook.err;
-    const fs::path other = blackTwoRooms(dir.path / "scene");
+    const fs::path other = blackScene(dir.path / "scene");
     const std::string walk = " --level " + shellQuote(baked.string()) +
                              " --path '-3,1.2,0;-1,1.2,0' --frames 2 --size 32x24 --no-timing";
     const fs::path refusedOut = dir.path / "refused";
@@ -195,4 +196,51 @@ TEST(SandboxInput, ALevelMixingFaceSizesIsRefusedNamingTheProbe) {
                                                            "differs from the level's 8"),
               std::string::npos)
         << r.err;
+}
+
+// A probe cooked on its own records its inputs too (format 2.2): walked against another scene
+// (the room with its materials black) it is refused naming "inputs.geometry", unless
+// --allow-stale; against the scene it was baked from, not a word. Under another --sky than the
+// bake's (none), "inputs.sky".
+TEST(SandboxInput, AProbeBakedFromAnotherSceneIsRefusedUnlessAllowStale) {
+    TempDir dir("probe-stale");
+    const fs::path room = fs::path(SPECULA_SOURCE_DIR) / "assets/room/room.gltf";
+    const fs::path baked = dir.path / "probe";
+    const ToolRun cook =
+        runShellTool(kCook, "bake " + shellQuote(room.string()) + " --face-res 8 --out " +
+                                shellQuote(baked.string()));
+    ASSERT_EQ(cook.status, 0) << cook.err;
+    const std::string manifest = (baked / "manifest.json").string();
+    const nlohmann::json m = nlohmann::json::parse(std::ifstream(manifest));
+    ASSERT_TRUE(m.contains("inputs")) << m.dump();
+    EXPECT_EQ(m["inputs"]["sky"], "none");
+    const fs::path other = blackScene(dir.path / "scene", room);
+    const ToolSubcommand walk{kSandbox, "walk"};
+    const std::string args =
+        shellQuote(manifest) + " --headless --frames 1 --size 32x24 --method bisection";
+    const ToolRun refused = walk(args + " --scene " + shellQuote(other.string()) + " --out " +
+                                 shellQuote((dir.path / "refused").string()));
+    EXPECT_EQ(refused.status, 1) << refused.err;
+    EXPECT_NE(refused.out.find("error: " + manifest + ": inputs.geometry: "), std::string::npos)
+        << refused.out;
+    EXPECT_NE(refused.err.find("--allow-stale"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(dir.path / "refused" / "frames.csv"));
+
+    const ToolRun allowed =
+        walk(args + " --scene " + shellQuote(other.string()) + " --allow-stale --out " +
+             shellQuote((dir.path / "allowed").string()));
+    EXPECT_EQ(allowed.status, 0) << allowed.err;
+    EXPECT_NE(allowed.out.find("warning: " + manifest + ": inputs.geometry: "), std::string::npos)
+        << allowed.out;
+
+    const ToolRun sky =
+        walk(args + " --sky " + shellQuote(SPECULA_SOURCE_DIR "/assets/scenes/env/field.jpg") +
+             " --out " + shellQuote((dir.path / "sky").string()));
+    EXPECT_EQ(sky.status, 1) << sky.err;
+    EXPECT_NE(sky.out.find("error: " + manifest + ": inputs.sky: "), std::string::npos) << sky.out;
+    EXPECT_EQ(sky.out.find("inputs.geometry"), std::string::npos) << sky.out;
+
+    const ToolRun same = walk(args + " --out " + shellQuote((dir.path / "same").string()));
+    EXPECT_EQ(same.status, 0) << same.err;
+    EXPECT_EQ(same.out.find("inputs."), std::string::npos) << same.out;
 }

@@ -55,7 +55,7 @@ ProbeScene::ProbeScene(const std::string& gltfPath, const std::string& skyPath,
     // any image file OpenImageIO reads.
     if (!skyPath.empty())
         sky = std::filesystem::path(skyPath).extension() == ".ktx2" ? readKtx2Image(skyPath)
-                                                                      : readImage(skyPath);
+                                                                    : readImage(skyPath);
 }
 
 ecs::Entity attachProbeComponents(ecs::Registry& registry, const SceneMarkup& markup,
@@ -351,6 +351,7 @@ CookedProbeFacts readCookedProbeFacts(const std::string& manifestPath) {
     if (m.contains("sky"))
         f.skyFile =
             r.fileInFolder(m["sky"], "sky.", std::filesystem::path(manifestPath).parent_path());
+    f.inputs = manifestProbeInputs(m, manifestPath);
     return f;
 }
 

@@ -7,6 +7,7 @@
 // the ray-traced ground truth.
 #include "assetcooker/lib/scene/added_reflector.h"
 #include "assetcooker/lib/scene/scene_markup.h"
+#include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/system/reflection_probe.h"
 #include "engine/core/error.h"
 #include "engine/ecs/registry.h"
@@ -183,6 +184,7 @@ struct CookedProbeFacts {
     // skySourceGiven: the manifest has the field (older PEM manifests do not).
     std::string skySource;
     bool skySourceGiven = false;
+    ProbeInputs inputs; // "inputs": what the cooker baked it from (not recorded: empty)
 };
 // Throws Error naming the manifest and the field when it is no Specula probe manifest of
 // this format version.

@@ -212,7 +212,7 @@ void writeDistanceProbe(const DistanceProbeAsset& baked, const std::string& dir,
             layer.update(stored);
             layers.push_back(std::move(layer));
         }
-        json manifest = probeManifestHeader("distance", sourceScene, compressed);
+        json manifest = probeManifestHeader("distance", sourceScene, asset.inputs, compressed);
         if (compressed) manifest["compression"] = "bc6h";
         manifest.update(
             {{"centre", vec3Json(asset.centre)},
@@ -342,6 +342,7 @@ DistanceProbeAsset readDistanceProbe(const ProbeManifest& manifest) {
         a.sky = readKtx2Image(skyFile);
     }
     checkContent(a, manifestPath, files, glossyFiles, skyFile);
+    a.inputs = manifestProbeInputs(m, manifestPath);
     checkManifestSeal(manifest);
     return a;
 }

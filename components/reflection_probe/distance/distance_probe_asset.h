@@ -46,6 +46,7 @@ enum class DistanceCompression { None, Bc6h };
 
 struct DistanceProbeAsset {
     std::string manifestPath; // where it was read from (names it in errors); empty if cooked
+    ProbeInputs inputs;       // what the cooker baked it from ("inputs"; not recorded: empty)
     glm::vec3 centre{0.f};
     float range = 0.f; // D
     float dInf = 0.f;

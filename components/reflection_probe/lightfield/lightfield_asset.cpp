@@ -150,31 +150,31 @@ void writeLightFieldProbe(const LightFieldAsset& a, const std::string& dir,
             intrusions.push_back(
                 {{"object", i.object}, {"region", i.region}, {"depth_m", i.depth}});
         const int n = a.atlasSize();
-        json manifest = probeManifestHeader("lightfield", sourceScene);
-        manifest.update({
-            {"cell", {{"centre", vec3Json(a.cellCentre)}, {"size", a.cellSize}}},
-            {"cameras", a.cameras},
-            {"image_res", a.res},
-            {"fov_deg", 90},
-            {"camera_spacing", a.cameraSpacing()},
-            {"compression", toString(a.compression)},
-            {"depth_percentile", a.depthPercentile},
-            {"atlas",
-             {{"width", n},
-              {"height", n},
-              {"layers", 6},
-              {"texel_format", a.compression == LightFieldCompression::BC1
-                                   ? "BC1 (DXT1) blocks of sRGB colour, block rows top to bottom"
-                                   : "sRGB-encoded RGB8, rows top to bottom"},
-              {"layout", "layer k = slab +X -X +Y -Y +Z -Z; slab axes b = (a+1)%3, c = (a+2)%3; "
-                         "camera (i, j) at s = (i/(NUM-1) - 1/2) 3l along b, t likewise along c, "
-                         "tile texels [i RES, (i+1) RES) x [j RES, (j+1) RES); texel (x, y) "
-                         "slope ((x+0.5) 2/RES - 1, (y+0.5) 2/RES - 1)"}}},
-            {"focal_rule", "focal depth = harmonic mean of depth_near and depth_far (plenoptic "
-                           "sampling); disparity_px = camera_spacing / focal_depth * RES / 2"},
-            {"bake", {{"tracer", "embree"}, {"seconds", a.bakeSeconds}}},
-            {"intrusions", intrusions},
-            {"slabs", slabs}});
+        json manifest = probeManifestHeader("lightfield", sourceScene, a.inputs);
+        manifest.update(
+            {{"cell", {{"centre", vec3Json(a.cellCentre)}, {"size", a.cellSize}}},
+             {"cameras", a.cameras},
+             {"image_res", a.res},
+             {"fov_deg", 90},
+             {"camera_spacing", a.cameraSpacing()},
+             {"compression", toString(a.compression)},
+             {"depth_percentile", a.depthPercentile},
+             {"atlas",
+              {{"width", n},
+               {"height", n},
+               {"layers", 6},
+               {"texel_format", a.compression == LightFieldCompression::BC1
+                                    ? "BC1 (DXT1) blocks of sRGB colour, block rows top to bottom"
+                                    : "sRGB-encoded RGB8, rows top to bottom"},
+               {"layout", "layer k = slab +X -X +Y -Y +Z -Z; slab axes b = (a+1)%3, c = (a+2)%3; "
+                          "camera (i, j) at s = (i/(NUM-1) - 1/2) 3l along b, t likewise along c, "
+                          "tile texels [i RES, (i+1) RES) x [j RES, (j+1) RES); texel (x, y) "
+                          "slope ((x+0.5) 2/RES - 1, (y+0.5) 2/RES - 1)"}}},
+             {"focal_rule", "focal depth = harmonic mean of depth_near and depth_far (plenoptic "
+                            "sampling); disparity_px = camera_spacing / focal_depth * RES / 2"},
+             {"bake", {{"tracer", "embree"}, {"seconds", a.bakeSeconds}}},
+             {"intrusions", intrusions},
+             {"slabs", slabs}});
         return manifest;
     });
 }
@@ -277,6 +277,7 @@ LightFieldAsset readLightFieldProbe(const ProbeManifest& manifest) {
                                 " is in the three-colour mode the baker never writes (its "
                                 "index 3 decodes to transparent black)");
     }
+    a.inputs = manifestProbeInputs(m, manifestPath);
     checkManifestSeal(manifest);
     return a;
 }

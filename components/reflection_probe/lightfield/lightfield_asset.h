@@ -56,6 +56,7 @@ struct LightFieldIntrusion {
 
 struct LightFieldAsset {
     glm::vec3 cellCentre{0.f}; // world space
+    ProbeInputs inputs;        // what the cooker baked it from ("inputs"; not recorded: empty)
     float cellSize = 1.f;      // l
     int cameras = 8;           // NUM per side
     int res = 64;              // RES

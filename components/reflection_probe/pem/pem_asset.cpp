@@ -295,7 +295,7 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
             samples.push_back(std::move(sample));
         }
 
-        json manifest = probeManifestHeader("pem", sourceScene);
+        json manifest = probeManifestHeader("pem", sourceScene, asset.inputs);
         manifest["geometry"] = asset.geometry;
         if (asset.localLayer)
             manifest["local_layer"] = {{"face_res", asset.localFaceRes},
@@ -435,6 +435,7 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
         files.push_back(file.path);
     }
     checkAsset(a, manifest.path, files, distanceFile, localFiles);
+    a.inputs = manifestProbeInputs(manifest.json, manifest.path);
     checkManifestSeal(manifest);
     return a;
 }

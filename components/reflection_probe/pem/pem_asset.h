@@ -37,6 +37,7 @@ struct PemSampleMap {
 
 struct PemAsset {
     std::string manifestPath; // where it was read from (errors); empty when cooked
+    ProbeInputs inputs;       // what the cooker baked it from ("inputs"; not recorded: empty)
     glm::vec3 centre{0.f};    // world position of the maps' origin (the probe centre)
     std::string skySource; // the sky the bake traced (a path as given; empty: black, or unknown in
                            // a manifest older than "sky_source")

@@ -34,7 +34,7 @@ struct ConstantAsset {
 
 inline void writeConstantProbe(const ConstantAsset& a, const std::string& dir) {
     writeProbeFolder(dir, "constant-colour test", [&](const std::filesystem::path&) {
-        nlohmann::json manifest = probeManifestHeader("constant", "");
+        nlohmann::json manifest = probeManifestHeader("constant", "", ProbeInputs{});
         manifest["colour"] = vec3Json(a.colour);
         return manifest;
     });
