@@ -80,6 +80,17 @@ TEST_F(BadManifest, EveryMalformedFieldIsNamed) {
     expectRefused([](json& m) { m["format"] = "specula-probe", m["version"] = 4; }, "version");
     expectRefused([](json& m) { m["format"] = "specula-probe"; }, "version");
     expectRefused([](json& m) { m["flavour"] = 3; }, "flavour");
+    expectRefused([](json& m) { m["inputs"] = 7; }, "inputs");
+    expectRefused(
+        [](json& m) {
+            m["inputs"] = {{"geometry", 1}, {"options", ""}, {"sky", "none"}};
+        },
+        "inputs.geometry");
+    expectRefused(
+        [](json& m) {
+            m["inputs"] = {{"geometry", "g"}, {"options", "o"}};
+        },
+        "inputs.sky");
     expectRefused([](json& m) { m["range_D"] = "far"; }, "range_D");
     expectRefused([](json& m) { m["range_D"] = -1; }, "range_D");
     expectRefused([](json& m) { m["d_inf"] = nullptr; }, "d_inf");
