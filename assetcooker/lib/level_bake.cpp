@@ -132,7 +132,7 @@ std::string folderFilesReason(const fs::path& folder) {
 
 std::string staleReason(const std::optional<LevelIndex>& previous, const fs::path& dir,
                         const std::string& folder, const ProbeVolume& v,
-                        const LevelProbeInputs& inputs) {
+                        const ProbeInputs& inputs) {
     const LevelProbeEntry* old = nullptr;
     if (previous)
         for (const LevelProbeEntry& e : previous->probes)
@@ -174,14 +174,13 @@ ProbeInputs inputsOf(const ProbeScene& scene, const std::map<std::uint32_t, ecs:
         geometry += '\n';
     }
     return {bytesChecksum(geometry.data(), geometry.size()),
-            bytesChecksum(options.data(), options.size()),
-            scene.skyPath.empty() ? "none" : fileChecksum(scene.skyPath)};
+            bytesChecksum(options.data(), options.size()), skyChecksum(scene.skyPath)};
 }
 
 } // namespace
 
-LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& env,
-                                  const ProbeVolume& probe, const std::string& options) {
+ProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& env, const ProbeVolume& probe,
+                             const std::string& options) {
     const ecs::Registry& reg = scene.registry;
     std::map<std::uint32_t, ecs::Entity> within; // by index: a deterministic order
     for (ecs::Entity e : scene.markup.mirrorEntities)
@@ -205,6 +204,10 @@ LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& env,
     return inputsOf(scene, within, options + '\n' + toJson(probe).dump());
 }
 
+std::string skyChecksum(const std::string& skyPath) {
+    return skyPath.empty() ? "none" : fileChecksum(skyPath);
+}
+
 ProbeInputs sceneProbeInputs(const ProbeScene& scene, const std::string& options) {
     const ecs::Registry& reg = scene.registry;
     std::map<std::uint32_t, ecs::Entity> every;
@@ -222,7 +225,7 @@ std::vector<std::string> levelStaleness(ProbeScene& scene, const LevelIndex& ind
     std::vector<std::string> lines;
     for (std::size_t i = 0; i < index.probes.size(); ++i) {
         const LevelProbeEntry& p = index.probes[i];
-        const LevelProbeInputs now = levelProbeInputs(scene, env, p.volume, "");
+        const ProbeInputs now = levelProbeInputs(scene, env, p.volume, "");
         const std::string field = indexPath + ": probes[" + std::to_string(i) + "].inputs.";
         if (now.geometry != p.inputs.geometry)
             lines.push_back(field + "geometry: probe '" + p.volume.name + "' was baked from " +

@@ -21,12 +21,14 @@ namespace specula {
 // reflector), each in world space with its material; `options` (the flavour's settings,
 // as text) with the volume; the sky file's bytes. `environment`: the scene's Embree BVH
 // without the reflectors, built once for all probes of a level.
-LevelProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& environment,
-                                  const ProbeVolume& probe, const std::string& options);
+ProbeInputs levelProbeInputs(ProbeScene& scene, const EmbreeScene& environment,
+                             const ProbeVolume& probe, const std::string& options);
 // The same for a probe cooked on its own, over the whole scene (every mesh, with its
 // material, and every reflector's markup): what its manifest records ("inputs"), and what a
 // tool loading it against a scene compares.
 ProbeInputs sceneProbeInputs(const ProbeScene& scene, const std::string& options);
+// ProbeInputs::sky of a sky image (its file's checksum; "none" for no sky).
+std::string skyChecksum(const std::string& skyPath);
 
 // What differs between `scene` and the scene the level `index` (read from `indexPath`) was
 // baked from: one line per probe whose geometry within reach or sky checksum differs, naming

@@ -51,7 +51,7 @@ void checkSceneUnchanged(const std::string& dir, const ShardList& list, int inde
                          ProbeScene& scene, const EmbreeScene& environment) {
     const LevelProbeEntry& planned =
         list.level.probes[std::size_t(list.shards[std::size_t(index)].probe)];
-    const LevelProbeInputs now = levelProbeInputs(scene, environment, planned.volume, "");
+    const ProbeInputs now = levelProbeInputs(scene, environment, planned.volume, "");
     const char* changed = now.geometry != planned.inputs.geometry ? "the geometry"
                           : now.sky != planned.inputs.sky         ? "the sky"
                                                                   : nullptr;

@@ -18,13 +18,11 @@
 
 namespace specula {
 
-using LevelProbeInputs = ProbeInputs; // manifest_fields.h
-
 struct LevelProbeEntry {
     ProbeVolume volume;
     std::string folder; // relative to the level folder
     std::string manifestChecksum;
-    LevelProbeInputs inputs;
+    ProbeInputs inputs;
 };
 
 struct LevelIndex {

@@ -87,8 +87,10 @@ void checkProbeFitsScene(const std::string& manifest, const CookedProbeFacts& fa
                          const ProbeSource& src, bool compareSky, bool allowStale,
                          std::ostream* log) {
     if (!facts.inputs.recorded()) return; // cooked before probes recorded their inputs
-    const ProbeScene scene(src.scenePath, compareSky ? src.skyPath : "");
-    const ProbeInputs now = sceneProbeInputs(scene, "");
+    // The sky's checksum is its file's: the panorama is not decoded for it.
+    const ProbeScene scene(src.scenePath, "");
+    ProbeInputs now = sceneProbeInputs(scene, "");
+    if (compareSky) now.sky = skyChecksum(src.skyPath);
     std::vector<std::string> stale;
     if (now.geometry != facts.inputs.geometry)
         stale.push_back(manifest + ": inputs.geometry: the probe was baked from " + facts.source +

@@ -127,13 +127,10 @@ TEST_F(CompressedProbe, GlossyLevelsAreStoredAsBc6hAndReadBackExactly) {
     const DistanceProbeAsset glossy = compressedWithGlossy(original_);
     ASSERT_GE(glossy.glossyLevels.size(), 2u);
     ASSERT_EQ(glossy.glossyBlocks.size(), glossy.glossyLevels.size());
-    std::size_t blockBytes = 0;
     for (std::size_t k = 0; k < glossy.glossyLevels.size(); ++k) {
         const int n = glossy.glossyLevels[k][0].width;
         EXPECT_EQ(glossy.glossyBlocks[k].size(), 6 * bc6hBytes(n, n)) << "level " << k + 1;
-        blockBytes += glossy.glossyBlocks[k].size();
     }
-    EXPECT_EQ(compressedGlossyBytes(glossy), blockBytes);
     writeDistanceProbe(glossy, dir_.string(), "scene.gltf");
     const DistanceProbeAsset back = readDistanceProbe(manifest());
     EXPECT_EQ(back.glossyBlocks, glossy.glossyBlocks);

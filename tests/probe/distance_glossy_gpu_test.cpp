@@ -5,7 +5,6 @@
 #include "components/reflection_probe/distance/distance_glossy_chain.h"
 #include "components/reflection_probe/distance/distance_textures.h"
 #include "engine/gpu/render_target.h"
-#include "engine/image/ggx_albedo.h"
 #include "probe_fixture.h"
 #include "support/fullscreen_pass.h"
 #include "twin_agreement.h"
@@ -51,21 +50,6 @@ protected:
 
 constexpr float kRoughness = 0.2f;
 
-// The shader's colour over the GGX albedo E(|n.v|, r) it multiplied in (|n.v| from the
-// OUTPUT 3 frame, E from the C++ table): the prefiltered lighting the twin returns. A shader
-// that applied another E, or none, leaves the ratio off by it.
-Image withoutAlbedo(const Image& colour, const Image& nv, const Image& mask) {
-    Image out = colour;
-    for (int y = 0; y < mask.height; ++y)
-        for (int x = 0; x < mask.width; ++x) {
-            if (mask.at(x, y)[0] < 0.5f) continue;
-            const float e = ggxAlbedo(nv.at(x, y)[0], kRoughness);
-            for (int c = 0; c < 3; ++c)
-                out.at(x, y)[c] = colour.at(x, y)[c] / e;
-        }
-    return out;
-}
-
 } // namespace
 
 // The twin runs on the exact inputs the shader used (probe-local position and reflected
@@ -88,7 +72,8 @@ TEST_F(GlossyGpu, ShaderMatchesCpuTwinPerPixel) {
         const std::vector<std::string> drawn = renderer_->stats().permutations;
         const Image pos = renderer_->render(cam, 1);
         const Image dir = renderer_->render(cam, 2);
-        const Image lighting = withoutAlbedo(colour, renderer_->render(cam, 3), mask);
+        const Image lighting =
+            test::withoutGgxAlbedo(colour, renderer_->render(cam, 3), mask, kRoughness);
 
         const ecs::Entity probe = scene_->probeEntity();
         const DistanceStore& store = *renderer_->probes().store<DistanceStore>();
@@ -251,7 +236,8 @@ TEST_F(GlossyGpu, CookedGlossyLevelsAreTheChainTheShaderReads) {
     const Image colour = renderer_->render(cam);
     const Image pos = renderer_->render(cam, 1);
     const Image dir = renderer_->render(cam, 2);
-    const Image lighting = withoutAlbedo(colour, renderer_->render(cam, 3), mask);
+    const Image lighting =
+        test::withoutGgxAlbedo(colour, renderer_->render(cam, 3), mask, kRoughness);
     const DistanceStore& store = *renderer_->probes().store<DistanceStore>();
     const ecs::Entity probe = scene_->probeEntity();
     const std::shared_ptr<const CubeChain> chain = store.glossyChain(probe);

@@ -86,6 +86,10 @@ void readGlossyLevels(const ManifestFields& r, const nlohmann::json& glossy,
 void checkCompressedComposite(const DistanceProbeAsset& a, const std::string& file,
                               const std::vector<std::string>& glossyFiles);
 
+// Writes `faces`' RGB as the BC6H cube `blocks` encode (six faces in order) to `path`.
+void writeBc6hCube(const std::string& path, const std::array<Image, 6>& faces,
+                   const std::vector<std::uint8_t>& blocks);
+
 // Writes the composite's BC6H radiance as `name` in `tmp` and its distance beside it
 // (name_distance.ktx2); returns the layer's "file", "checksum" and "distance" members.
 nlohmann::json writeCompressedComposite(const DistanceProbeAsset& a,

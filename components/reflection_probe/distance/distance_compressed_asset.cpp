@@ -81,14 +81,18 @@ void checkCompressedComposite(const DistanceProbeAsset& a, const std::string& fi
         checkBlocks(a.glossyLevels[k], a.glossyBlocks[k], false, glossyFiles.at(k));
 }
 
+void writeBc6hCube(const std::string& path, const std::array<Image, 6>& faces,
+                   const std::vector<std::uint8_t>& blocks) {
+    writeKtx2(
+        path,
+        Ktx2Texture{.cube = true, .bc6h = true, .levels = {stackFaces(faces)}, .blocks = {blocks}});
+}
+
 json writeCompressedComposite(const DistanceProbeAsset& a, const fs::path& tmp,
                               const std::string& name) {
     const DistanceProbeLayer& composite = a.layers.at(0);
     const std::string radiance = (tmp / name).string();
-    writeKtx2(radiance, Ktx2Texture{.cube = true,
-                                    .bc6h = true,
-                                    .levels = {stackFaces(composite.faces)},
-                                    .blocks = {a.compositeBlocks}});
+    writeBc6hCube(radiance, composite.faces, a.compositeBlocks);
     const std::string distanceName = distanceFileName(name);
     const std::string distance = (tmp / distanceName).string();
     writeKtx2(distance, Ktx2Texture{.cube = true,

@@ -91,13 +91,6 @@ void compressComposite(DistanceProbeAsset& asset) {
     asset.halfCompositeDistance = half;
 }
 
-std::size_t compressedGlossyBytes(const DistanceProbeAsset& asset) {
-    std::size_t bytes = 0;
-    for (const std::vector<std::uint8_t>& b : asset.glossyBlocks)
-        bytes += b.size();
-    return bytes;
-}
-
 std::size_t compositeBytes(const DistanceProbeAsset& asset) {
     if (asset.compression == DistanceCompression::None) return cubeBytesRgba32f(asset.faceRes);
     const std::size_t n = std::size_t(asset.faceRes);

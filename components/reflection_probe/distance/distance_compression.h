@@ -41,7 +41,5 @@ std::size_t cubeBytesRgba16f(int faceRes);
 std::size_t cubeBytesBc6hR16f(int faceRes); // BC6H radiance + R16F distance
 // The composite's bytes as `asset` stores it (RGBA32F, or BC6H plus R16F or R32F distance).
 std::size_t compositeBytes(const DistanceProbeAsset& asset);
-// The compressed glossy levels' blocks, what the GPU holds of them (0 when uncompressed).
-std::size_t compressedGlossyBytes(const DistanceProbeAsset& asset);
 
 } // namespace specula

@@ -148,10 +148,7 @@ json writeGlossyLevels(const DistanceProbeAsset& asset, const fs::path& tmp,
         const std::string name = glossyFileName(k + 1);
         const std::string path = (tmp / name).string();
         if (asset.compression == DistanceCompression::Bc6h)
-            writeKtx2(path, Ktx2Texture{.cube = true,
-                                        .bc6h = true,
-                                        .levels = {stackFaces(asset.glossyLevels[k])},
-                                        .blocks = {asset.glossyBlocks.at(k)}});
+            writeBc6hCube(path, asset.glossyLevels[k], asset.glossyBlocks.at(k));
         else
             writeKtx2Cube(path, stackFaces(asset.glossyLevels[k]));
         levels.push_back({{"file", name},

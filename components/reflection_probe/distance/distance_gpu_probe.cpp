@@ -81,11 +81,7 @@ bool DistanceGpuProbe::applySettings(const DistanceProbe& settings) {
 
 void DistanceGpuProbe::setGlossyChain(std::shared_ptr<const CubeChain> chain) const {
     if (glossyChain) return;
-    // The asset's own chain of a compressed probe goes up as its blocks; a chain prefiltered at
-    // load (an asset without glossy levels) as floats.
-    glossyCompressed = asset->compression == DistanceCompression::Bc6h &&
-                       !asset->glossyBlocks.empty() &&
-                       chain->levels.size() == asset->glossyBlocks.size() + 1;
+    glossyCompressed = chainHasBlocks(*asset, *chain);
     glossyTexture = glossyCompressed ? uploadChainArrays({chain.get()}, {&asset->glossyBlocks})
                                      : uploadChainArray(*chain);
     glossyChain = std::move(chain);

@@ -146,8 +146,7 @@ void DistanceLevelGpu::setChains(std::vector<std::shared_ptr<const CubeChain>> m
     }
     // BC6H when every probe's chain is its asset's compressed levels (one array holds all).
     chainsCompressed = std::all_of(assets.begin(), assets.end(), [&](const auto& a) {
-        return a->compression == DistanceCompression::Bc6h && !a->glossyBlocks.empty() &&
-               a->glossyBlocks.size() + 1 == made.front()->levels.size();
+        return chainHasBlocks(*a, *made.front());
     });
     chainTexture = uploadChainArrays(all, chainsCompressed ? blocks : ChainBlocks{});
     chains = std::move(made);

@@ -236,6 +236,11 @@ gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains,
     return array;
 }
 
+bool chainHasBlocks(const DistanceProbeAsset& asset, const CubeChain& chain) {
+    return asset.compression == DistanceCompression::Bc6h && !asset.glossyBlocks.empty() &&
+           chain.levels.size() == asset.glossyBlocks.size() + 1;
+}
+
 int chainArraySlots(const CubeChain& chain) {
     return chain.levels.size() < 2 ? 0 : int(chain.levels.size()) - chainMips(chain);
 }

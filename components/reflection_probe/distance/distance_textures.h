@@ -55,6 +55,9 @@ gpu::Texture uploadChainArray(const CubeChain& chain);
 // level k + 1, six faces in order) the array is BC6H uploaded from them, its RGB what the
 // shader reads; Error when they do not fit the chains' levels.
 using ChainBlocks = std::vector<const std::vector<std::vector<std::uint8_t>>*>;
+// Whether `chain` is `asset`'s own compressed levels (a Bc6h asset with glossyBlocks for each
+// of them), so it goes up as those blocks; a chain prefiltered at load goes up as floats.
+bool chainHasBlocks(const DistanceProbeAsset& asset, const CubeChain& chain);
 gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains,
                                const ChainBlocks& blocks = {});
 int chainArraySlots(const CubeChain& chain);
