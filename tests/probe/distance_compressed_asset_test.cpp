@@ -312,5 +312,21 @@ TEST_F(CompressedProbe, ARadianceFileThatIsNotBc6hIsRefused) {
     EXPECT_NE(std::string(e.what()).find("BC6H"), std::string::npos) << e.what();
 }
 
+// A glossy level of a compressed probe that holds floats, not blocks (its checksum restated):
+// refused naming the level's file and its vkFormat.
+TEST_F(CompressedProbe, AGlossyLevelThatIsNotBc6hIsRefusedNamingIt) {
+    const DistanceProbeAsset glossy = compressedWithGlossy(original_);
+    writeDistanceProbe(glossy, dir_.string(), "scene.gltf");
+    const fs::path level = dir_ / "layer_00_ggx_1.ktx2";
+    const int n = glossy.glossyLevels[0][0].width;
+    writeKtx2Cube(level.string(), Image(n, 6 * n, 4));
+    json m = writtenManifest();
+    m["glossy"]["levels"][0]["checksum"] = fileChecksum(level.string());
+    rewrite(m);
+    const Error e = readError();
+    EXPECT_EQ(e.field(), "glossy.levels[0].vkFormat") << e.what();
+    EXPECT_NE(std::string(e.what()).find("layer_00_ggx_1.ktx2"), std::string::npos) << e.what();
+}
+
 } // namespace
 } // namespace specula
