@@ -165,6 +165,23 @@ TEST_F(ImageIoTest, ReadFloatExrRefusesAPngRenamedExr) {
 }
 
 // A header may declare any size; reading it must not try to allocate 160 GB.
+// An attribute declaring more bytes than the file holds (what the fuzzer found: a 448-byte
+// file whose 'capDate' string declared 1.9 GB, which OpenEXR allocated before reading) is
+// refused naming the attribute, before OpenImageIO opens the file.
+TEST_F(ImageIoTest, AnExrAttributeLargerThanItsFileIsRefusedBeforeAllocating) {
+    writeImage(path("small.exr"), gradient(4, 4, 4));
+    std::string bytes = test::slurp(path("small.exr"));
+    const std::string attr = std::string("channels\0chlist\0", 16);
+    const std::size_t at = bytes.find(attr);
+    ASSERT_NE(at, std::string::npos);
+    const std::int32_t declared = 1962934291;
+    std::memcpy(&bytes[at + attr.size()], &declared, sizeof declared);
+    test::spit(path("damaged.exr"), bytes);
+    test::expectNames(test::errorOf([&] { (void)readImage(path("damaged.exr")); }),
+                      {path("damaged.exr"), "header", "'channels' declares 1962934291 bytes"});
+    EXPECT_EQ(readImage(path("small.exr")).width, 4); // an intact header reads as before
+}
+
 TEST_F(ImageIoTest, HugeDeclaredSizeIsRefusedBeforeAllocating) {
     writeImage(path("small.exr"), gradient(4, 4, 4));
     std::string bytes = test::slurp(path("small.exr"));
