@@ -4,10 +4,13 @@
 
 namespace specula::gpu {
 
-Texture createGgxAlbedoTexture() {
-    Texture texture = Texture::create(GL_TEXTURE_2D);
+TextureSpec ggxAlbedoTextureSpec() {
+    return {"uGgxAlbedo", GL_TEXTURE_2D, GL_R32F, kGgxAlbedoTableSize, kGgxAlbedoTableSize};
+}
+
+Texture createGgxAlbedoTexture(const TextureAllocator& allocate) {
+    Texture texture = allocate(ggxAlbedoTextureSpec());
     const GLuint tex = texture.id();
-    glTextureStorage2D(tex, 1, GL_R32F, kGgxAlbedoTableSize, kGgxAlbedoTableSize);
     glTextureSubImage2D(tex, 0, 0, 0, kGgxAlbedoTableSize, kGgxAlbedoTableSize, GL_RED, GL_FLOAT,
                         ggxAlbedoTable().data());
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);

@@ -28,6 +28,13 @@ Texture Texture::create(GLenum target) {
     return t;
 }
 
+Texture Texture::borrow(GLuint id, GLenum target) {
+    Texture t;
+    static_cast<GlName&>(t) = GlName::borrow(id);
+    t.target_ = target;
+    return t;
+}
+
 Framebuffer Framebuffer::create() {
     GLuint id = 0;
     glCreateFramebuffers(1, &id);

@@ -1,8 +1,9 @@
 #pragma once
 // Move-only owners of OpenGL object names, created with the GL 4.5 glCreate* calls so they
 // are usable with direct state access (glNamedBuffer*, glTexture*, ...) without binding.
-// A default-constructed wrapper owns nothing (id() == 0). Destroy them while the context
-// that made them is current.
+// A default-constructed wrapper owns nothing (id() == 0); a borrowed one (borrow) uses a
+// name someone else owns and never deletes it. Destroy them while the context that made them
+// is current.
 #include <epoxy/gl.h>
 
 #include <glm/glm.hpp>
@@ -20,11 +21,13 @@ template <typename Traits> class GlName {
 public:
     GlName() = default;
     ~GlName() { reset(); }
-    GlName(GlName&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
+    GlName(GlName&& o) noexcept
+        : id_(std::exchange(o.id_, 0)), owned_(std::exchange(o.owned_, true)) {}
     GlName& operator=(GlName&& o) noexcept {
         if (this != &o) {
             reset();
             id_ = std::exchange(o.id_, 0);
+            owned_ = std::exchange(o.owned_, true);
         }
         return *this;
     }
@@ -34,18 +37,28 @@ public:
     GLuint id() const { return id_; }
     explicit operator bool() const { return id_ != 0; }
     void reset() {
-        if (id_) Traits::destroy(id_);
+        if (id_ && owned_) Traits::destroy(id_);
         id_ = 0;
+        owned_ = true;
     }
+    bool owned() const { return owned_; }
     // Takes ownership of a name made elsewhere.
     static GlName adopt(GLuint id) {
         GlName n;
         n.id_ = id;
         return n;
     }
+    // Uses a name its maker keeps owning (a host engine's texture handed to the runtime).
+    static GlName borrow(GLuint id) {
+        GlName n;
+        n.id_ = id;
+        n.owned_ = false;
+        return n;
+    }
 
 private:
     GLuint id_ = 0;
+    bool owned_ = true;
 };
 
 struct BufferTraits {
@@ -86,6 +99,14 @@ template <typename T> class UniformBuffer {
     static_assert(std::is_trivially_copyable_v<T>, "uploaded byte for byte");
 
 public:
+    // Uploads go to `buffer` (at least sizeof(T) bytes, writable by glNamedBufferSubData), which
+    // its maker keeps owning.
+    static UniformBuffer borrow(GLuint buffer) {
+        UniformBuffer u;
+        static_cast<detail::GlName<detail::BufferTraits>&>(u.buffer_) =
+            detail::GlName<detail::BufferTraits>::borrow(buffer);
+        return u;
+    }
     void upload(const T& value) {
         if (!buffer_)
             buffer_ = Buffer::create(&value, sizeof(T), GL_DYNAMIC_STORAGE_BIT);
@@ -104,6 +125,8 @@ class Texture : public detail::GlName<detail::TextureTraits> {
 public:
     Texture() = default;
     static Texture create(GLenum target);
+    // `id`, a texture of `target` its maker keeps owning.
+    static Texture borrow(GLuint id, GLenum target);
     GLenum target() const { return target_; }
 
 private:

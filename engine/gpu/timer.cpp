@@ -53,4 +53,18 @@ double medianMs(std::vector<double> samples) {
     return 0.5 * (lower + upper);
 }
 
+Quartiles quartilesMs(std::vector<double> samples) {
+    std::erase_if(samples, [](double s) { return !std::isfinite(s); });
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (samples.empty()) return {nan, nan, nan};
+    std::sort(samples.begin(), samples.end());
+    const auto at = [&](double q) {
+        const double pos = q * double(samples.size() - 1);
+        const std::size_t i = std::size_t(pos);
+        const double next = samples[std::min(i + 1, samples.size() - 1)];
+        return samples[i] + (pos - double(i)) * (next - samples[i]);
+    };
+    return {at(0.25), at(0.5), at(0.75)};
+}
+
 } // namespace specula::gpu

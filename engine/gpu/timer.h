@@ -34,4 +34,13 @@ private:
 // (rejected timer results) are left out; NaN when none is left.
 double medianMs(std::vector<double> samples);
 
+// The quartiles of the finite samples (linear interpolation between order statistics, so
+// the middle one is medianMs), for a row's spread: two rows whose interquartile ranges overlap
+// cannot be told apart. NaN in all three when no finite sample is left.
+struct Quartiles {
+    double q1, median, q3;
+    double iqr() const { return q3 - q1; }
+};
+Quartiles quartilesMs(std::vector<double> samples);
+
 } // namespace specula::gpu

@@ -8,6 +8,7 @@
 #include "sandbox/lib/bench_methods.h"
 #include "sandbox/lib/created_output_folder.h"
 #include "sandbox/lib/glossy_bench.h"
+#include "sandbox/lib/host_timing.h"
 #include "sandbox/lib/level_walk.h"
 #include "sandbox/lib/walk.h"
 
@@ -244,6 +245,7 @@ int runCli(std::span<const std::string> args, std::ostream& out, std::ostream& e
     addLevelCommand(tool);
     addBenchCommand(tool);
     addGlossyCommand(tool);
+    addHostCommand(tool);
     return tool.run(args, out, err);
 }
 

@@ -43,5 +43,20 @@ TEST(MedianMs, OddEvenAndEmpty) {
     EXPECT_DOUBLE_EQ(medianMs({1.0, std::nan(""), 3.0}), 2.0);
 }
 
+TEST(QuartilesMs, InterpolatedOrderStatisticsWithTheMedianInTheMiddle) {
+    // 1..9: positions 2 and 6 of 0..8.
+    const Quartiles q = quartilesMs({9.0, 1.0, 8.0, 2.0, 7.0, 3.0, 6.0, 4.0, 5.0});
+    EXPECT_DOUBLE_EQ(q.q1, 3.0);
+    EXPECT_DOUBLE_EQ(q.median, 5.0);
+    EXPECT_DOUBLE_EQ(q.q3, 7.0);
+    EXPECT_DOUBLE_EQ(q.iqr(), 4.0);
+    // 1..4: positions 0.75, 1.5, 2.25; the median is medianMs's.
+    const Quartiles even = quartilesMs({4.0, 2.0, std::nan(""), 1.0, 3.0});
+    EXPECT_DOUBLE_EQ(even.q1, 1.75);
+    EXPECT_DOUBLE_EQ(even.median, medianMs({1.0, 2.0, 3.0, 4.0}));
+    EXPECT_DOUBLE_EQ(even.q3, 3.25);
+    EXPECT_TRUE(std::isnan(quartilesMs({std::nan("")}).median));
+}
+
 } // namespace
 } // namespace specula::gpu

@@ -111,7 +111,7 @@ TEST_F(HostExample, RendersTheRoomProbeAsTheTwinDoes) {
     const auto asset = std::make_shared<const DistanceProbeAsset>(
         storedDistanceAsset(readDistanceProbe(manifest)));
     const DistanceLookupConfig config =
-        makeLookupConfig(DistanceProbe{.method = DistanceMethod::Planned}, *asset);
+        makeLookupConfig(DistanceProbe{}, *asset); // Planned, as the host
     const CpuDistanceProbe twin(*asset, config,
                                 std::make_shared<const CubeChain>(glossyChainOf(*asset)));
     const HostScene scene(asset->centre, w, h);

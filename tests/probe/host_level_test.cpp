@@ -8,6 +8,7 @@
 #include "engine/gpu/render_target.h"
 #include "engine/image_io/compare.h"
 #include "support/fullscreen_pass.h"
+#include "support/host_sphere.h"
 #include "two_room_level_gpu_fixture.h"
 
 #include <gtest/gtest.h>
@@ -21,22 +22,12 @@ namespace {
 constexpr int kW = 160, kH = 120;
 const glm::vec4 kSphere(0.2f, 1.2f, 0.f, 0.35f); // in the doorway (the wall at x = 0)
 
-// The host's fragment shader after Specula's library: one mirror sphere, ray cast per pixel.
+// The host's main after Specula's library and the sphere ray cast: a mirror sphere.
 const char* kHostMain = R"(
-uniform mat4 uInvViewProj;
-uniform vec3 uEye;
-uniform vec4 uSphere;
-uniform vec2 uSize;
-out vec4 colour;
 void main() {
-    vec2 ndc = gl_FragCoord.xy / uSize * 2.0 - 1.0;
-    vec4 far = uInvViewProj * vec4(ndc, 1.0, 1.0);
-    vec3 d = normalize(far.xyz / far.w - uEye);
-    vec3 o = uEye - uSphere.xyz;
-    float b = dot(o, d), h = b * b - dot(o, o) + uSphere.w * uSphere.w;
-    float t = h >= 0.0 ? -b - sqrt(h) : -1.0;
-    if (t <= 0.0) { colour = vec4(0.0); return; }
-    vec3 p = uEye + t * d;
+    vec3 p, d;
+    vec2 ndc;
+    if (!sphereHit(p, d, ndc)) { colour = vec4(0.0); return; }
     colour = vec4(speculaReflect(p, p - uSphere.xyz, d, 0.0), 1.0);
 }
 )";
@@ -63,18 +54,13 @@ TEST_F(HostLevel, BlendsTheLevelAsItsTwinDoes) {
         << "deep in room A only its probe";
 
     const CameraView cam = doorwayCamera(kW, kH);
-    const glm::mat4 inv = glm::inverse(cam.viewProj());
-    const glm::vec3 eye = cam.eye();
-    gpu::Program prog = test::buildFullscreenProgram("host_level", level.glslLibrary() + kHostMain);
+    const test::HostSphereView view{glm::inverse(cam.viewProj()), cam.eye(), kSphere, kW, kH};
+    gpu::Program prog = test::buildFullscreenProgram(
+        "host_level", level.glslLibrary() + test::kHostSphereGlsl + kHostMain);
     gpu::RenderTarget target(kW, kH);
     const gpu::VertexArray vao = gpu::VertexArray::create();
     const Image host = test::drawFullscreen(target, prog, vao, [&] {
-        glProgramUniformMatrix4fv(prog.id(), prog.uniformLocation("uInvViewProj"), 1, GL_FALSE,
-                                  &inv[0][0]);
-        prog.setUniform("uEye", eye);
-        prog.setUniform("uSize", glm::vec2(kW, kH));
-        glProgramUniform4f(prog.id(), prog.uniformLocation("uSphere"), kSphere.x, kSphere.y,
-                           kSphere.z, kSphere.w);
+        view.setUniforms(prog);
         level.bindTo(prog.id(), sphereBounds);
     });
 
@@ -83,15 +69,10 @@ TEST_F(HostLevel, BlendsTheLevelAsItsTwinDoes) {
     int covered = 0, blended = 0;
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
-            // Row 0 of the read-back image is the top: GL row kH - 1 - y.
-            const glm::vec2 ndc((x + 0.5f) / kW * 2.f - 1.f, (kH - 1 - y + 0.5f) / kH * 2.f - 1.f);
-            const glm::vec4 far = inv * glm::vec4(ndc, 1.f, 1.f);
-            const glm::vec3 d = glm::normalize(glm::vec3(far) / far.w - eye);
-            const glm::vec3 o = eye - glm::vec3(kSphere);
-            const float b = glm::dot(o, d), h = b * b - glm::dot(o, o) + kSphere.w * kSphere.w;
-            const float t = h >= 0.f ? -b - std::sqrt(h) : -1.f;
-            if (t <= 0.f) continue;
-            const glm::vec3 p = eye + t * d, n = glm::normalize(p - glm::vec3(kSphere));
+            glm::vec3 p, d;
+            glm::vec2 ndc;
+            if (!view.hit(x, y, p, d, ndc)) continue;
+            const glm::vec3 n = glm::normalize(p - glm::vec3(kSphere));
             const glm::vec3 l = glm::normalize(d - 2.f * glm::dot(d, n) * n);
             const LevelSample s = twin.radiance(p, l, LevelBlend::Visibility, 4);
             std::copy(&s.radiance[0], &s.radiance[0] + 3, reference.at(x, y));

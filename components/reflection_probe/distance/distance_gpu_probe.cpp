@@ -42,11 +42,33 @@ std::vector<std::string> distanceDefines(std::uint32_t features, bool roughnessM
     return defines;
 }
 
-DistanceGpuProbe DistanceGpuProbe::load(std::shared_ptr<const DistanceProbeAsset> stored) {
+DistanceGpuProbe DistanceGpuProbe::load(std::shared_ptr<const DistanceProbeAsset> stored,
+                                        gpu::TextureAllocator allocate) {
     DistanceGpuProbe g;
     g.asset = std::move(stored);
-    if (!g.asset->sky.empty()) g.sky = uploadSkyTexture(g.asset->sky);
+    g.allocate = std::move(allocate);
+    if (!g.asset->sky.empty()) g.sky = uploadSkyTexture(g.asset->sky, g.allocate);
     return g;
+}
+
+std::vector<gpu::TextureSpec> DistanceGpuProbe::textureSpecs(const DistanceProbeAsset& a,
+                                                             const DistanceLookupConfig& config,
+                                                             const CubeChain* chain) {
+    // In load, applySettings and setGlossyChain's order.
+    std::vector<gpu::TextureSpec> specs;
+    if (!a.sky.empty()) specs.push_back(skyTextureSpec(a.sky));
+    if (a.compression == DistanceCompression::Bc6h) {
+        specs.push_back(compressedCubeArraySpec(a.faceRes, 1));
+        specs.push_back(distanceArraySpec(a.faceRes, 1, a.halfCompositeDistance));
+    } else {
+        specs.push_back(cubeArraySpec(a.faceRes, 1));
+    }
+    if ((config.features & kFeatureLayers) && a.layers.size() > 1)
+        for (gpu::TextureSpec& t : layerTileSpecs(storedLayerTiles(a)))
+            specs.push_back(std::move(t));
+    if (chain && chain->levels.size() >= 2)
+        specs.push_back(chainArraySpec(*chain, 1, chainHasBlocks(a, *chain)));
+    return specs;
 }
 
 bool DistanceGpuProbe::applySettings(const DistanceProbe& settings) {
@@ -58,17 +80,17 @@ bool DistanceGpuProbe::applySettings(const DistanceProbe& settings) {
     const bool upload = needed > layersUploaded;
     if (upload) {
         if (layersUploaded == 0 && a.compression == DistanceCompression::Bc6h) {
-            layers = createCompressedCubeArray(a.faceRes, 1);
+            layers = createCompressedCubeArray(a.faceRes, 1, allocate);
             uploadCompressedCube(layers, 0, a.compositeBlocks);
-            layerDistance = createDistanceArray(a.faceRes, 1, a.halfCompositeDistance);
+            layerDistance = createDistanceArray(a.faceRes, 1, a.halfCompositeDistance, allocate);
             uploadDistance(layerDistance, 0, a.layers.front(), a.halfCompositeDistance);
         } else if (layersUploaded == 0) {
-            layers = createCubeArray(a.faceRes, 1);
+            layers = createCubeArray(a.faceRes, 1, allocate);
             uploadCube(layers, 0, a.layers.front());
         }
         if (needed > 1) {
             const LayerTiles t = storedLayerTiles(a);
-            tiles = uploadLayerTiles(t);
+            tiles = uploadLayerTiles(t, allocate);
             tileGrid = glm::ivec2(t.tileSize, t.tilesPerFace);
             tileBytes = layerTileBytes(t);
         }
@@ -82,8 +104,9 @@ bool DistanceGpuProbe::applySettings(const DistanceProbe& settings) {
 void DistanceGpuProbe::setGlossyChain(std::shared_ptr<const CubeChain> chain) const {
     if (glossyChain) return;
     glossyCompressed = chainHasBlocks(*asset, *chain);
-    glossyTexture = glossyCompressed ? uploadChainArrays({chain.get()}, {&asset->glossyBlocks})
-                                     : uploadChainArray(*chain);
+    glossyTexture = uploadChainArrays(
+        {chain.get()}, glossyCompressed ? ChainBlocks{&asset->glossyBlocks} : ChainBlocks{},
+        allocate);
     glossyChain = std::move(chain);
 }
 

@@ -54,6 +54,9 @@ struct DistanceGpuProbe {
     glm::ivec2 tileGrid{0};
     std::size_t tileBytes = 0;
     gpu::Texture sky;
+    // Where the textures come from (engine/gpu/texture_spec.h): the runtime's own, or the
+    // host's in the unmanaged mode (DistanceHostOptions::textures).
+    gpu::TextureAllocator allocate = gpu::createTexture;
     // The composite's GGX prefiltered chain (glossyChainOf) and its levels 1.. on the GPU
     // (uploadChainArray), once a rough reflector reads it (mutable: Specula's store makes it
     // from hooks that get the probe const).
@@ -62,7 +65,13 @@ struct DistanceGpuProbe {
     mutable bool glossyCompressed = false; // glossyTexture holds the asset's BC6H blocks
 
     // The sky's texture; the layers wait for applySettings.
-    static DistanceGpuProbe load(std::shared_ptr<const DistanceProbeAsset> stored);
+    static DistanceGpuProbe load(std::shared_ptr<const DistanceProbeAsset> stored,
+                                 gpu::TextureAllocator allocate = gpu::createTexture);
+    // The textures a probe of `stored` allocates under `config`, with `chain` when a rough
+    // reflector reads it (setGlossyChain): what a host makes for the unmanaged mode.
+    static std::vector<gpu::TextureSpec> textureSpecs(const DistanceProbeAsset& stored,
+                                                      const DistanceLookupConfig& config,
+                                                      const CubeChain* chain);
     // The lookup configuration of `settings` and its block; uploads the layers the method
     // reads when the textures hold fewer (the composite alone unless layered). Throws Error
     // before any change when the settings do not fit the asset. True when it uploaded textures.

@@ -2,15 +2,49 @@
 
 #include "components/reflection_probe/distance/distance_glossy_chain.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "components/reflection_probe/distance/shaders/distance_params.glsl.h"
 #include "engine/core/error.h"
 #include "engine/gpu/ggx_albedo_texture.h"
 
 namespace specula {
 
 namespace {
+
 constexpr const char* kHostShader =
     "components/reflection_probe/distance/shaders/distance_host.glsl";
+
+// The asset as the GPU probe stores it, its lookup configuration (the settings fit, before
+// any GL call) and, for a glossy probe, the chain it uploads.
+struct HostInputs {
+    std::shared_ptr<const DistanceProbeAsset> stored;
+    DistanceLookupConfig config;
+    std::shared_ptr<const CubeChain> chain;
+};
+
+HostInputs readHostInputs(const std::string& manifestPath, const DistanceHostOptions& options) {
+    HostInputs in;
+    in.stored = std::make_shared<const DistanceProbeAsset>(
+        storedDistanceAsset(readDistanceProbe(manifestPath)));
+    in.config = makeLookupConfig(options.settings, *in.stored);
+    if (options.glossy) in.chain = std::make_shared<const CubeChain>(glossyChainOf(*in.stored));
+    return in;
+}
+
 } // namespace
+
+DistanceHostLayout DistanceHostProbe::describe(const std::string& manifestPath,
+                                               const DistanceHostOptions& options) {
+    DistanceHostLayout layout;
+    try {
+        const HostInputs in = readHostInputs(manifestPath, options);
+        layout.textures = DistanceGpuProbe::textureSpecs(*in.stored, in.config, in.chain.get());
+        if (in.chain) layout.textures.push_back(gpu::ggxAlbedoTextureSpec());
+        layout.paramsBytes = sizeof(glsl::DistanceParamsBlock);
+    } catch (const std::exception& e) {
+        layout.error = e.what();
+    }
+    return layout;
+}
 
 DistanceHostProbe::~DistanceHostProbe() = default;
 
@@ -18,22 +52,38 @@ DistanceHostResult DistanceHostProbe::create(const std::string& manifestPath,
                                              const DistanceHostOptions& options) {
     DistanceHostResult result;
     try {
-        auto stored = std::make_shared<const DistanceProbeAsset>(
-            storedDistanceAsset(readDistanceProbe(manifestPath)));
-        makeLookupConfig(options.settings, *stored); // the settings fit, before any GL call
-        if (const std::string missing = missingHostGlFeature(stored->faceRes, 6); !missing.empty())
+        HostInputs in = readHostInputs(manifestPath, options);
+        if (const std::string missing = missingHostGlFeature(in.stored->faceRes, 6);
+            !missing.empty())
             throw Error(manifestPath, "", missing);
-        std::shared_ptr<const CubeChain> chain;
-        if (options.glossy) chain = std::make_shared<const CubeChain>(glossyChainOf(*stored));
+        if (options.paramsBuffer != 0)
+            if (const std::string mismatch = gpu::uniformBufferMismatch(
+                    options.paramsBuffer, sizeof(glsl::DistanceParamsBlock));
+                !mismatch.empty())
+                throw Error(manifestPath, "paramsBuffer", mismatch);
+        // Unmanaged: every host texture is checked against its spec before anything is
+        // uploaded, so a wrong one leaves the host's textures as they were.
+        gpu::TextureAllocator allocate = gpu::createTexture;
+        if (!options.textures.empty()) {
+            allocate = gpu::hostTextureAllocator(options.textures, manifestPath);
+            std::vector<gpu::TextureSpec> specs =
+                DistanceGpuProbe::textureSpecs(*in.stored, in.config, in.chain.get());
+            if (in.chain) specs.push_back(gpu::ggxAlbedoTextureSpec());
+            for (const gpu::TextureSpec& spec : specs)
+                allocate(spec);
+        }
 
         std::unique_ptr<DistanceHostProbe> probe(new DistanceHostProbe);
         probe->options_ = options;
-        probe->gpu_ = DistanceGpuProbe::load(std::move(stored));
+        probe->gpu_ = DistanceGpuProbe::load(std::move(in.stored), allocate);
+        if (options.paramsBuffer != 0)
+            probe->gpu_.params =
+                gpu::UniformBuffer<glsl::DistanceParamsBlock>::borrow(options.paramsBuffer);
         probe->gpu_.applySettings(options.settings);
         std::uint32_t features = probe->gpu_.config.features;
-        if (chain) {
-            probe->gpu_.setGlossyChain(std::move(chain));
-            probe->ggxAlbedo_ = gpu::createGgxAlbedoTexture();
+        if (in.chain) {
+            probe->gpu_.setGlossyChain(std::move(in.chain));
+            probe->ggxAlbedo_ = gpu::createGgxAlbedoTexture(allocate);
             features |= kFeatureGlossy;
         }
         probe->library_ = hostGlslLibrary(kHostShader, distanceDefines(features, false));

@@ -23,7 +23,9 @@ enum class DistanceMethod {
 };
 
 struct DistanceProbe {
-    DistanceMethod method = DistanceMethod::Bisection;
+    // What the cooker planned for this probe (an unplanned asset: the method each layer was
+    // cooked with), so a probe built from a cooked asset draws as the plan measured it.
+    DistanceMethod method = DistanceMethod::Planned;
     float errorTolerance = 0.01f; // d_e, metres
     float range = 0.f;            // D, metres; 0 takes the cooked value
     // Layered mode: the method of every object layer (a per-layer row of the table; the

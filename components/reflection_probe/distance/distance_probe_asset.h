@@ -32,7 +32,9 @@ struct DistanceProbeLayer {
     float maxDistance = 0.f;
     float solidAngle = 0.f;             // steradians covered (texels with a finite distance)
     glm::vec3 boxMin{0.f}, boxMax{0.f}; // probe-local bounds of the layer's geometry
-    std::string method; // planned lookup method for this layer ("bisection", "avgdist")
+    // The lookup method planned for this layer ("bisection", "avgdist"); a layer made in memory
+    // (not read from a manifest, which must name one) is searched by bisection.
+    std::string method = "bisection";
     std::array<Image, 6> faces;
     std::string file;     // relative to the manifest
     std::string checksum; // "fnv1a64:<hex>" of the file's bytes

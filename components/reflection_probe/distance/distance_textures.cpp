@@ -14,11 +14,14 @@ namespace specula {
 
 namespace {
 
-// An array of `cubes` x 6 faces in `format`, bilinear, clamped at the face edges.
-gpu::Texture createFaceArray(GLenum format, int faceRes, int cubes) {
-    gpu::Texture array = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+gpu::TextureSpec faceArraySpec(const char* name, GLenum format, int faceRes, int cubes) {
+    return {name, GL_TEXTURE_2D_ARRAY, format, faceRes, faceRes, 6 * cubes};
+}
+
+// The array of `spec` (faceArraySpec), bilinear, clamped at the face edges.
+gpu::Texture createFaceArray(const gpu::TextureSpec& spec, const gpu::TextureAllocator& allocate) {
+    gpu::Texture array = allocate(spec);
     const GLuint tex = array.id();
-    glTextureStorage3D(tex, 1, format, faceRes, faceRes, 6 * cubes);
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -28,12 +31,21 @@ gpu::Texture createFaceArray(GLenum format, int faceRes, int cubes) {
 
 } // namespace
 
-gpu::Texture createCubeArray(int faceRes, int cubes) {
-    return createFaceArray(GL_RGBA32F, faceRes, cubes);
+gpu::TextureSpec cubeArraySpec(int faceRes, int cubes) {
+    return faceArraySpec("uLayers", GL_RGBA32F, faceRes, cubes);
 }
 
-gpu::Texture createCompressedCubeArray(int faceRes, int cubes) {
-    return createFaceArray(GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT, faceRes, cubes);
+gpu::Texture createCubeArray(int faceRes, int cubes, const gpu::TextureAllocator& allocate) {
+    return createFaceArray(cubeArraySpec(faceRes, cubes), allocate);
+}
+
+gpu::TextureSpec compressedCubeArraySpec(int faceRes, int cubes) {
+    return faceArraySpec("uLayers", GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT, faceRes, cubes);
+}
+
+gpu::Texture createCompressedCubeArray(int faceRes, int cubes,
+                                       const gpu::TextureAllocator& allocate) {
+    return createFaceArray(compressedCubeArraySpec(faceRes, cubes), allocate);
 }
 
 void uploadCompressedCube(const gpu::Texture& array, int cube,
@@ -51,8 +63,13 @@ void uploadCompressedCube(const gpu::Texture& array, int cube,
                                   blocks.data());
 }
 
-gpu::Texture createDistanceArray(int faceRes, int cubes, bool half) {
-    return createFaceArray(half ? GL_R16F : GL_R32F, faceRes, cubes);
+gpu::TextureSpec distanceArraySpec(int faceRes, int cubes, bool half) {
+    return faceArraySpec("uLayerDistance", half ? GL_R16F : GL_R32F, faceRes, cubes);
+}
+
+gpu::Texture createDistanceArray(int faceRes, int cubes, bool half,
+                                 const gpu::TextureAllocator& allocate) {
+    return createFaceArray(distanceArraySpec(faceRes, cubes, half), allocate);
 }
 
 void uploadDistance(const gpu::Texture& array, int cube, const DistanceProbeLayer& layer,
@@ -90,12 +107,20 @@ std::size_t cubeArrayBytes(int faceRes, int cubes) {
     return std::size_t(faceRes) * std::size_t(faceRes) * 6 * std::size_t(cubes) * 16;
 }
 
-LayerTileTextures uploadLayerTiles(const LayerTiles& t) {
+std::vector<gpu::TextureSpec> layerTileSpecs(const LayerTiles& t) {
+    if (t.layers == 0) return {};
+    return {{"uTileAtlas", GL_TEXTURE_2D_ARRAY, GLenum(t.half ? GL_RGBA16F : GL_RGBA32F), t.width(),
+             t.height(), t.pages},
+            {"uTileTable", GL_TEXTURE_2D_ARRAY, GL_RGBA16I, t.tilesPerFace, t.tilesPerFace,
+             6 * t.layers}};
+}
+
+LayerTileTextures uploadLayerTiles(const LayerTiles& t, const gpu::TextureAllocator& allocate) {
     LayerTileTextures g;
     if (t.layers == 0) return g;
-    g.atlas = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    const std::vector<gpu::TextureSpec> specs = layerTileSpecs(t);
+    g.atlas = allocate(specs[0]);
     const GLuint a = g.atlas.id();
-    glTextureStorage3D(a, 1, t.half ? GL_RGBA16F : GL_RGBA32F, t.width(), t.height(), t.pages);
     if (t.half) {
         // Converted here, not by the driver: the atlas then holds exactly the values the
         // tiles (and the CPU twin, roundObjectLayersToHalf) hold, whatever the driver rounds.
@@ -113,10 +138,9 @@ LayerTileTextures uploadLayerTiles(const LayerTiles& t) {
     glTextureParameteri(a, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(a, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
-    g.table = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    g.table = allocate(specs[1]);
     const GLuint tb = g.table.id();
     const std::vector<std::int16_t> origins = t.tableOrigins();
-    glTextureStorage3D(tb, 1, GL_RGBA16I, t.tilesPerFace, t.tilesPerFace, 6 * t.layers);
     glTextureSubImage3D(tb, 0, 0, 0, 0, t.tilesPerFace, t.tilesPerFace, 6 * t.layers,
                         GL_RGBA_INTEGER, GL_SHORT, origins.data());
     glTextureParameteri(tb, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -139,15 +163,11 @@ int chainMips(const CubeChain& chain) {
     return mips;
 }
 
-// The array of `chains` chains shaped as `chain` (level 1's faces as mip 0, its mips,
-// chainArraySlots slots each) in `format`, read by texelFetch only: nearest filters keep it
-// complete at every mip.
-gpu::Texture createChainArray(GLenum format, const CubeChain& chain, int chains) {
-    const int base = chain.levels[1][0].width, mips = chainMips(chain);
-    const int slots = int(chain.levels.size()) - mips;
-    gpu::Texture array = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+// The array of chainArraySpec, read by texelFetch only: nearest filters keep it complete at
+// every mip.
+gpu::Texture createChainArray(const gpu::TextureSpec& spec, const gpu::TextureAllocator& allocate) {
+    gpu::Texture array = allocate(spec);
     const GLuint tex = array.id();
-    glTextureStorage3D(tex, mips, format, base, base, 6 * slots * chains);
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -156,6 +176,19 @@ gpu::Texture createChainArray(GLenum format, const CubeChain& chain, int chains)
 }
 
 } // namespace
+
+// Level 1's faces as mip 0, its mips, chainArraySlots slots of six layers per chain.
+gpu::TextureSpec chainArraySpec(const CubeChain& chain, int chains, bool bc6h) {
+    const int base = chain.levels[1][0].width, mips = chainMips(chain);
+    const int slots = int(chain.levels.size()) - mips;
+    return {"uChain",
+            GL_TEXTURE_2D_ARRAY,
+            GLenum(bc6h ? GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT : GL_RGBA32F),
+            base,
+            base,
+            6 * slots * chains,
+            mips};
+}
 
 gpu::Texture uploadChainArray(const CubeChain& chain) {
     return uploadChainArrays({&chain});
@@ -208,15 +241,15 @@ void checkChains(const std::vector<const CubeChain*>& chains, const ChainBlocks&
 } // namespace
 
 gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains,
-                               const ChainBlocks& blocks) {
+                               const ChainBlocks& blocks, const gpu::TextureAllocator& allocate) {
     if (chains.empty() || chains.front()->levels.size() < 2) return {};
     checkChains(chains, blocks);
     const CubeChain& first = *chains.front();
     const int mips = chainMips(first);
     const int slots = int(first.levels.size()) - mips; // level i at slot i - 1 - mip
     const bool bc6h = !blocks.empty();
-    gpu::Texture array = createChainArray(bc6h ? GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT : GL_RGBA32F,
-                                          first, int(chains.size()));
+    gpu::Texture array =
+        createChainArray(chainArraySpec(first, int(chains.size()), bc6h), allocate);
     const GLuint tex = array.id();
     for (std::size_t c = 0; c < chains.size(); ++c)
         for (std::size_t i = 1; i < first.levels.size(); ++i) {
@@ -258,8 +291,12 @@ std::size_t chainArrayBytes(const CubeChain& chain, bool bc6h) {
     return bytes;
 }
 
-gpu::Texture uploadSkyTexture(const Image& sky) {
-    gpu::Texture texture = gpu::Texture::create(GL_TEXTURE_2D);
+gpu::TextureSpec skyTextureSpec(const Image& sky) {
+    return {"uSky", GL_TEXTURE_2D, GL_RGBA32F, sky.width, sky.height};
+}
+
+gpu::Texture uploadSkyTexture(const Image& sky, const gpu::TextureAllocator& allocate) {
+    gpu::Texture texture = allocate(skyTextureSpec(sky));
     const GLuint s = texture.id();
     std::vector<float> rgba(std::size_t(sky.width) * sky.height * 4);
     for (int y = 0; y < sky.height; ++y)
@@ -267,7 +304,6 @@ gpu::Texture uploadSkyTexture(const Image& sky) {
             const glm::vec4 v = sky.rgba(x, y);
             std::copy(&v[0], &v[0] + 4, &rgba[(std::size_t(y) * sky.width + x) * 4]);
         }
-    glTextureStorage2D(s, 1, GL_RGBA32F, sky.width, sky.height);
     glTextureSubImage2D(s, 0, 0, 0, sky.width, sky.height, GL_RGBA, GL_FLOAT, rgba.data());
     glTextureParameteri(s, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(s, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

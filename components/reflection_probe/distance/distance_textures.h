@@ -3,9 +3,14 @@
 // cube layers as an RGBA32F texture array (six faces per cube, A = distance), the object
 // layers as tiles (distance_layer_tiles.h) and the sky panorama. Need a current GL 4.5
 // context.
+//
+// Every texture is allocated from a gpu::TextureSpec (the *Spec functions, named by the
+// sampler uniform that reads it) through an allocator: the runtime's own (gpu::createTexture,
+// the default) or a host's textures made from the same specs (gpu::hostTextureAllocator).
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "engine/gpu/gl_objects.h"
+#include "engine/gpu/texture_spec.h"
 #include "engine/image/ggx_prefilter.h"
 
 #include <cstddef>
@@ -15,17 +20,23 @@
 namespace specula {
 
 // An array of `cubes` x 6 faces of faceRes^2 texels, bilinear, clamped at the face edges.
-gpu::Texture createCubeArray(int faceRes, int cubes);
+gpu::TextureSpec cubeArraySpec(int faceRes, int cubes); // "uLayers", RGBA32F
+gpu::Texture createCubeArray(int faceRes, int cubes,
+                             const gpu::TextureAllocator& allocate = gpu::createTexture);
 // Writes `layer`'s six faces into array layers 6 cube .. 6 cube + 5.
 void uploadCube(const gpu::Texture& array, int cube, const DistanceProbeLayer& layer);
 std::size_t cubeArrayBytes(int faceRes, int cubes);
 // A compressed composite (DistanceCompression::Bc6h): its radiance as a BC6H array
 // (GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT) uploaded from the blocks as stored, and its distances
 // as an R16F (`half`) or R32F array of the same layout, both bilinear and clamped.
-gpu::Texture createCompressedCubeArray(int faceRes, int cubes);
+gpu::TextureSpec compressedCubeArraySpec(int faceRes, int cubes); // "uLayers"
+gpu::Texture createCompressedCubeArray(int faceRes, int cubes,
+                                       const gpu::TextureAllocator& allocate = gpu::createTexture);
 void uploadCompressedCube(const gpu::Texture& array, int cube,
                           const std::vector<std::uint8_t>& blocks);
-gpu::Texture createDistanceArray(int faceRes, int cubes, bool half);
+gpu::TextureSpec distanceArraySpec(int faceRes, int cubes, bool half); // "uLayerDistance"
+gpu::Texture createDistanceArray(int faceRes, int cubes, bool half,
+                                 const gpu::TextureAllocator& allocate = gpu::createTexture);
 void uploadDistance(const gpu::Texture& array, int cube, const DistanceProbeLayer& layer,
                     bool half);
 
@@ -36,7 +47,10 @@ void uploadDistance(const gpu::Texture& array, int cube, const DistanceProbeLaye
 struct LayerTileTextures {
     gpu::Texture atlas, table;
 };
-LayerTileTextures uploadLayerTiles(const LayerTiles& tiles);
+// "uTileAtlas" and "uTileTable"; none without object layers.
+std::vector<gpu::TextureSpec> layerTileSpecs(const LayerTiles& tiles);
+LayerTileTextures uploadLayerTiles(const LayerTiles& tiles,
+                                   const gpu::TextureAllocator& allocate = gpu::createTexture);
 // What uploadLayerTiles allocates.
 std::size_t layerTileBytes(const LayerTiles& tiles);
 
@@ -59,13 +73,18 @@ using ChainBlocks = std::vector<const std::vector<std::vector<std::uint8_t>>*>;
 // of them), so it goes up as those blocks; a chain prefiltered at load goes up as floats.
 bool chainHasBlocks(const DistanceProbeAsset& asset, const CubeChain& chain);
 gpu::Texture uploadChainArrays(const std::vector<const CubeChain*>& chains,
-                               const ChainBlocks& blocks = {});
+                               const ChainBlocks& blocks = {},
+                               const gpu::TextureAllocator& allocate = gpu::createTexture);
+// The array uploadChainArrays allocates for `chains` chains shaped as `chain` ("uChain").
+gpu::TextureSpec chainArraySpec(const CubeChain& chain, int chains, bool bc6h);
 int chainArraySlots(const CubeChain& chain);
 // The array's bytes as uploaded: RGBA32F, or BC6H blocks (`bc6h`, uploadCompressedChainArray).
 std::size_t chainArrayBytes(const CubeChain& chain, bool bc6h = false);
 
 // The equirectangular sky, bilinear, repeating around the horizon.
-gpu::Texture uploadSkyTexture(const Image& sky);
+gpu::TextureSpec skyTextureSpec(const Image& sky); // "uSky", RGBA32F
+gpu::Texture uploadSkyTexture(const Image& sky,
+                              const gpu::TextureAllocator& allocate = gpu::createTexture);
 std::size_t skyTextureBytes(const Image& sky);
 
 } // namespace specula

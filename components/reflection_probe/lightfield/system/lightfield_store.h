@@ -1,8 +1,9 @@
 #pragma once
-// The GPU side of light-field-slab probes: the six slab atlases as one texture array, the
-// per-slab disparities as uniforms, the environment drawn from the slabs on request, and a
+// Specula's own light-field-slab probes: one LightFieldGpuProbe each (the runtime's, as a
+// host's LightFieldHostProbe holds), the environment drawn from the slabs on request, and a
 // warning when a reflector leaves the cell the light field is exact in.
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
+#include "components/reflection_probe/lightfield/lightfield_gpu_probe.h"
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
 #include "components/reflection_probe/shader_variants.h"
 #include "components/reflection_probe/system/flavour_store_base.h"
@@ -15,16 +16,6 @@
 #include <unordered_set>
 
 namespace specula {
-
-struct LightFieldProbeGpu {
-    std::string manifestPath;
-    std::shared_ptr<const LightFieldAsset> asset;
-    // The six slabs, level 0 only until the probe's first rough reflector draws; then made
-    // again with the mips of lightfield_mips.h (mutable: the store's hooks get the probe const).
-    mutable gpu::Texture atlas;
-    mutable int mipLevels = 0;        // deepest mip level uploaded (0: none)
-    mutable std::size_t mipBytes = 0; // their texture memory
-};
 
 struct LightFieldVariant {
     bool fresnel = false;
@@ -41,7 +32,7 @@ struct LightFieldVariant {
     gpu::Program build() const;
 };
 
-class LightFieldStore final : public FlavourStoreBase<LightFieldProbe, LightFieldProbeGpu> {
+class LightFieldStore final : public FlavourStoreBase<LightFieldProbe, LightFieldGpuProbe> {
 public:
     std::string_view flavour() const override { return "lightfield"; }
     std::string_view settingsName() const override { return "LightFieldProbe"; }
@@ -58,20 +49,17 @@ public:
     }
 
 private:
-    LightFieldProbeGpu loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) override;
-    void applySettings(LightFieldProbeGpu&, const LightFieldProbe&, ProbeFrameStats&) override {
+    LightFieldGpuProbe loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) override;
+    void applySettings(LightFieldGpuProbe&, const LightFieldProbe&, ProbeFrameStats&) override {
         // disparity and background are uniforms and a pass set at draw time: nothing to do
     }
-    std::size_t gpuBytesOf(const LightFieldProbeGpu& probe) const override;
+    std::size_t gpuBytesOf(const LightFieldGpuProbe& probe) const override;
     void drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector, const Reflector& r,
-                       const LightFieldProbeGpu& probe, const LightFieldProbe& settings) override;
+                       const LightFieldGpuProbe& probe, const LightFieldProbe& settings) override;
 
-    void bind(gpu::Program& prog, const LightFieldProbeGpu& p, const LightFieldProbe& s) const;
-    void checkCell(const ProbeDrawContext& ctx, ecs::Entity reflector, const LightFieldProbeGpu& p);
-    // The atlas with its mips and the GGX albedo table, made when a rough reflector first needs
-    // them; binds what the GLOSSY shader reads.
-    void bindGlossy(const ProbeDrawContext& ctx, gpu::Program& prog, const Reflector& r,
-                    const LightFieldProbeGpu& p);
+    void checkCell(const ProbeDrawContext& ctx, ecs::Entity reflector, const LightFieldGpuProbe& p);
+    // The atlas's mips and the GGX albedo table, made when a rough reflector first needs them.
+    void prepareGlossy(const ProbeDrawContext& ctx, const LightFieldGpuProbe& p);
 
     SharedAssets<LightFieldAsset> assets_;
     std::unordered_set<ecs::Entity> warnedOutside_; // reflectors already logged as outside
