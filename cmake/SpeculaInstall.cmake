@@ -22,13 +22,14 @@ install(EXPORT SpeculaTargets NAMESPACE Specula:: DESTINATION ${SPECULA_CMAKE_DI
 
 # Headers keep their repository paths (#include "components/reflection_probe/...") so the
 # installed tree and the source tree compile alike. GLSL travels too: a host's shader
-# #includes the lookups. The tools' folders (ECS integration, scene, rendering) stay out.
+# #includes the lookups. The tools' folders (ECS integration, writers, scene, rendering) stay
+# out.
 foreach(folder engine/core engine/math engine/image engine/gpu components/reflection_probe)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/specula/${folder}
           FILES_MATCHING PATTERN "*.h" PATTERN "*.glsl" PATTERN "*.vert" PATTERN "*.frag"
                          PATTERN "*.comp"
-          PATTERN "system" EXCLUDE)
+          PATTERN "system" EXCLUDE PATTERN "writer" EXCLUDE)
 endforeach()
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/SpeculaConfig.cmake.in

@@ -4,7 +4,7 @@
 #include "assetcooker/lib/output_lock.h"
 #include "assetcooker/lib/signal_guard.h"
 #include "assetcooker/lib/slurm_command.h"
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
 #include "engine/image_io/compare.h"
 

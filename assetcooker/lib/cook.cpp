@@ -6,7 +6,10 @@
 #include "assetcooker/lib/plan_measure.h"
 #include "assetcooker/lib/shard_settings.h"
 #include "components/reflection_probe/distance/distance_compression.h"
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/distance/writer/distance_probe_writer.h"
+#include "components/reflection_probe/lightfield/writer/lightfield_probe_writer.h"
+#include "components/reflection_probe/pem/writer/pem_probe_writer.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
 #include "engine/core/progress.h"
 

@@ -1,7 +1,7 @@
 #include "level_bake.h"
 
 #include "components/reflection_probe/manifest_fields.h"
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
 #include "engine/core/progress.h"
 #include "engine/raytrace/embree_scene.h"

@@ -1,6 +1,6 @@
 #include "output_lock.h"
 
-#include "components/reflection_probe/temporary_owner.h"
+#include "components/reflection_probe/writer/temporary_owner.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/host_name.h"

@@ -1,6 +1,6 @@
 #include "process_runner.h"
 
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 
 #include <chrono>
 #include <cstdio>

@@ -6,7 +6,7 @@
 #include "assetcooker/lib/shard_pem.h"
 
 #include "components/reflection_probe/manifest_fields.h"
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 

@@ -1,7 +1,7 @@
 #include "shard_install.h"
 
 #include "components/reflection_probe/manifest_fields.h"
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
 
 namespace specula {

@@ -4,7 +4,8 @@
 #include "assetcooker/lib/pem_shard_files.h"
 #include "assetcooker/lib/shard_install.h"
 #include "components/reflection_probe/pem/pem_asset.h"
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/pem/writer/pem_probe_writer.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
 #include "engine/scene/mesh_bounds.h"
 

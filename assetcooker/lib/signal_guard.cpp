@@ -1,6 +1,6 @@
 #include "signal_guard.h"
 
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 
 #include <csignal>
 

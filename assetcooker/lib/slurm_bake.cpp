@@ -2,7 +2,7 @@
 
 #include "assetcooker/lib/output_lock.h"
 #include "assetcooker/lib/shard_bake.h"
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"
 #include "engine/core/progress.h"

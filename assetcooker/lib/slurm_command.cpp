@@ -5,7 +5,7 @@
 #include "assetcooker/lib/shard_pem.h"
 #include "assetcooker/lib/signal_guard.h"
 #include "assetcooker/lib/slurm_bake.h"
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
 
 #include <filesystem>

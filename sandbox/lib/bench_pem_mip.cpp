@@ -1,5 +1,6 @@
 #include "components/reflection_probe/pem/pem_map_levels.h"
 #include "components/reflection_probe/pem/pem_probe.h"
+#include "components/reflection_probe/pem/writer/pem_probe_writer.h"
 #include "engine/core/error.h"
 #include "sandbox/lib/bench_internal.h"
 #include "sandbox/lib/probe_source.h"

@@ -7,6 +7,7 @@
 //   SPECULA_FUZZ_WRITE_SEEDS=DIR: also writes the two cooked manifests to DIR as seeds (how
 //   tests/fuzz/corpus/lightfield/ was made).
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
+#include "components/reflection_probe/lightfield/writer/lightfield_probe_writer.h"
 #include "engine/core/error.h"
 #include "tests/fuzz/synthetic_lightfield.h"
 

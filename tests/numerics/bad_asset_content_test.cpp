@@ -5,6 +5,7 @@
 #include "bad_input_support.h"
 
 #include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "components/reflection_probe/distance/writer/distance_probe_writer.h"
 #include "engine/image/ktx2.h"
 #include "engine/image_io/image_io.h"
 #include "probe/analytic_probe.h"

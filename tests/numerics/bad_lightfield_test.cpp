@@ -7,6 +7,7 @@
 
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
+#include "components/reflection_probe/lightfield/writer/lightfield_probe_writer.h"
 #include "tests/fuzz/synthetic_lightfield.h"
 
 #include <gtest/gtest.h>

@@ -2,6 +2,7 @@
 // local-layer EXR that is missing, of the wrong size or without alpha, naming the file and the
 // field, while a manifest without "local_layer" reads as a single-map asset.
 #include "components/reflection_probe/pem/pem_asset.h"
+#include "components/reflection_probe/pem/writer/pem_probe_writer.h"
 #include "engine/core/error.h"
 #include "engine/image/ktx2.h"
 #include "engine/image_io/image_io.h"

@@ -6,6 +6,7 @@
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/pem/system/pem_hull.h"
 #include "components/reflection_probe/pem/system/pem_store.h"
+#include "components/reflection_probe/pem/writer/pem_probe_writer.h"
 #include "engine/context/context.h"
 #include "engine/image_io/compare.h"
 #include "engine/raytrace/ground_truth.h"

@@ -2,6 +2,7 @@
 // names the manifest and the field when a level's file is missing or mis-sized, and a
 // single-level asset is written and read exactly as before ("mip_levels" and "mips" absent).
 #include "components/reflection_probe/pem/pem_asset.h"
+#include "components/reflection_probe/pem/writer/pem_probe_writer.h"
 #include "engine/core/error.h"
 #include "engine/image/ktx2.h"
 #include "engine/image_io/image_io.h"

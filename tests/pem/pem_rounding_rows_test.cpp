@@ -9,6 +9,7 @@
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/pem/system/pem_store.h"
+#include "components/reflection_probe/pem/writer/pem_probe_writer.h"
 #include "engine/context/context.h"
 #include "pem_room.h"
 #include "support/probe_room.h"

@@ -5,6 +5,7 @@
 // written before the minor existed read as 2.0 (probes) and 1.0 (levels).
 #include "components/reflection_probe/asset_format.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "components/reflection_probe/distance/writer/distance_probe_writer.h"
 #include "components/reflection_probe/level_index.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/manifest_schema.h"

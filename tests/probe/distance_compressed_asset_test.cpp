@@ -9,6 +9,7 @@
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "components/reflection_probe/distance/writer/distance_probe_writer.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
 #include "engine/image/bc6h.h"

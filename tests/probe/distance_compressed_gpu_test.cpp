@@ -6,6 +6,7 @@
 #include "components/reflection_probe/distance/distance_glossy_chain.h"
 #include "components/reflection_probe/distance/distance_gpu_probe.h"
 #include "components/reflection_probe/distance/distance_textures.h"
+#include "components/reflection_probe/distance/writer/distance_probe_writer.h"
 #include "probe_fixture.h"
 #include "twin_agreement.h"
 

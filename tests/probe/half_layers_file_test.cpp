@@ -6,6 +6,7 @@
 #include "components/reflection_probe/distance/distance_gpu_probe.h"
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "components/reflection_probe/distance/writer/distance_probe_writer.h"
 #include "engine/image/ktx2.h"
 
 #include <gtest/gtest.h>

@@ -9,6 +9,7 @@
 #include "components/reflection_probe/lightfield/lightfield_mips.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "components/reflection_probe/lightfield/system/lightfield_store.h"
+#include "components/reflection_probe/lightfield/writer/lightfield_probe_writer.h"
 #include "engine/context/context.h"
 #include "engine/core/glsl_host.h"
 #include "engine/image/ggx_albedo.h"

@@ -8,6 +8,7 @@
 #include "components/reflection_probe/pem/pem_blend.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/pem/system/pem_store.h"
+#include "components/reflection_probe/pem/writer/pem_probe_writer.h"
 #include "engine/context/context.h"
 #include "engine/core/error.h"
 #include "engine/image/ktx2.h"

@@ -10,6 +10,7 @@
 #include "components/reflection_probe/distance/system/distance_level_store.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "components/reflection_probe/lightfield/system/lightfield_store.h"
+#include "components/reflection_probe/lightfield/writer/lightfield_probe_writer.h"
 #include "components/reflection_probe/system/reflector_roughness.h"
 #include "engine/image/ggx_albedo.h"
 #include "probe_fixture.h"

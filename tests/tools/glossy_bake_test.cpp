@@ -6,6 +6,7 @@
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
+#include "components/reflection_probe/distance/writer/distance_probe_writer.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
 #include "engine/image/ggx_prefilter.h"

@@ -12,7 +12,7 @@
 // squeue and scancel scripts in PATH (exit 130, scancel given the job ids).
 #include "assetcooker/lib/shard_bake.h"
 #include "assetcooker/lib/slurm_bake.h"
-#include "components/reflection_probe/probe_folder.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
 #include "support/child_process.h"
 #include "support/scratch_dir_test.h"

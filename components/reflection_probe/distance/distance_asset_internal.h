@@ -2,7 +2,8 @@
 // What the distance probe's reader and writer share between distance_probe_asset.cpp (the
 // manifest, the layers and the sky), distance_asset_checks.cpp (the content checks),
 // distance_glossy_asset.cpp (the glossy levels) and distance_compressed_asset.cpp (a
-// compressed composite). Not part of the component's API: only those files include it.
+// compressed composite), and the writer (writer/distance_probe_writer.cpp). Not part of the
+// component's API: only those files include it.
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/manifest_fields.h"
 
@@ -63,14 +64,6 @@ void checkContent(const DistanceProbeAsset& a, const std::string& manifest,
 void checkGlossy(const DistanceProbeAsset& a, const std::string& manifest,
                  const std::vector<std::string>& files);
 
-// Where the writer puts each glossy level's image in `dir`: [k] is level k + 1's.
-std::vector<std::string> glossyFilePaths(const DistanceProbeAsset& asset, const std::string& dir);
-
-// Writes each glossy level's image into `tmp` (throwIfCancelled(dir) before each) and
-// returns the manifest's "glossy" member. Only for an asset with glossy levels.
-nlohmann::json writeGlossyLevels(const DistanceProbeAsset& asset, const std::filesystem::path& tmp,
-                                 const std::string& dir);
-
 // The manifest's "glossy" member: each level's file (checksum, a float KTX2 cube of the level's
 // size) into a.glossyLevels, its path into `files`; its content is checked with the layers'
 // (checkGlossy).
@@ -85,15 +78,6 @@ void readGlossyLevels(const ManifestFields& r, const nlohmann::json& glossy,
 // writing (errors name `file`, the composite's, or glossyFiles[k], glossy level k + 1's).
 void checkCompressedComposite(const DistanceProbeAsset& a, const std::string& file,
                               const std::vector<std::string>& glossyFiles);
-
-// Writes `faces`' RGB as the BC6H cube `blocks` encode (six faces in order) to `path`.
-void writeBc6hCube(const std::string& path, const std::array<Image, 6>& faces,
-                   const std::vector<std::uint8_t>& blocks);
-
-// Writes the composite's BC6H radiance as `name` in `tmp` and its distance beside it
-// (name_distance.ktx2); returns the layer's "file", "checksum" and "distance" members.
-nlohmann::json writeCompressedComposite(const DistanceProbeAsset& a,
-                                        const std::filesystem::path& tmp, const std::string& name);
 
 // Reads a Bc6h composite: `radianceFile` (already checksummed, a BC6H cube of face_res) and
 // the layer's "distance" file (path + "distance."); sets a's compression members and returns

@@ -1,7 +1,7 @@
 // A compressed probe's composite on disk (DistanceCompression::Bc6h, asset format 3.0): its
 // radiance a BC6H KTX2 cube (layer_00.ktx2), its distance a one-channel R16F or R32F KTX2 cube
-// (layer_00_distance.ktx2) named in the layer's "distance": {"file", "checksum"}. The
-// manifest, the other layers and the checks are distance_probe_asset.cpp's.
+// (layer_00_distance.ktx2) named in the layer's "distance": {"file", "checksum"}. Its
+// reader and checks; the writer is writer/distance_probe_writer.cpp.
 #include "distance_asset_internal.h"
 
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
@@ -13,26 +13,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace specula::distance_asset {
-
-namespace {
-
-std::string distanceFileName(const std::string& radianceName) {
-    const std::string stem = radianceName.substr(0, radianceName.rfind('.'));
-    return stem + "_distance.ktx2";
-}
-
-// The composite's distances (A) as a one-channel N x 6N image, faces stacked.
-Image stackedDistance(const std::array<Image, 6>& faces) {
-    const int n = faces[0].width;
-    Image out(n, 6 * n, 1);
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x)
-                out.at(x, f * n + y)[0] = faces[std::size_t(f)].at(x, y)[3];
-    return out;
-}
-
-} // namespace
 
 namespace {
 
@@ -79,28 +59,6 @@ void checkCompressedComposite(const DistanceProbeAsset& a, const std::string& fi
                         std::to_string(a.glossyLevels.size()) + " glossy levels");
     for (std::size_t k = 0; k < a.glossyLevels.size(); ++k)
         checkBlocks(a.glossyLevels[k], a.glossyBlocks[k], false, glossyFiles.at(k));
-}
-
-void writeBc6hCube(const std::string& path, const std::array<Image, 6>& faces,
-                   const std::vector<std::uint8_t>& blocks) {
-    writeKtx2(
-        path,
-        Ktx2Texture{.cube = true, .bc6h = true, .levels = {stackFaces(faces)}, .blocks = {blocks}});
-}
-
-json writeCompressedComposite(const DistanceProbeAsset& a, const fs::path& tmp,
-                              const std::string& name) {
-    const DistanceProbeLayer& composite = a.layers.at(0);
-    const std::string radiance = (tmp / name).string();
-    writeBc6hCube(radiance, composite.faces, a.compositeBlocks);
-    const std::string distanceName = distanceFileName(name);
-    const std::string distance = (tmp / distanceName).string();
-    writeKtx2(distance, Ktx2Texture{.cube = true,
-                                    .halfFloat = a.halfCompositeDistance,
-                                    .levels = {stackedDistance(composite.faces)}});
-    return {{"file", name},
-            {"checksum", fileChecksum(radiance)},
-            {"distance", {{"file", distanceName}, {"checksum", fileChecksum(distance)}}}};
 }
 
 std::array<Image, 6> readCompressedComposite(const ManifestFields& r, const json& layer,

@@ -1,9 +1,8 @@
 // The glossy levels of a cooked distance probe (the composite's GGX chain,
-// layer_00_ggx_<i>.ktx2): their content checks, writer and reader. The manifest, the layers
-// and the sky are distance_probe_asset.cpp's.
+// layer_00_ggx_<i>.ktx2): their content checks and reader (the writer:
+// writer/distance_probe_writer.cpp). The manifest, the layers and the sky are
+// distance_probe_asset.cpp's.
 #include "distance_asset_internal.h"
-
-#include "components/reflection_probe/probe_folder.h"
 
 #include "engine/core/error.h"
 #include "engine/image/ktx2.h"
@@ -79,11 +78,6 @@ void checkGlossyDistance(const std::array<Image, 6>& level, const std::array<Ima
             }
 }
 
-// Glossy level i (1 ..): the composite's (layer 0's) chain.
-std::string glossyFileName(std::size_t i) {
-    return "layer_00_ggx_" + std::to_string(i) + ".ktx2";
-}
-
 // A compressed probe's glossy level: BC6H radiance (its blocks appended to a.glossyBlocks), A
 // the nearest of the composite's distances under each texel, as an uncompressed level stores.
 std::array<Image, 6> readCompressedGlossyLevel(const std::string& file, int n,
@@ -130,32 +124,6 @@ void checkGlossy(const DistanceProbeAsset& a, const std::string& manifest,
             checkGlossyDistance(faces, a.layers[0].faces, a.dInf, files[k]);
         });
     }
-}
-
-std::vector<std::string> glossyFilePaths(const DistanceProbeAsset& asset, const std::string& dir) {
-    std::vector<std::string> glossyFiles;
-    for (std::size_t k = 0; k < asset.glossyLevels.size(); ++k)
-        glossyFiles.push_back((fs::path(dir) / glossyFileName(k + 1)).string());
-    return glossyFiles;
-}
-
-json writeGlossyLevels(const DistanceProbeAsset& asset, const fs::path& tmp,
-                       const std::string& dir) {
-    const std::size_t count = asset.glossyLevels.size();
-    json levels = json::array();
-    for (std::size_t k = 0; k < count; ++k) {
-        throwIfCancelled(dir);
-        const std::string name = glossyFileName(k + 1);
-        const std::string path = (tmp / name).string();
-        if (asset.compression == DistanceCompression::Bc6h)
-            writeBc6hCube(path, asset.glossyLevels[k], asset.glossyBlocks.at(k));
-        else
-            writeKtx2Cube(path, stackFaces(asset.glossyLevels[k]));
-        levels.push_back({{"file", name},
-                          {"checksum", fileChecksum(path)},
-                          {"roughness", double(k + 1) / double(count)}});
-    }
-    return {{"levels", levels}};
 }
 
 void readGlossyLevels(const ManifestFields& r, const json& glossy, const fs::path& dir,

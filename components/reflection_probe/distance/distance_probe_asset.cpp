@@ -2,7 +2,6 @@
 #include "distance_asset_internal.h"
 
 #include "components/reflection_probe/manifest_fields.h"
-#include "components/reflection_probe/probe_folder.h"
 
 #include "components/reflection_probe/distance/distance_layer_tiles.h"
 #include "components/reflection_probe/distance/distance_probe.h"
@@ -135,109 +134,6 @@ DistanceLayerContent scanLayer(const std::array<Image, 6>& faces, float dInf,
 DistanceLayerContent measureDistanceLayer(const std::array<Image, 6>& faces, float dInf,
                                           const std::string& file) {
     return scanLayer(faces, dInf, faceSolidAngles(faces[0].width), file);
-}
-
-namespace {
-std::string layerFileName(std::size_t i) {
-    char name[64];
-    std::snprintf(name, sizeof name, "layer_%02zu.ktx2", i);
-    return name;
-}
-} // namespace
-
-void writeDistanceProbe(const DistanceProbeAsset& baked, const std::string& dir,
-                        const std::string& sourceScene) {
-    // The object layers go to disk as RGBA16F when they fit: the runtime rounds them to half
-    // for the GPU anyway (storedDistanceAsset), so the file loses nothing the runtime uses
-    // and takes half the bytes. Their figures are restated from the rounded texels, as the
-    // reader measures them. The composite stays float32, as the GPU holds it.
-    const bool halfObjectLayers = objectLayersFitHalf(baked);
-    DistanceProbeAsset rounded;
-    if (halfObjectLayers) {
-        rounded = baked;
-        roundObjectLayersToHalf(rounded);
-        for (std::size_t i = 1; i < rounded.layers.size(); ++i) {
-            DistanceProbeLayer& L = rounded.layers[i];
-            const DistanceLayerContent c = measureDistanceLayer(
-                L.faces, rounded.dInf, (fs::path(dir) / layerFileName(i)).string());
-            L.minDistance = c.minDistance;
-            L.maxDistance = c.maxDistance;
-            L.solidAngle = float(c.solidAngle);
-            if (c.solidAngle > 0.0)
-                L.avgDistance = std::clamp(L.avgDistance, c.minDistance, c.maxDistance);
-        }
-    }
-    const DistanceProbeAsset& asset = halfObjectLayers ? rounded : baked;
-    // The reader's checks, before anything is written: a probe its reader would refuse is
-    // never written (errors name the files as they would be).
-    for (int i = 0; i < 3; ++i)
-        if (!(std::fabs(asset.centre[i]) <= kMaxCoordinate))
-            throw Error(dir, "centre",
-                        "coordinate " + shortNumber(asset.centre[i]) + " is beyond " +
-                            shortNumber(kMaxCoordinate) + " m (float precision)");
-    std::vector<std::string> files;
-    for (std::size_t i = 0; i < asset.layers.size(); ++i)
-        files.push_back((fs::path(dir) / layerFileName(i)).string());
-    checkContent(asset, (fs::path(dir) / "manifest.json").string(), files,
-                 glossyFilePaths(asset, dir), (fs::path(dir) / "sky.ktx2").string());
-    const bool compressed = asset.compression == DistanceCompression::Bc6h;
-    if (compressed) checkCompressedComposite(asset, files[0], glossyFilePaths(asset, dir));
-
-    writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
-        json layers = json::array();
-        for (std::size_t i = 0; i < asset.layers.size(); ++i) {
-            throwIfCancelled(dir); // a signal between files wins; nothing is committed
-            const DistanceProbeLayer& L = asset.layers[i];
-            const std::string name = layerFileName(i);
-            json stored;
-            if (i == 0 && compressed) {
-                stored = writeCompressedComposite(asset, tmp, name);
-            } else {
-                const std::string path = (tmp / name).string();
-                writeKtx2(path, Ktx2Texture{.cube = true,
-                                            .halfFloat = i > 0 && halfObjectLayers,
-                                            .levels = {stackFaces(L.faces)}});
-                stored = {{"file", name}, {"checksum", fileChecksum(path)}};
-            }
-            json layer = {{"name", L.name},
-                          {"order", i},
-                          {"objects", L.objects},
-                          {"avg_distance", L.avgDistance},
-                          {"min_distance", L.minDistance},
-                          {"max_distance", L.maxDistance},
-                          {"solid_angle_sr", L.solidAngle},
-                          {"box_min", vec3Json(L.boxMin)},
-                          {"box_max", vec3Json(L.boxMax)},
-                          {"method", L.method}};
-            layer.update(stored);
-            layers.push_back(std::move(layer));
-        }
-        json manifest = probeManifestHeader("distance", sourceScene, asset.inputs, compressed);
-        if (compressed) manifest["compression"] = "bc6h";
-        manifest.update(
-            {{"centre", vec3Json(asset.centre)},
-             {"range_D", asset.range},
-             {"d_inf", asset.dInf},
-             {"face_res", asset.faceRes},
-             {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
-             {"face_layout", compressed ? "KTX2 cube maps (faceCount 6), faces +X -X +Y -Y +Z "
-                                          "-Z: the composite's radiance BC6H, its distance "
-                                          "from the centre R16F or R32F beside it; object "
-                                          "layers RGBA (half floats where they fit)"
-                                        : "KTX2 cube map (faceCount 6, RGBA: float32 for the "
-                                          "composite, half floats for object layers that fit), "
-                                          "faces +X -X +Y -Y +Z -Z, RGB radiance, A distance "
-                                          "from the centre"},
-             {"layers", layers}});
-        if (!asset.effectPlan.empty()) manifest["effect_plan"] = json::parse(asset.effectPlan);
-        if (!asset.glossyLevels.empty()) manifest["glossy"] = writeGlossyLevels(asset, tmp, dir);
-        if (!asset.sky.empty()) {
-            const std::string path = (tmp / "sky.ktx2").string();
-            writeKtx2Image(path, asset.sky);
-            manifest["sky"] = {{"file", "sky.ktx2"}, {"checksum", fileChecksum(path)}};
-        }
-        return manifest;
-    });
 }
 
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath) {

@@ -100,12 +100,6 @@ struct DistanceLayerContent {
 DistanceLayerContent measureDistanceLayer(const std::array<Image, 6>& faces, float dInf,
                                           const std::string& file);
 
-// Writes DIR/manifest.json, the layer KTX2s and the glossy levels' KTX2s. Everything goes to a
-// sibling temporary folder first and replaces DIR by rename, so an interrupted or failed
-// write leaves DIR as it was.
-void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
-                        const std::string& sourceScene);
-
 // Reads and validates a manifest and its images: format version, every field's type and
 // range (centres within kMaxCoordinate, face_res an integer), file checksums, and the
 // images' content: float KTX2 cube, every texel valid (measureDistanceLayer), each layer's
@@ -115,7 +109,8 @@ void writeDistanceProbe(const DistanceProbeAsset& asset, const std::string& dir,
 // texel), errors naming the image and the field glossy.levels[k] (level k + 1); a manifest
 // without "glossy" reads with no glossy levels. Files are read only when regular (no FIFO,
 // device or directory). Errors name the file and the field.
-// writeDistanceProbe runs the same content checks before writing.
+// writeDistanceProbe (writer/distance_probe_writer.h, the tools') runs the same content checks
+// before writing.
 DistanceProbeAsset readDistanceProbe(const std::string& manifestPath);
 
 // readDistanceProbe on a manifest already parsed (the system reads each manifest once; the

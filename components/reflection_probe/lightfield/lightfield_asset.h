@@ -93,9 +93,12 @@ const char* slabName(int slab);
 void validateLightFieldSize(int cameras, int res, float cellSize, LightFieldCompression c,
                             const std::string& source);
 
-// Writes DIR/manifest.json and the six slab files, atomically (temporary folder + rename).
-void writeLightFieldProbe(const LightFieldAsset& asset, const std::string& dir,
-                          const std::string& sourceScene);
+// The figures of one slab against each other (near <= focal <= far, the disparity its focal
+// depth gives, disjoint fractions): the reader's check, which the writer
+// (writer/lightfield_probe_writer.h) runs before writing. Errors name `manifest` and
+// `path` + the field.
+void checkLightFieldSlabFigures(const LightFieldAsset& a, const LightFieldSlab& s,
+                                const std::string& manifest, const std::string& path);
 
 // Reads and validates a light-field manifest and its slab files: version, every field's type
 // and range (cell centre within kMaxCoordinate, integers integral), the atlas and file sizes

@@ -70,16 +70,6 @@ struct PemAsset {
 // Most samples a manifest may list (each is a full cube map).
 inline constexpr int kMaxPemSamples = 1024;
 
-// Writes DIR/manifest.json, sample_NN.ktx2 (and distance.ktx2) through writeProbeFolder (atomic:
-// DIR is replaced by one rename or left as it was). The reader's checks run first, so a probe the
-// reader would refuse is never written; they throw Error naming DIR's manifest (or a sample's file)
-// and the field: "centre", "parameter_kind", "path", "face_res", "box", "geometry", "distance.*"
-// (checkPemDistanceGeometry; distance.ktx2 for the distances), "samples",
-// "samples[k].parameter", "samples[k].map" (size, box or geometry unlike the asset's),
-// "radiance", "mip_levels", "local_layer.*" (face_res, centre, radius), "samples[k].local" (the
-// local map unlike the asset's layer), "alpha" (a local map's coverage outside [0, 1]).
-void writePemProbe(const PemAsset& asset, const std::string& dir, const std::string& sourceScene);
-
 // Reads and validates a manifest and its images: format, version and flavour, every field's
 // type and range, parameters in [0, 1] strictly increasing, each file a plain name inside the
 // folder with a matching checksum, each image a float KTX2 cube of exactly N x 6N whose RGB is

@@ -4,9 +4,9 @@
 // write, parameter block shared by shader and twin, store -- registered with the system by
 // one addFlavour() call and drawn with no file outside tests/ edited for it.
 #include "components/reflection_probe/manifest_fields.h"
-#include "components/reflection_probe/probe_folder.h"
 #include "components/reflection_probe/shader_variants.h"
 #include "components/reflection_probe/system/flavour_store_base.h"
+#include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/glsl_host.h"
 #include "engine/gpu/gl_objects.h"
 #include "engine/gpu/shader.h"

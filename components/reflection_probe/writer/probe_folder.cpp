@@ -2,7 +2,7 @@
 
 #include "components/reflection_probe/asset_format.h"
 #include "components/reflection_probe/manifest_fields.h"
-#include "components/reflection_probe/temporary_owner.h"
+#include "components/reflection_probe/writer/temporary_owner.h"
 
 #include "engine/core/error.h"
 #include "engine/core/file_write.h"

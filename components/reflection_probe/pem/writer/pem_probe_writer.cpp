@@ -1,0 +1,89 @@
+#include "pem_probe_writer.h"
+
+#include "components/reflection_probe/manifest_fields.h"
+#include "components/reflection_probe/pem/pem_asset_internal.h"
+#include "components/reflection_probe/pem/pem_map_levels.h"
+#include "components/reflection_probe/writer/probe_folder.h"
+#include "engine/image/ktx2.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace specula {
+
+using namespace pem_asset;
+
+void writePemProbe(const PemAsset& asset, const std::string& dir, const std::string& sourceScene) {
+    std::vector<std::string> files, localFiles;
+    for (std::size_t k = 0; k < asset.samples.size(); ++k) {
+        files.push_back((fs::path(dir) / sampleFileName(k)).string());
+        localFiles.push_back((fs::path(dir) / localFileName(k)).string());
+    }
+    checkAsset(asset, (fs::path(dir) / "manifest.json").string(), files,
+               (fs::path(dir) / kDistanceFile).string(), localFiles);
+
+    writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
+        json samples = json::array();
+        for (std::size_t k = 0; k < asset.samples.size(); ++k) {
+            throwIfCancelled(dir); // a signal between files wins; nothing is committed
+            const std::string name = sampleFileName(k);
+            const std::string path = (tmp / name).string();
+            writeKtx2Cube(path, stackMap(asset.samples[k].map));
+            json sample = {{"parameter", asset.samples[k].parameter},
+                           {"file", name},
+                           {"checksum", fileChecksum(path)}};
+            for (int level = 1; level < asset.mipLevels; ++level) {
+                const std::string mip = pemLevelFileName(k, level);
+                const std::string mipPath = (tmp / mip).string();
+                writeKtx2Cube(mipPath, pemStackLevel(asset.samples[k].map, level));
+                sample["mips"].push_back({{"file", mip}, {"checksum", fileChecksum(mipPath)}});
+            }
+            if (asset.localLayer) {
+                const std::string local = localFileName(k);
+                const std::string localPath = (tmp / local).string();
+                writeKtx2Cube(localPath, stackLocal(asset.samples[k].local));
+                sample["local"] = {{"file", local}, {"checksum", fileChecksum(localPath)}};
+            }
+            samples.push_back(std::move(sample));
+        }
+
+        json manifest = probeManifestHeader("pem", sourceScene, asset.inputs);
+        manifest["geometry"] = asset.geometry;
+        if (asset.localLayer)
+            manifest["local_layer"] = {{"face_res", asset.localFaceRes},
+                                       {"centre", vec3Json(asset.localSphere.centre)},
+                                       {"radius", asset.localSphere.radius}};
+        if (asset.mipLevels > 1) manifest["mip_levels"] = asset.mipLevels;
+        if (asset.imageWidth > 0) manifest["image_size"] = {asset.imageWidth, asset.imageHeight};
+        // Always written: "" says the bake traced a black sky, which a reader must not take for
+        // a manifest that predates the field.
+        manifest["sky_source"] = asset.skySource;
+        if (const PemDistanceGeometry* g = asset.distance.get()) {
+            const std::string path = (tmp / kDistanceFile).string();
+            writeKtx2Cube(path, stackDistances(*g));
+            manifest["distance"] = {{"face_res", g->faceRes},
+                                    {"d_inf", g->dInf},
+                                    {"range", g->range},
+                                    {"tolerance", g->tolerance},
+                                    {"max_steps", g->maxSteps},
+                                    {"file", kDistanceFile},
+                                    {"checksum", fileChecksum(path)}};
+        }
+        manifest.update(
+            {{"centre", vec3Json(asset.centre)},
+             {"parameter_kind", asset.parameterKind},
+             {"path", asset.path},
+             {"face_res", asset.faceRes},
+             {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
+             {"face_layout", "KTX2 cube map per sample (faceCount 6, float RGB), faces +X -X "
+                             "+Y -Y +Z -Z, RGB radiance"},
+             {"samples", samples}});
+        return manifest;
+    });
+}
+
+} // namespace specula
