@@ -73,7 +73,7 @@ TEST(PemLocalRuntime, ShaderMatchesTwinAndHullFlagsMatchEmbree) {
         const Image dirs = renderer.render(cam, 2);
         const Image hull = renderer.render(cam, 3);
         const PemStore& store = *renderer.probes().store<PemStore>();
-        const PemProbeGpu* synced = store.probe(scene.probeEntity());
+        const PemGpuProbe* synced = store.probe(scene.probeEntity());
         ASSERT_NE(synced, nullptr);
         const PemProbeCpu twin(*synced->asset, synced->params);
         long n = 0, close = 0, hullPx = 0, flagAgree = 0, flagPx = 0;

@@ -94,7 +94,7 @@ TEST(PemMipRuntime, ShaderMatchesTwinAndRenderingMatrixWithMips) {
             const std::string variant =
                 std::string(geometry) == "box" ? "pem+mip" : "pem-distance+mip";
             EXPECT_NE(std::find(drawn.begin(), drawn.end(), variant), drawn.end());
-            const PemProbeGpu* synced =
+            const PemGpuProbe* synced =
                 renderer.probes().store<PemStore>()->probe(scene.probeEntity());
             ASSERT_NE(synced, nullptr);
             const PemAsset& asset = *synced->asset;

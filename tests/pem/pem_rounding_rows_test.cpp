@@ -70,7 +70,7 @@ DisplayFit displayAgainstFit(test::ProbeRoom& scene, test::RoomRenderer& rendere
     PemSampleOptions o;
     o.supersample = 1;
     const PemSamples rays = tracePemSamples(scene.probeScene(), cam, asset.centre, o);
-    const PemProbeGpu* synced = renderer.probes().store<PemStore>()->probe(scene.probeEntity());
+    const PemGpuProbe* synced = renderer.probes().store<PemStore>()->probe(scene.probeEntity());
     EXPECT_NE(synced, nullptr);
     const PemProbeCpu twin(*synced->asset, synced->params);
     double sum = 0;

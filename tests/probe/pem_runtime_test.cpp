@@ -17,6 +17,7 @@
 #include "engine/raytrace/ground_truth.h"
 #include "engine/scene/mesh_bounds.h"
 #include "pem/pem_files_fixture.h"
+#include "pem/pem_random_asset.h"
 #include "support/probe_room.h"
 #include "support/scratch_dir_test.h"
 #include "twin_agreement.h"
@@ -34,51 +35,11 @@
 
 using namespace specula;
 using nlohmann::json;
+using specula::test::addDistanceGeometry;
+using specula::test::randomAsset;
 namespace fs = std::filesystem;
 
 namespace {
-
-// `count` samples at parameters 0 .. 1, evenly spaced, each map random in [0, 1).
-PemAsset randomAsset(int faceRes, int count, glm::vec3 boxMin, glm::vec3 boxMax,
-                     unsigned seed = 7) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.f, 1.f);
-    PemAsset a;
-    a.centre = {0.25f, 1.5f, -0.5f};
-    a.parameterKind = "reflector";
-    a.path = "line";
-    a.faceRes = faceRes;
-    a.boxMin = boxMin;
-    a.boxMax = boxMax;
-    for (int k = 0; k < count; ++k) {
-        PemSampleMap s;
-        s.parameter = count > 1 ? float(k) / float(count - 1) : 0.f;
-        s.map = {faceRes, boxMin, boxMax, {}, nullptr};
-        for (int t = 0; t < PemMap::texelCount(faceRes); ++t)
-            s.map.texels.emplace_back(u(rng), u(rng), u(rng));
-        a.samples.push_back(std::move(s));
-    }
-    return a;
-}
-
-// Gives the asset and every sample map one distance geometry: `m`^2 faces of distances in
-// [0.5, 5) m, d_inf 1000, a search of the cooker's kind.
-void addDistanceGeometry(PemAsset& a, int m, unsigned seed = 9) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.5f, 5.f);
-    auto g = std::make_shared<PemDistanceGeometry>();
-    g->faceRes = m;
-    for (int t = 0; t < PemMap::texelCount(m); ++t)
-        g->distances.push_back(u(rng));
-    g->dInf = 1000.f;
-    g->range = 5.25f;
-    g->tolerance = 5.25e-3f;
-    g->maxSteps = 11;
-    a.geometry = "distance";
-    a.distance = g;
-    for (PemSampleMap& s : a.samples)
-        s.map.distance = g;
-}
 
 class PemAssetFiles : public test::PemFilesTest {
 protected:
@@ -396,7 +357,7 @@ void expectShaderMatchesTwin(PemRoomState& room, const TwinBounds& bounds) {
         const Image colour = room.renderer.render(cam, 0);
         const Image pos = room.renderer.render(cam, 1);
         const Image dir = room.renderer.render(cam, 2);
-        const PemProbeGpu* synced = store.probe(room.scene.probeEntity());
+        const PemGpuProbe* synced = store.probe(room.scene.probeEntity());
         ASSERT_NE(synced, nullptr);
         const PemAsset* asset = synced->asset.get();
         const glsl::PemParams* params = &synced->params;

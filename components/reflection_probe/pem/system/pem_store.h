@@ -1,10 +1,8 @@
 #pragma once
-// The GPU side of parameterized-environment-map probes: every sample map of the asset as one
-// RGBA32F texture array (six layers per sample, every MIP level, NEAREST: the lookup filters
-// itself), a
-// distance-geometry asset's distance cube as six R32F layers, and the blend of the two
-// samples nearest the parameter as one uniform block. A parameter edit rewrites the block
-// only; the textures are uploaded once per probe.
+// Specula's own parameterized-environment-map probes: one PemGpuProbe each (the runtime's, as a
+// host's PemHostProbe holds; with PemProbeCpu(*asset, params) the twin of what the shader draws
+// now), the shader variants and each layered reflector's hull flags.
+#include "components/reflection_probe/pem/pem_gpu_probe.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "components/reflection_probe/pem/system/pem_hull.h"
 #include "components/reflection_probe/shader_variants.h"
@@ -16,17 +14,6 @@
 #include <unordered_map>
 
 namespace specula {
-
-// A synced probe's state; probe(e) gives it, and with PemProbeCpu(*asset, params) the twin
-// of what the shader draws now.
-struct PemProbeGpu {
-    std::shared_ptr<const PemAsset> asset;
-    glsl::PemParams params{}; // what `block` holds
-    gpu::UniformBuffer<glsl::PemParams> block;
-    gpu::Texture maps;
-    gpu::Texture distance; // the distance cube of distance-geometry assets, else empty
-    gpu::Texture local;    // every sample's local layer (RGBA32F, layered as maps), or empty
-};
 
 struct PemVariant {
     bool fresnel = false;
@@ -45,18 +32,18 @@ struct PemVariant {
     gpu::Program build() const;
 };
 
-class PemStore final : public FlavourStoreBase<PemProbe, PemProbeGpu> {
+class PemStore final : public FlavourStoreBase<PemProbe, PemGpuProbe> {
 public:
     std::string_view flavour() const override { return "pem"; }
     std::string_view settingsName() const override { return "PemProbe"; }
 
 private:
-    PemProbeGpu loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) override;
-    void applySettings(PemProbeGpu& probe, const PemProbe& settings,
+    PemGpuProbe loadProbe(const ProbeManifest& manifest, ProbeFrameStats& stats) override;
+    void applySettings(PemGpuProbe& probe, const PemProbe& settings,
                        ProbeFrameStats& stats) override;
-    std::size_t gpuBytesOf(const PemProbeGpu& probe) const override;
+    std::size_t gpuBytesOf(const PemGpuProbe& probe) const override;
     void drawReflector(const ProbeDrawContext& ctx, ecs::Entity reflector, const Reflector& r,
-                       const PemProbeGpu& probe, const PemProbe& settings) override;
+                       const PemGpuProbe& probe, const PemProbe& settings) override;
 
     // The reflector's hull flags as a storage buffer, made on its first layered draw and
     // again when its mesh changes (`meshes` holds the primitives' data it was made from).

@@ -1,0 +1,116 @@
+#include "pem_gpu_probe.h"
+
+#include "components/reflection_probe/host_probe.h"
+#include "components/reflection_probe/pem/pem_probe_cpu.h"
+#include "engine/core/error.h"
+
+#include <vector>
+
+namespace specula {
+
+namespace {
+
+std::size_t mapBytes(const PemAsset& a) {
+    const std::size_t distance =
+        a.distance ? std::size_t(PemMap::texelCount(a.distance->faceRes)) * sizeof(float) : 0;
+    const std::size_t local = a.localLayer ? std::size_t(PemMap::texelCount(a.localFaceRes)) *
+                                                 a.samples.size() * 4 * sizeof(float)
+                                           : 0;
+    return std::size_t(PemMap::texelCount(a.faceRes, a.mipLevels)) * a.samples.size() * 4 *
+               sizeof(float) +
+           distance + local;
+}
+
+// Every sample's six faces as array layers 6s .. 6s+5 of one RGBA32F array, the distant maps
+// (alpha 1) or the local ones (premultiplied RGB, coverage). Throws Error naming the manifest
+// when this GPU cannot hold that many layers.
+gpu::Texture uploadMaps(const PemAsset& a, bool local) {
+    GLint maxLayers = 0, maxSize = 0;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    const int n = local ? a.localFaceRes : a.faceRes, layers = 6 * int(a.samples.size());
+    if (layers > maxLayers || n > maxSize)
+        throw Error(a.manifestPath, "samples",
+                    std::to_string(a.samples.size()) + " maps of " + std::to_string(n) +
+                        "^2 x 6 exceed this GPU's limits (" + std::to_string(maxSize) + "^2, " +
+                        std::to_string(maxLayers) + " layers)");
+    gpu::Texture maps = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    const GLuint tex = maps.id();
+    // The distant maps' MIP levels are the texture's own levels (texelFetch reads level k);
+    // the local layer has one.
+    const int levels = local ? 1 : a.mipLevels;
+    glTextureStorage3D(tex, levels, GL_RGBA32F, n, n, layers);
+    std::vector<float> rgba(std::size_t(PemMap::texelCount(n)) * 4);
+    for (std::size_t s = 0; s < a.samples.size(); ++s) {
+        const PemMap& m = local ? a.samples[s].local : a.samples[s].map;
+        for (int level = 0; level < levels; ++level) {
+            const int size = PemMap::levelRes(n, level);
+            const std::size_t offset = std::size_t(PemMap::levelOffset(n, level));
+            const std::size_t count = std::size_t(PemMap::texelCount(size));
+            for (std::size_t t = 0; t < count; ++t)
+                for (int c = 0; c < 4; ++c)
+                    rgba[t * 4 + std::size_t(c)] =
+                        c < 3 ? m.texels[offset + t][c] : (local ? m.alpha[t] : 1.f);
+            // Faces are contiguous blocks in cube order: one upload of six layers per level.
+            glTextureSubImage3D(tex, level, 0, 0, 6 * int(s), size, size, 6, GL_RGBA, GL_FLOAT,
+                                rgba.data());
+        }
+    }
+    // The shader reads with texelFetch at levels and indices it picks and clamps itself
+    // (pemFetchMap): no filtering, no wrapping. A mipmapped NEAREST minification filter with
+    // every level present keeps the texture complete for texelFetch of any level.
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER,
+                        levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    return maps;
+}
+
+// The distance cube as six R32F layers, once per probe. NEAREST: the lookup reads it with
+// texelFetch at the nearest texel it computes itself (pem_distance_lookup.glsl.h).
+gpu::Texture uploadDistance(const PemAsset& a) {
+    const PemDistanceGeometry& g = *a.distance;
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (g.faceRes > maxSize)
+        throw Error(a.manifestPath, "distance.face_res",
+                    "a distance cube of " + std::to_string(g.faceRes) +
+                        "^2 exceeds this GPU's limit (" + std::to_string(maxSize) + "^2)");
+    gpu::Texture tex = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(tex.id(), 1, GL_R32F, g.faceRes, g.faceRes, 6);
+    glTextureSubImage3D(tex.id(), 0, 0, 0, 0, g.faceRes, g.faceRes, 6, GL_RED, GL_FLOAT,
+                        g.distances.data());
+    glTextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(tex.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return tex;
+}
+
+} // namespace
+
+PemGpuProbe PemGpuProbe::load(std::shared_ptr<const PemAsset> asset) {
+    PemGpuProbe g;
+    g.asset = std::move(asset);
+    g.maps = uploadMaps(*g.asset, false);
+    if (g.asset->localLayer) g.local = uploadMaps(*g.asset, true);
+    if (g.asset->distance) g.distance = uploadDistance(*g.asset);
+    return g;
+}
+
+void PemGpuProbe::applySettings(const PemProbe& settings) {
+    params = pemParams(*asset, settings);
+    block.upload(params);
+}
+
+std::size_t PemGpuProbe::gpuBytes() const {
+    return mapBytes(*asset) + sizeof(glsl::PemParams);
+}
+
+void PemGpuProbe::bindTo(GLuint program, const PemBindings& b, bool withLocal) const {
+    bindSampler(program, "uPemMaps", b.maps, maps.id());
+    if (distance) bindSampler(program, "uPemDistance", b.distance, distance.id());
+    if (withLocal && local) bindSampler(program, "uPemLocal", b.local, local.id());
+    block.bind(b.params);
+    bindUniformBlock(program, "PemParamsUniforms", b.params);
+}
+
+} // namespace specula
