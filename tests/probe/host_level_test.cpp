@@ -22,16 +22,6 @@ namespace {
 constexpr int kW = 160, kH = 120;
 const glm::vec4 kSphere(0.2f, 1.2f, 0.f, 0.35f); // in the doorway (the wall at x = 0)
 
-// The host's main after Specula's library and the sphere ray cast: a mirror sphere.
-const char* kHostMain = R"(
-void main() {
-    vec3 p, d;
-    vec2 ndc;
-    if (!sphereHit(p, d, ndc)) { colour = vec4(0.0); return; }
-    colour = vec4(speculaReflect(p, p - uSphere.xyz, d, 0.0), 1.0);
-}
-)";
-
 class HostLevel : public test::TwoRoomLevelGpuTest {
 protected:
     HostLevel() : TwoRoomLevelGpuTest("specula-host-level") {}
@@ -56,7 +46,7 @@ TEST_F(HostLevel, BlendsTheLevelAsItsTwinDoes) {
     const CameraView cam = doorwayCamera(kW, kH);
     const test::HostSphereView view{glm::inverse(cam.viewProj()), cam.eye(), kSphere, kW, kH};
     gpu::Program prog = test::buildFullscreenProgram(
-        "host_level", level.glslLibrary() + test::kHostSphereGlsl + kHostMain);
+        "host_level", level.glslLibrary() + test::kHostSphereGlsl + test::kHostMirrorSphereMain);
     gpu::RenderTarget target(kW, kH);
     const gpu::VertexArray vao = gpu::VertexArray::create();
     const Image host = test::drawFullscreen(target, prog, vao, [&] {

@@ -29,15 +29,6 @@ namespace {
 
 constexpr int kW = 128, kH = 96;
 
-const char* kHostMain = R"(
-void main() {
-    vec3 p, d;
-    vec2 ndc;
-    if (!sphereHit(p, d, ndc)) { colour = vec4(0.0); return; }
-    colour = vec4(speculaReflect(p, p - uSphere.xyz, d, 0.0), 1.0);
-}
-)";
-
 class HostPem : public test::ScratchDirTest, public ::testing::WithParamInterface<bool> {
 protected:
     HostPem() : ScratchDirTest("specula-host-pem") {}
@@ -69,7 +60,7 @@ TEST_P(HostPem, ReflectsAsItsTwinDoesAtAnyParameter) {
                      glm::lookAt(eye, c, glm::vec3(0.f, 1.f, 0.f))),
         eye, glm::vec4(c, 0.3f), kW, kH};
     gpu::Program prog = test::buildFullscreenProgram(
-        "host_pem", probe.glslLibrary() + test::kHostSphereGlsl + kHostMain);
+        "host_pem", probe.glslLibrary() + test::kHostSphereGlsl + test::kHostMirrorSphereMain);
     gpu::RenderTarget target(kW, kH);
     const gpu::VertexArray vao = gpu::VertexArray::create();
     for (const float parameter : {0.3f, 0.8f}) {

@@ -30,6 +30,16 @@ bool sphereHit(out vec3 p, out vec3 d, out vec2 ndc) {
 }
 )";
 
+// The host's main after kHostSphereGlsl: the sphere as a mirror, black around it.
+inline constexpr const char* kHostMirrorSphereMain = R"(
+void main() {
+    vec3 p, d;
+    vec2 ndc;
+    if (!sphereHit(p, d, ndc)) { colour = vec4(0.0); return; }
+    colour = vec4(speculaReflect(p, p - uSphere.xyz, d, 0.0), 1.0);
+}
+)";
+
 struct HostSphereView {
     glm::mat4 invViewProj;
     glm::vec3 eye;
