@@ -58,17 +58,17 @@ FormatVersion readAssetFormat(const json& m, const AssetFormat& expected, const 
                         " manifest)");
     const json& format = m["format"];
     const bool legacy = format.is_string();
-    const FormatVersion found =
-        legacy ? legacyVersion(m, file)
-               : FormatVersion{versionMember(format, "major", file),
-                               versionMember(format, "minor", file)};
+    const FormatVersion found = legacy ? legacyVersion(m, file)
+                                       : FormatVersion{versionMember(format, "major", file),
+                                                       versionMember(format, "minor", file)};
     const std::string field = legacy ? "version" : "format.major";
     const std::string runtime = std::to_string(expected.major) + ".x";
     if (found.major > expected.major)
         throw Error(file, field,
                     "asset format " + versionText(found) + " is newer than this runtime (" +
-                        runtime + "): re-cook it with this release's `specula-cook bake`, or "
-                                  "update the runtime");
+                        runtime +
+                        "): re-cook it with this release's `specula-cook bake`, or "
+                        "update the runtime");
     const int oldest = expected.oldestMajor > 0 ? expected.oldestMajor : expected.major;
     if (found.major < oldest) {
         // Probe format 1 stored its textures as OpenEXR, which only the tools could read.

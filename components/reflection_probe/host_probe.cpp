@@ -24,6 +24,20 @@ std::string missingHostGlFeature(int faceRes, int layers) {
     return {};
 }
 
+gpu::TextureAllocator hostAllocator(const UnmanagedObjects& objects, const HostLayout& layout,
+                                    const std::string& file) {
+    if (objects.paramsBuffer != 0)
+        if (const std::string mismatch =
+                gpu::uniformBufferMismatch(objects.paramsBuffer, layout.paramsBytes);
+            !mismatch.empty())
+            throw Error(file, "paramsBuffer", mismatch);
+    if (objects.textures.empty()) return gpu::createTexture;
+    gpu::TextureAllocator allocate = gpu::hostTextureAllocator(objects.textures, file);
+    for (const gpu::TextureSpec& spec : layout.textures)
+        allocate(spec); // borrowed, so dropping it deletes nothing
+    return allocate;
+}
+
 std::string hostGlslLibrary(const std::string& shader, const std::vector<std::string>& defines) {
     const gpu::ExpandedSource expanded =
         gpu::expandShader(gpu::ShaderSource::file(shader), defines);

@@ -3,6 +3,7 @@
 // answer of create() as a value, the GL checks made before any GL object, and the GLSL a
 // host's shader prepends.
 #include "engine/gpu/gl_objects.h"
+#include "engine/gpu/texture_spec.h"
 
 #include <memory>
 #include <string>
@@ -17,6 +18,28 @@ template <typename Probe> struct HostResult {
     std::string error;
     explicit operator bool() const { return probe != nullptr; }
 };
+
+// Two ownership modes, as RTXGI offers: managed (the default), a host probe creates and
+// deletes its GL textures and buffer; unmanaged, the host asks the probe's describe() what it
+// reads, creates those objects itself (glTextureStorage*, one per spec; a uniform buffer of
+// paramsBytes with GL_DYNAMIC_STORAGE_BIT) and hands them over in the options: the probe
+// uploads into them, sets their sampling state and never deletes them.
+struct HostLayout {
+    std::vector<gpu::TextureSpec> textures; // by the sampler uniform that reads each
+    std::size_t paramsBytes = 0;            // the parameter block's uniform buffer; 0: none
+    std::string error;                      // names the asset and field; empty when described
+    explicit operator bool() const { return error.empty(); }
+};
+// The unmanaged mode's objects in a host probe's options; empty: managed.
+struct UnmanagedObjects {
+    std::vector<gpu::HostTexture> textures{}; // one per described spec, by its name
+    GLuint paramsBuffer = 0;
+};
+// Where a host probe's textures come from: the runtime's own when `objects` hands none, else
+// the host's, every one checked against `layout` here, before anything is uploaded (and the
+// buffer against its size). Throws Error naming `file` and "textures.<name>" or "paramsBuffer".
+gpu::TextureAllocator hostAllocator(const UnmanagedObjects& objects, const HostLayout& layout,
+                                    const std::string& file);
 
 // Empty when the current context can run the lookups on textures of faceRes^2 and `layers`
 // array layers, else why not: no current context, below OpenGL 4.5, a size over the limits.

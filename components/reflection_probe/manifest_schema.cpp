@@ -49,7 +49,8 @@ struct Walk {
                     found.push_back(at);
             }
         } else if (value.is_array() && s.contains("items")) {
-            for (const json& element : value) visit(s["items"], element, path + "[]");
+            for (const json& element : value)
+                visit(s["items"], element, path + "[]");
         }
     }
 };

@@ -1,15 +1,20 @@
 // The host API's unmanaged mode: the host asks DistanceHostProbe::describe what a probe reads,
 // creates those textures and the parameter buffer itself and hands them over. Held to the
-// managed mode, which the host-example test holds to the CPU twin: the same host shader drawn
-// through either probe gives the same image bit for bit (plain and BC6H-compressed assets, with
-// the glossy chain), the managed probe's own textures match the description, and the host's
-// objects outlive the probe. A texture or buffer that does not fit is an error value naming the
+// managed mode, which the host tests hold to the CPU twins: the same host shader drawn through
+// either probe gives the same image bit for bit (distance: plain and BC6H-compressed assets,
+// with the glossy chain; a glossy light field; PEM of box and distance geometry), the managed
+// distance probe's own textures match the description, and the host's objects outlive the
+// probe. A texture or buffer that does not fit is an error value naming the
 // asset and the texture, and no host texture is written.
 #include "assetcooker/lib/cook.h"
 #include "components/reflection_probe/distance/distance_host_probe.h"
+#include "components/reflection_probe/lightfield/lightfield_host_probe.h"
+#include "components/reflection_probe/pem/pem_host_probe.h"
+#include "components/reflection_probe/pem/writer/pem_probe_writer.h"
 #include "engine/context/context.h"
 #include "engine/gpu/render_target.h"
 #include "engine/image_io/compare.h"
+#include "pem/pem_random_asset.h"
 #include "support/fullscreen_pass.h"
 #include "support/host_sphere.h"
 #include "support/probe_room.h"
@@ -43,7 +48,7 @@ void main() {
 struct HostObjects {
     std::vector<gpu::HostTexture> textures;
     GLuint buffer = 0;
-    HostObjects(const DistanceHostLayout& layout, GLenum swapFormatOf = 0) {
+    HostObjects(const HostLayout& layout, GLenum swapFormatOf = 0) {
         for (const gpu::TextureSpec& spec : layout.textures) {
             GLuint id = 0;
             glCreateTextures(spec.target, 1, &id);
@@ -55,6 +60,7 @@ struct HostObjects {
                 glTextureStorage3D(id, spec.levels, format, spec.width, spec.height, spec.layers);
             textures.push_back({spec.name, id});
         }
+        if (layout.paramsBytes == 0) return; // a light field has no uniform buffer
         glCreateBuffers(1, &buffer);
         glNamedBufferStorage(buffer, GLsizeiptr(layout.paramsBytes), nullptr,
                              GL_DYNAMIC_STORAGE_BIT);
@@ -62,11 +68,12 @@ struct HostObjects {
     ~HostObjects() {
         for (const gpu::HostTexture& t : textures)
             glDeleteTextures(1, &t.id);
-        glDeleteBuffers(1, &buffer);
+        if (buffer) glDeleteBuffers(1, &buffer);
     }
     bool allAlive() const {
-        return glIsBuffer(buffer) && std::all_of(textures.begin(), textures.end(),
-                                                 [](const auto& t) { return glIsTexture(t.id); });
+        return (buffer == 0 || glIsBuffer(buffer)) &&
+               std::all_of(textures.begin(), textures.end(),
+                           [](const auto& t) { return glIsTexture(t.id); });
     }
 };
 
@@ -94,12 +101,13 @@ protected:
         return (root_ / "probe" / "manifest.json").string();
     }
 
-    static Image draw(const DistanceHostProbe& probe) {
-        const glm::vec3 c = probe.centre(), eye = c + glm::vec3(0.f, 0.4f, 1.4f);
+    // The host's frame: a sphere of `radius` at `c` (mirror left, rough right) through `probe`.
+    template <typename Probe> static Image draw(const Probe& probe, glm::vec3 c, float radius) {
+        const glm::vec3 eye = c + glm::vec3(0.f, 0.4f, 1.4f);
         const test::HostSphereView view{
             glm::inverse(glm::perspective(glm::radians(40.f), float(kW) / float(kH), 0.05f, 100.f) *
                          glm::lookAt(eye, c, glm::vec3(0.f, 1.f, 0.f))),
-            eye, glm::vec4(c, 0.3f), kW, kH};
+            eye, glm::vec4(c, radius), kW, kH};
         gpu::Program prog = test::buildFullscreenProgram(
             "host_unmanaged", probe.glslLibrary() + test::kHostSphereGlsl + kHostMain);
         gpu::RenderTarget target(kW, kH);
@@ -109,6 +117,36 @@ protected:
             probe.bindTo(prog.id());
         });
     }
+    static Image draw(const DistanceHostProbe& probe) { return draw(probe, probe.centre(), 0.3f); }
+
+    // The managed and the unmanaged probe of one asset draw the same frame, bit for bit, and the
+    // host's objects outlive the unmanaged one.
+    template <typename Probe, typename Options>
+    void expectSameFrame(const std::string& manifest, Options options, const HostLayout& layout,
+                         const char* what, glm::vec3 c, float radius) {
+        ASSERT_TRUE(layout) << layout.error;
+        const HostResult<Probe> managed = Probe::create(manifest, options);
+        ASSERT_TRUE(managed) << managed.error;
+        const Image expected = draw(*managed.probe, c, radius);
+        HostObjects host(layout);
+        options.unmanaged.textures = host.textures;
+        options.unmanaged.paramsBuffer = host.buffer;
+        {
+            const HostResult<Probe> unmanaged = Probe::create(manifest, options);
+            ASSERT_TRUE(unmanaged) << unmanaged.error;
+            const Image image = draw(*unmanaged.probe, c, radius);
+            const ImageStats stats = compareImages(image, expected);
+            int lit = 0;
+            for (float v : image.pixels)
+                lit += v > 0.f;
+            std::printf("[host-unmanaged] %s: %zu host textures, %d lit channels, max diff %.6f\n",
+                        what, host.textures.size(), lit, stats.maxError);
+            EXPECT_GT(lit, kW * kH / 4) << what << ": the sphere must fill part of the frame";
+            EXPECT_EQ(stats.maxError, 0.f) << what << ": the same data and shader, bit for bit";
+        }
+        EXPECT_TRUE(host.allAlive()) << what << ": the probe never deletes the host's objects";
+        EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << what;
+    }
 
     static inline gpu::GlContext* context_ = nullptr;
 };
@@ -117,7 +155,7 @@ TEST_P(HostUnmanaged, DrawsWhatTheManagedProbeDraws) {
     const std::string manifest = cook(GetParam());
     DistanceHostOptions options;
     options.glossy = true;
-    const DistanceHostLayout layout = DistanceHostProbe::describe(manifest, options);
+    const HostLayout layout = DistanceHostProbe::describe(manifest, options);
     ASSERT_TRUE(layout) << layout.error;
     std::vector<std::string> names;
     for (const gpu::TextureSpec& t : layout.textures)
@@ -153,8 +191,8 @@ TEST_P(HostUnmanaged, DrawsWhatTheManagedProbeDraws) {
     const Image expectedImage = draw(*managed.probe);
 
     HostObjects host(layout);
-    options.textures = host.textures;
-    options.paramsBuffer = host.buffer;
+    options.unmanaged.textures = host.textures;
+    options.unmanaged.paramsBuffer = host.buffer;
     {
         const DistanceHostResult unmanaged = DistanceHostProbe::create(manifest, options);
         ASSERT_TRUE(unmanaged) << unmanaged.error;
@@ -180,13 +218,51 @@ INSTANTIATE_TEST_SUITE_P(Formats, HostUnmanaged,
                              return info.param == DistanceCompression::Bc6h ? "Bc6h" : "Float";
                          });
 
+using HostUnmanagedFlavours = HostUnmanaged;
+
+TEST_F(HostUnmanagedFlavours, LightFieldAndPemDrawWhatTheirManagedProbesDraw) {
+    test::ProbeRoom room;
+    LightFieldCookSettings lf;
+    lf.cameras = 8;
+    lf.imageRes = 32;
+    CookOptions o;
+    o.out = (root_ / "lightfield").string();
+    o.flavour = lf;
+    o.progress = false;
+    cookProbe(room.probeScene(), o, nullptr);
+    const std::string lightField = (root_ / "lightfield" / "manifest.json").string();
+    const LightFieldHostOptions glossy{.glossy = true};
+    const HostLayout lfLayout = LightFieldHostProbe::describe(lightField, glossy);
+    ASSERT_TRUE(lfLayout) << lfLayout.error;
+    ASSERT_EQ(lfLayout.textures.size(), 2u); // the atlas with its mips, the GGX albedo
+    EXPECT_GT(lfLayout.textures[0].levels, 1);
+    const LightFieldAsset lfAsset = readLightFieldProbe(lightField);
+    expectSameFrame<LightFieldHostProbe>(lightField, glossy, lfLayout, "lightfield",
+                                         lfAsset.cellCentre, 0.5f * lfAsset.halfCell());
+
+    for (const bool distance : {false, true}) {
+        PemAsset a =
+            test::randomAsset(16, 3, glm::vec3(-2.f, -1.f, -3.f), glm::vec3(2.f, 3.f, 2.f));
+        if (distance) test::addDistanceGeometry(a, 16);
+        const std::string dir = (root_ / (distance ? "pem_distance" : "pem_box")).string();
+        writePemProbe(a, dir, "");
+        const std::string pem = dir + "/manifest.json";
+        const HostLayout layout = PemHostProbe::describe(pem);
+        ASSERT_TRUE(layout) << layout.error;
+        EXPECT_EQ(layout.textures.size(), distance ? 2u : 1u);
+        EXPECT_EQ(layout.paramsBytes, sizeof(glsl::PemParams));
+        expectSameFrame<PemHostProbe>(pem, PemHostOptions{.settings = {.parameter = 0.3f}}, layout,
+                                      distance ? "pem distance" : "pem box", a.centre, 0.3f);
+    }
+}
+
 using HostUnmanagedRefusal = HostUnmanaged;
 
 TEST_F(HostUnmanagedRefusal, ObjectsThatDoNotFitAreErrorValuesNamingThem) {
     const std::string manifest = cook(DistanceCompression::None);
     DistanceHostOptions options;
     options.glossy = true;
-    const DistanceHostLayout layout = DistanceHostProbe::describe(manifest, options);
+    const HostLayout layout = DistanceHostProbe::describe(manifest, options);
     ASSERT_TRUE(layout) << layout.error;
     auto refusal = [&](const DistanceHostOptions& o) {
         const DistanceHostResult made = DistanceHostProbe::create(manifest, o);
@@ -204,7 +280,7 @@ TEST_F(HostUnmanagedRefusal, ObjectsThatDoNotFitAreErrorValuesNamingThem) {
         const float sentinel[4] = {7.f, 7.f, 7.f, 7.f};
         glClearTexImage(sky, 0, GL_RGBA, GL_FLOAT, sentinel);
         DistanceHostOptions o = options;
-        o.textures = wrongFormat.textures;
+        o.unmanaged.textures = wrongFormat.textures;
         const std::string error = refusal(o);
         EXPECT_NE(error.find("textures.uLayers"), std::string::npos) << error;
         EXPECT_NE(error.find("internal format is GL_RGBA16F"), std::string::npos) << error;
@@ -218,8 +294,9 @@ TEST_F(HostUnmanagedRefusal, ObjectsThatDoNotFitAreErrorValuesNamingThem) {
     {
         HostObjects missing(layout);
         DistanceHostOptions o = options;
-        o.textures = missing.textures;
-        std::erase_if(o.textures, [](const gpu::HostTexture& t) { return t.name == "uChain"; });
+        o.unmanaged.textures = missing.textures;
+        std::erase_if(o.unmanaged.textures,
+                      [](const gpu::HostTexture& t) { return t.name == "uChain"; });
         const std::string error = refusal(o);
         EXPECT_NE(error.find("textures.uChain"), std::string::npos) << error;
         EXPECT_NE(error.find("no texture"), std::string::npos) << error;
@@ -230,8 +307,8 @@ TEST_F(HostUnmanagedRefusal, ObjectsThatDoNotFitAreErrorValuesNamingThem) {
         glCreateBuffers(1, &small);
         glNamedBufferStorage(small, 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
         DistanceHostOptions o = options;
-        o.textures = host.textures;
-        o.paramsBuffer = small;
+        o.unmanaged.textures = host.textures;
+        o.unmanaged.paramsBuffer = small;
         const std::string error = refusal(o);
         EXPECT_NE(error.find("paramsBuffer"), std::string::npos) << error;
         EXPECT_NE(error.find("holds 16 bytes"), std::string::npos) << error;

@@ -30,16 +30,21 @@ HostInputs readHostInputs(const std::string& manifestPath, const DistanceHostOpt
     return in;
 }
 
+HostLayout layoutOf(const HostInputs& in) {
+    HostLayout layout;
+    layout.textures = DistanceGpuProbe::textureSpecs(*in.stored, in.config, in.chain.get());
+    if (in.chain) layout.textures.push_back(gpu::ggxAlbedoTextureSpec());
+    layout.paramsBytes = sizeof(glsl::DistanceParamsBlock);
+    return layout;
+}
+
 } // namespace
 
-DistanceHostLayout DistanceHostProbe::describe(const std::string& manifestPath,
-                                               const DistanceHostOptions& options) {
-    DistanceHostLayout layout;
+HostLayout DistanceHostProbe::describe(const std::string& manifestPath,
+                                       const DistanceHostOptions& options) {
+    HostLayout layout;
     try {
-        const HostInputs in = readHostInputs(manifestPath, options);
-        layout.textures = DistanceGpuProbe::textureSpecs(*in.stored, in.config, in.chain.get());
-        if (in.chain) layout.textures.push_back(gpu::ggxAlbedoTextureSpec());
-        layout.paramsBytes = sizeof(glsl::DistanceParamsBlock);
+        layout = layoutOf(readHostInputs(manifestPath, options));
     } catch (const std::exception& e) {
         layout.error = e.what();
     }
@@ -56,29 +61,17 @@ DistanceHostResult DistanceHostProbe::create(const std::string& manifestPath,
         if (const std::string missing = missingHostGlFeature(in.stored->faceRes, 6);
             !missing.empty())
             throw Error(manifestPath, "", missing);
-        if (options.paramsBuffer != 0)
-            if (const std::string mismatch = gpu::uniformBufferMismatch(
-                    options.paramsBuffer, sizeof(glsl::DistanceParamsBlock));
-                !mismatch.empty())
-                throw Error(manifestPath, "paramsBuffer", mismatch);
-        // Unmanaged: every host texture is checked against its spec before anything is
-        // uploaded, so a wrong one leaves the host's textures as they were.
-        gpu::TextureAllocator allocate = gpu::createTexture;
-        if (!options.textures.empty()) {
-            allocate = gpu::hostTextureAllocator(options.textures, manifestPath);
-            std::vector<gpu::TextureSpec> specs =
-                DistanceGpuProbe::textureSpecs(*in.stored, in.config, in.chain.get());
-            if (in.chain) specs.push_back(gpu::ggxAlbedoTextureSpec());
-            for (const gpu::TextureSpec& spec : specs)
-                allocate(spec);
-        }
+        // Unmanaged: every host texture is checked before anything is uploaded, so a wrong one
+        // leaves the host's textures as they were.
+        gpu::TextureAllocator allocate =
+            hostAllocator(options.unmanaged, layoutOf(in), manifestPath);
 
         std::unique_ptr<DistanceHostProbe> probe(new DistanceHostProbe);
         probe->options_ = options;
         probe->gpu_ = DistanceGpuProbe::load(std::move(in.stored), allocate);
-        if (options.paramsBuffer != 0)
-            probe->gpu_.params =
-                gpu::UniformBuffer<glsl::DistanceParamsBlock>::borrow(options.paramsBuffer);
+        if (options.unmanaged.paramsBuffer != 0)
+            probe->gpu_.params = gpu::UniformBuffer<glsl::DistanceParamsBlock>::borrow(
+                options.unmanaged.paramsBuffer);
         probe->gpu_.applySettings(options.settings);
         std::uint32_t features = probe->gpu_.config.features;
         if (in.chain) {

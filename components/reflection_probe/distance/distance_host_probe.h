@@ -11,13 +11,9 @@
 //
 // where myFragmentShader calls
 //   vec3 speculaReflect(vec3 worldPos, vec3 normal, vec3 viewDir, float roughness)
-// (shaders/distance_host.glsl). Specula's own store binds the same DistanceGpuProbe.
-//
-// Two ownership modes, as RTXGI offers: managed (the default), the probe creates and deletes
-// its GL textures and buffer; unmanaged, the host asks describe() what the probe reads,
-// creates those textures (glTextureStorage*, one per spec) and a uniform buffer itself, and
-// hands them over in the options: the probe uploads into them, sets their sampling state and
-// never deletes them. Destroy the probe while the context is current.
+// (shaders/distance_host.glsl). Specula's own store binds the same DistanceGpuProbe. Managed
+// or unmanaged (host_probe.h: describe(), then the host's objects in options.unmanaged).
+// Destroy the probe while the context is current.
 #include "components/reflection_probe/distance/distance_gpu_probe.h"
 #include "components/reflection_probe/host_probe.h"
 
@@ -35,19 +31,7 @@ struct DistanceHostOptions {
     bool glossy = false;
     // Texture units and the uniform-buffer binding the host leaves to Specula.
     DistanceBindings bindings{};
-    // Unmanaged mode: the host's textures, one per spec describe() lists, by its name, and its
-    // uniform buffer of describe().paramsBytes (GL_DYNAMIC_STORAGE_BIT). Empty / 0: the probe
-    // creates its own.
-    std::vector<gpu::HostTexture> textures{};
-    GLuint paramsBuffer = 0;
-};
-
-// What a probe of an asset reads, for a host that creates the GL objects itself.
-struct DistanceHostLayout {
-    std::vector<gpu::TextureSpec> textures; // by the sampler uniform that reads each
-    std::size_t paramsBytes = 0;            // the parameter block's uniform buffer
-    std::string error;                      // names the asset and field; empty when described
-    explicit operator bool() const { return error.empty(); }
+    UnmanagedObjects unmanaged{}; // the host's objects (describe()); empty: managed
 };
 
 class DistanceHostProbe;
@@ -62,8 +46,8 @@ public:
                                      const DistanceHostOptions& options = {});
     // The textures and buffer create() allocates for this asset and these options (no GL
     // needed): what the host makes in the unmanaged mode.
-    static DistanceHostLayout describe(const std::string& manifestPath,
-                                       const DistanceHostOptions& options = {});
+    static HostLayout describe(const std::string& manifestPath,
+                               const DistanceHostOptions& options = {});
     ~DistanceHostProbe();
     DistanceHostProbe(const DistanceHostProbe&) = delete;
     DistanceHostProbe& operator=(const DistanceHostProbe&) = delete;

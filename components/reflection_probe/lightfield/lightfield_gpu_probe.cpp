@@ -13,7 +13,8 @@ namespace {
 // before filtering), with `mips` as levels 1.. when given. Throws Error naming the manifest
 // when this GPU cannot hold it.
 gpu::Texture uploadAtlas(const LightFieldAsset& a, const std::string& manifest,
-                         const LightFieldMips* mips = nullptr) {
+                         const LightFieldMips* mips = nullptr,
+                         const gpu::TextureAllocator& allocate = gpu::createTexture) {
     GLint maxLayers = 0, maxSize = 0;
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
@@ -26,11 +27,9 @@ gpu::Texture uploadAtlas(const LightFieldAsset& a, const std::string& manifest,
     if (bc1 && !epoxy_has_gl_extension("GL_EXT_texture_compression_s3tc"))
         throw Error(manifest, "compression",
                     "bc1 needs GL_EXT_texture_compression_s3tc, which this context lacks");
-    gpu::Texture atlas = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    gpu::Texture atlas = allocate(LightFieldGpuProbe::atlasSpec(a, mips != nullptr));
     const GLuint tex = atlas.id();
     const int levels = 1 + (mips ? mips->maxLevel() : 0);
-    glTextureStorage3D(tex, levels, bc1 ? GL_COMPRESSED_SRGB_S3TC_DXT1_EXT : GL_SRGB8_ALPHA8, n, n,
-                       6);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (int level = 0; level < levels; ++level)
         for (int k = 0; k < 6; ++k) {
@@ -67,22 +66,42 @@ void setFloat(GLuint program, const char* name, float v) {
 
 } // namespace
 
+gpu::TextureSpec LightFieldGpuProbe::atlasSpec(const LightFieldAsset& a, bool mips) {
+    const bool bc1 = a.compression == LightFieldCompression::BC1;
+    return {"uAtlas",
+            GL_TEXTURE_2D_ARRAY,
+            GLenum(bc1 ? GL_COMPRESSED_SRGB_S3TC_DXT1_EXT : GL_SRGB8_ALPHA8),
+            a.atlasSize(),
+            a.atlasSize(),
+            6,
+            1 + (mips ? lightFieldMaxLevel(a.res, a.compression) : 0)};
+}
+
 LightFieldGpuProbe LightFieldGpuProbe::load(std::shared_ptr<const LightFieldAsset> asset,
-                                            std::string manifestPath) {
+                                            std::string manifestPath, bool mips,
+                                            const gpu::TextureAllocator& allocate) {
     LightFieldGpuProbe g;
     g.manifestPath = std::move(manifestPath);
     g.asset = std::move(asset);
-    g.atlas = uploadAtlas(*g.asset, g.manifestPath);
+    const LightFieldAsset& a = *g.asset;
+    if (mips && lightFieldMaxLevel(a.res, a.compression) > 0) {
+        const LightFieldMips m = buildLightFieldMips(a);
+        g.atlas = uploadAtlas(a, g.manifestPath, &m, allocate);
+        g.mipLevels = m.maxLevel();
+        g.mipBytes = m.gpuBytes(a.atlasSize(), a.compression);
+    } else {
+        g.atlas = uploadAtlas(a, g.manifestPath, nullptr, allocate);
+    }
     return g;
 }
 
 bool LightFieldGpuProbe::ensureMips() const {
     const LightFieldAsset& a = *asset;
     if (mipLevels > 0 || lightFieldMaxLevel(a.res, a.compression) == 0) return false;
-    const LightFieldMips mips = buildLightFieldMips(a);
-    atlas = uploadAtlas(a, manifestPath, &mips);
-    mipLevels = mips.maxLevel();
-    mipBytes = mips.gpuBytes(a.atlasSize(), a.compression);
+    LightFieldGpuProbe withMips = load(asset, manifestPath, true);
+    atlas = std::move(withMips.atlas);
+    mipLevels = withMips.mipLevels;
+    mipBytes = withMips.mipBytes;
     return true;
 }
 

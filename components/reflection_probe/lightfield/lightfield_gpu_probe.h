@@ -7,6 +7,7 @@
 #include "components/reflection_probe/lightfield/lightfield_asset.h"
 #include "components/reflection_probe/lightfield/lightfield_probe.h"
 #include "engine/gpu/gl_objects.h"
+#include "engine/gpu/texture_spec.h"
 
 #include <array>
 #include <memory>
@@ -29,10 +30,14 @@ struct LightFieldGpuProbe {
     mutable int mipLevels = 0;        // deepest mip level uploaded (0: none)
     mutable std::size_t mipBytes = 0; // their texture memory
 
-    // Uploads level 0. Throws Error naming the manifest when this GPU cannot hold the atlas
-    // (size, layers, BC1 without GL_EXT_texture_compression_s3tc).
+    // Uploads level 0 (with `mips`, the mips too). Throws Error naming the manifest when this
+    // GPU cannot hold the atlas (size, layers, BC1 without GL_EXT_texture_compression_s3tc).
+    // `allocate`: where the atlas comes from (texture_spec.h).
     static LightFieldGpuProbe load(std::shared_ptr<const LightFieldAsset> asset,
-                                   std::string manifestPath);
+                                   std::string manifestPath, bool mips = false,
+                                   const gpu::TextureAllocator& allocate = gpu::createTexture);
+    // The atlas "uAtlas" of `asset`, with its mips or level 0 alone.
+    static gpu::TextureSpec atlasSpec(const LightFieldAsset& asset, bool mips);
     // Makes the atlas again with its mips unless it has them (or the asset has none to make).
     // True when it uploaded.
     bool ensureMips() const;

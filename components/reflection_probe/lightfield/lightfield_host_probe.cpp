@@ -6,9 +6,29 @@
 namespace specula {
 
 namespace {
+
 constexpr const char* kHostShader =
     "components/reflection_probe/lightfield/shaders/lightfield_host.glsl";
+
+HostLayout layoutOf(const LightFieldAsset& a, const LightFieldHostOptions& options) {
+    HostLayout layout;
+    layout.textures = {LightFieldGpuProbe::atlasSpec(a, options.glossy)};
+    if (options.glossy) layout.textures.push_back(gpu::ggxAlbedoTextureSpec());
+    return layout;
+}
+
 } // namespace
+
+HostLayout LightFieldHostProbe::describe(const std::string& manifestPath,
+                                         const LightFieldHostOptions& options) {
+    HostLayout layout;
+    try {
+        layout = layoutOf(readLightFieldProbe(manifestPath), options);
+    } catch (const std::exception& e) {
+        layout.error = e.what();
+    }
+    return layout;
+}
 
 LightFieldHostProbe::~LightFieldHostProbe() = default;
 
@@ -20,13 +40,13 @@ LightFieldHostResult LightFieldHostProbe::create(const std::string& manifestPath
         if (const std::string missing = missingHostGlFeature(asset->atlasSize(), 6);
             !missing.empty())
             throw Error(manifestPath, "", missing);
+        const gpu::TextureAllocator allocate =
+            hostAllocator(options.unmanaged, layoutOf(*asset, options), manifestPath);
         std::unique_ptr<LightFieldHostProbe> probe(new LightFieldHostProbe);
         probe->options_ = options;
-        probe->gpu_ = LightFieldGpuProbe::load(std::move(asset), manifestPath);
-        if (options.glossy) {
-            probe->gpu_.ensureMips();
-            probe->ggxAlbedo_ = gpu::createGgxAlbedoTexture();
-        }
+        probe->gpu_ =
+            LightFieldGpuProbe::load(std::move(asset), manifestPath, options.glossy, allocate);
+        if (options.glossy) probe->ggxAlbedo_ = gpu::createGgxAlbedoTexture(allocate);
         probe->library_ =
             hostGlslLibrary(kHostShader, {std::string("GLOSSY=") + (options.glossy ? "1" : "0")});
         throwOnHostGlError(manifestPath);

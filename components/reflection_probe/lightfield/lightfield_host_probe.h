@@ -11,7 +11,8 @@
 //   vec3 speculaReflect(vec3 worldPos, vec3 normal, vec3 viewDir, float roughness)
 // (shaders/lightfield_host.glsl). The light field is exact for reflector points inside its
 // cell (cellCentre() +- halfCell()). Specula's own LightFieldStore binds the same
-// LightFieldGpuProbe. The probe owns its GL texture; destroy it while the context is current.
+// LightFieldGpuProbe. Managed or unmanaged (host_probe.h); destroy the probe while the context
+// is current.
 #include "components/reflection_probe/host_probe.h"
 #include "components/reflection_probe/lightfield/lightfield_gpu_probe.h"
 
@@ -25,6 +26,7 @@ struct LightFieldHostOptions {
     // without it speculaReflect is a mirror at any roughness.
     bool glossy = false;
     LightFieldBindings bindings{}; // texture units the host leaves to Specula
+    UnmanagedObjects unmanaged{};  // the host's textures (describe()); empty: managed
 };
 
 class LightFieldHostProbe;
@@ -36,6 +38,10 @@ public:
     // OpenGL 4.5 core context.
     static LightFieldHostResult create(const std::string& manifestPath,
                                        const LightFieldHostOptions& options = {});
+    // The textures create() allocates for this asset and these options (host_probe.h's
+    // unmanaged mode; no GL needed). A light field has no uniform buffer.
+    static HostLayout describe(const std::string& manifestPath,
+                               const LightFieldHostOptions& options = {});
     ~LightFieldHostProbe();
     LightFieldHostProbe(const LightFieldHostProbe&) = delete;
     LightFieldHostProbe& operator=(const LightFieldHostProbe&) = delete;

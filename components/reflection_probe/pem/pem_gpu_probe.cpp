@@ -10,12 +10,12 @@ namespace specula {
 
 namespace {
 
-std::size_t mapBytes(const PemAsset& a) {
+std::size_t mapBytes(const PemAsset& a, bool withLocal) {
     const std::size_t distance =
         a.distance ? std::size_t(PemMap::texelCount(a.distance->faceRes)) * sizeof(float) : 0;
-    const std::size_t local = a.localLayer ? std::size_t(PemMap::texelCount(a.localFaceRes)) *
-                                                 a.samples.size() * 4 * sizeof(float)
-                                           : 0;
+    const std::size_t local = withLocal ? std::size_t(PemMap::texelCount(a.localFaceRes)) *
+                                              a.samples.size() * 4 * sizeof(float)
+                                        : 0;
     return std::size_t(PemMap::texelCount(a.faceRes, a.mipLevels)) * a.samples.size() * 4 *
                sizeof(float) +
            distance + local;
@@ -24,7 +24,7 @@ std::size_t mapBytes(const PemAsset& a) {
 // Every sample's six faces as array layers 6s .. 6s+5 of one RGBA32F array, the distant maps
 // (alpha 1) or the local ones (premultiplied RGB, coverage). Throws Error naming the manifest
 // when this GPU cannot hold that many layers.
-gpu::Texture uploadMaps(const PemAsset& a, bool local) {
+gpu::Texture uploadMaps(const PemAsset& a, bool local, const gpu::TextureAllocator& allocate) {
     GLint maxLayers = 0, maxSize = 0;
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
@@ -34,12 +34,10 @@ gpu::Texture uploadMaps(const PemAsset& a, bool local) {
                     std::to_string(a.samples.size()) + " maps of " + std::to_string(n) +
                         "^2 x 6 exceed this GPU's limits (" + std::to_string(maxSize) + "^2, " +
                         std::to_string(maxLayers) + " layers)");
-    gpu::Texture maps = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
+    const gpu::TextureSpec spec = PemGpuProbe::mapsSpec(a, local);
+    gpu::Texture maps = allocate(spec);
     const GLuint tex = maps.id();
-    // The distant maps' MIP levels are the texture's own levels (texelFetch reads level k);
-    // the local layer has one.
-    const int levels = local ? 1 : a.mipLevels;
-    glTextureStorage3D(tex, levels, GL_RGBA32F, n, n, layers);
+    const int levels = spec.levels;
     std::vector<float> rgba(std::size_t(PemMap::texelCount(n)) * 4);
     for (std::size_t s = 0; s < a.samples.size(); ++s) {
         const PemMap& m = local ? a.samples[s].local : a.samples[s].map;
@@ -68,7 +66,7 @@ gpu::Texture uploadMaps(const PemAsset& a, bool local) {
 
 // The distance cube as six R32F layers, once per probe. NEAREST: the lookup reads it with
 // texelFetch at the nearest texel it computes itself (pem_distance_lookup.glsl.h).
-gpu::Texture uploadDistance(const PemAsset& a) {
+gpu::Texture uploadDistance(const PemAsset& a, const gpu::TextureAllocator& allocate) {
     const PemDistanceGeometry& g = *a.distance;
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
@@ -76,8 +74,7 @@ gpu::Texture uploadDistance(const PemAsset& a) {
         throw Error(a.manifestPath, "distance.face_res",
                     "a distance cube of " + std::to_string(g.faceRes) +
                         "^2 exceeds this GPU's limit (" + std::to_string(maxSize) + "^2)");
-    gpu::Texture tex = gpu::Texture::create(GL_TEXTURE_2D_ARRAY);
-    glTextureStorage3D(tex.id(), 1, GL_R32F, g.faceRes, g.faceRes, 6);
+    gpu::Texture tex = allocate(PemGpuProbe::distanceSpec(g));
     glTextureSubImage3D(tex.id(), 0, 0, 0, 0, g.faceRes, g.faceRes, 6, GL_RED, GL_FLOAT,
                         g.distances.data());
     glTextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -87,12 +84,25 @@ gpu::Texture uploadDistance(const PemAsset& a) {
 
 } // namespace
 
-PemGpuProbe PemGpuProbe::load(std::shared_ptr<const PemAsset> asset) {
+gpu::TextureSpec PemGpuProbe::mapsSpec(const PemAsset& a, bool local) {
+    // The distant maps' MIP levels are the texture's own levels (texelFetch reads level k);
+    // the local layer has one.
+    const int n = local ? a.localFaceRes : a.faceRes;
+    return {local ? "uPemLocal" : "uPemMaps", GL_TEXTURE_2D_ARRAY,    GL_RGBA32F, n, n,
+            6 * int(a.samples.size()),        local ? 1 : a.mipLevels};
+}
+
+gpu::TextureSpec PemGpuProbe::distanceSpec(const PemDistanceGeometry& g) {
+    return {"uPemDistance", GL_TEXTURE_2D_ARRAY, GL_R32F, g.faceRes, g.faceRes, 6};
+}
+
+PemGpuProbe PemGpuProbe::load(std::shared_ptr<const PemAsset> asset, bool local,
+                              const gpu::TextureAllocator& allocate) {
     PemGpuProbe g;
     g.asset = std::move(asset);
-    g.maps = uploadMaps(*g.asset, false);
-    if (g.asset->localLayer) g.local = uploadMaps(*g.asset, true);
-    if (g.asset->distance) g.distance = uploadDistance(*g.asset);
+    g.maps = uploadMaps(*g.asset, false, allocate);
+    if (local && g.asset->localLayer) g.local = uploadMaps(*g.asset, true, allocate);
+    if (g.asset->distance) g.distance = uploadDistance(*g.asset, allocate);
     return g;
 }
 
@@ -102,7 +112,7 @@ void PemGpuProbe::applySettings(const PemProbe& settings) {
 }
 
 std::size_t PemGpuProbe::gpuBytes() const {
-    return mapBytes(*asset) + sizeof(glsl::PemParams);
+    return mapBytes(*asset, bool(local)) + sizeof(glsl::PemParams);
 }
 
 void PemGpuProbe::bindTo(GLuint program, const PemBindings& b, bool withLocal) const {

@@ -9,6 +9,7 @@
 #include "components/reflection_probe/pem/pem_probe.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h" // glsl::PemParams, pemParams
 #include "engine/gpu/gl_objects.h"
+#include "engine/gpu/texture_spec.h"
 
 #include <memory>
 
@@ -28,9 +29,14 @@ struct PemGpuProbe {
     gpu::Texture distance; // the distance cube of distance-geometry assets, else empty
     gpu::Texture local;    // every sample's local layer (RGBA32F, layered as maps), or empty
 
-    // Uploads the maps (and the distance cube, the local layer). Throws Error naming the
-    // manifest when this GPU cannot hold them.
-    static PemGpuProbe load(std::shared_ptr<const PemAsset> asset);
+    // Uploads the maps (and the distance cube; with `local` the local layer). Throws Error
+    // naming the manifest when this GPU cannot hold them. `allocate`: where the textures come
+    // from (texture_spec.h).
+    static PemGpuProbe load(std::shared_ptr<const PemAsset> asset, bool local = true,
+                            const gpu::TextureAllocator& allocate = gpu::createTexture);
+    // The sample maps' array, "uPemMaps" (every MIP level), or the local layer's, "uPemLocal".
+    static gpu::TextureSpec mapsSpec(const PemAsset& asset, bool local);
+    static gpu::TextureSpec distanceSpec(const PemDistanceGeometry& g); // "uPemDistance"
     // The block of `settings` (pemParams: the two samples nearest the parameter, their weight).
     void applySettings(const PemProbe& settings);
     std::size_t gpuBytes() const;

@@ -13,8 +13,8 @@
 // (shaders/pem_host.glsl). The parameter is the asset's (the viewpoint or the reflector along
 // its cooked path, in [0, 1]). An asset's local layer needs the reflector's hull per triangle
 // (Specula's own store draws it); the host library draws the distant layer. Specula's own
-// PemStore binds the same PemGpuProbe. The probe owns its GL objects; destroy it while the
-// context is current.
+// PemStore binds the same PemGpuProbe. Managed or unmanaged (host_probe.h); destroy the probe
+// while the context is current.
 #include "components/reflection_probe/host_probe.h"
 #include "components/reflection_probe/pem/pem_gpu_probe.h"
 
@@ -24,7 +24,8 @@ namespace specula {
 
 struct PemHostOptions {
     PemProbe settings{};    // the first frame's parameter and blend
-    PemBindings bindings{}; // texture units and the uniform-buffer binding
+    PemBindings bindings{};       // texture units and the uniform-buffer binding
+    UnmanagedObjects unmanaged{}; // the host's objects (describe()); empty: managed
 };
 
 class PemHostProbe;
@@ -36,6 +37,9 @@ public:
     // 4.5 core context.
     static PemHostResult create(const std::string& manifestPath,
                                 const PemHostOptions& options = {});
+    // The textures and buffer create() allocates for this asset (host_probe.h's unmanaged
+    // mode; no GL needed).
+    static HostLayout describe(const std::string& manifestPath);
     ~PemHostProbe();
     PemHostProbe(const PemHostProbe&) = delete;
     PemHostProbe& operator=(const PemHostProbe&) = delete;
