@@ -7,7 +7,9 @@
 // probe. A texture or buffer that does not fit is an error value naming the
 // asset and the texture, and no host texture is written.
 #include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/level_bake.h"
 #include "components/reflection_probe/distance/distance_host_probe.h"
+#include "components/reflection_probe/distance/distance_level_host_probe.h"
 #include "components/reflection_probe/lightfield/lightfield_host_probe.h"
 #include "components/reflection_probe/pem/pem_host_probe.h"
 #include "components/reflection_probe/pem/writer/pem_probe_writer.h"
@@ -19,6 +21,7 @@
 #include "support/host_sphere.h"
 #include "support/probe_room.h"
 #include "support/scratch_dir_test.h"
+#include "two_room_level_gpu_fixture.h" // kTwoRoomsScene
 
 #include <gtest/gtest.h>
 
@@ -254,6 +257,30 @@ TEST_F(HostUnmanagedFlavours, LightFieldAndPemDrawWhatTheirManagedProbesDraw) {
         expectSameFrame<PemHostProbe>(pem, PemHostOptions{.settings = {.parameter = 0.3f}}, layout,
                                       distance ? "pem distance" : "pem box", a.centre, 0.3f);
     }
+}
+
+TEST_F(HostUnmanagedFlavours, ALevelDrawsWhatItsManagedLevelDraws) {
+    test::ProbeRoom room(test::kTwoRoomsScene, "");
+    LevelCookOptions o;
+    o.cook.scene = test::kTwoRoomsScene;
+    o.cook.out = (root_ / "level").string();
+    DistanceCookSettings d;
+    d.faceRes = 32;
+    d.planned = false;
+    o.cook.flavour = d;
+    o.cook.progress = false;
+    const std::string index = cookLevel(room.probeScene(), o, nullptr).index;
+    DistanceLevelHostOptions options;
+    options.glossy = true;
+    const HostLayout layout = DistanceLevelHostProbe::describe(index, options);
+    ASSERT_TRUE(layout) << layout.error;
+    std::vector<std::string> names;
+    for (const gpu::TextureSpec& t : layout.textures)
+        names.push_back(t.name);
+    EXPECT_EQ(names, (std::vector<std::string>{"uLevelLayers", "uLevelChain", "uGgxAlbedo"}));
+    EXPECT_EQ(layout.textures[0].layers, 12) << "two probes, six faces each";
+    expectSameFrame<DistanceLevelHostProbe>(index, options, layout, "level",
+                                            glm::vec3(0.2f, 1.2f, 0.f), 0.35f);
 }
 
 using HostUnmanagedRefusal = HostUnmanaged;

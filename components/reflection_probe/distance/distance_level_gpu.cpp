@@ -54,8 +54,57 @@ std::vector<std::string> distanceLevelDefines(std::uint32_t features, int k, Lev
     return defines;
 }
 
+namespace {
+
+// The level shader's sampler names (shaders/distance_level_gpu.glsl) on the single probe's
+// textures of distance_textures.h.
+gpu::TextureSpec named(gpu::TextureSpec spec, const char* name) {
+    spec.name = name;
+    return spec;
+}
+gpu::TextureAllocator naming(const gpu::TextureAllocator& allocate, const char* name) {
+    return [&allocate, name](const gpu::TextureSpec& spec) { return allocate(named(spec, name)); };
+}
+
+bool allCompressed(const std::vector<std::shared_ptr<const DistanceProbeAsset>>& assets) {
+    return std::all_of(assets.begin(), assets.end(),
+                       [](const auto& a) { return a->compression == DistanceCompression::Bc6h; });
+}
+bool allHalf(const std::vector<std::shared_ptr<const DistanceProbeAsset>>& assets) {
+    return std::all_of(assets.begin(), assets.end(),
+                       [](const auto& a) { return a->halfCompositeDistance; });
+}
+// BC6H when every probe's chain is its asset's compressed levels (one array holds all).
+bool chainsOfBlocks(const std::vector<std::shared_ptr<const DistanceProbeAsset>>& assets,
+                    const CubeChain& first) {
+    return std::all_of(assets.begin(), assets.end(),
+                       [&](const auto& a) { return chainHasBlocks(*a, first); });
+}
+
+} // namespace
+
+std::vector<gpu::TextureSpec>
+DistanceLevelGpu::textureSpecs(const std::vector<std::shared_ptr<const DistanceProbeAsset>>& assets,
+                               const std::vector<std::shared_ptr<const CubeChain>>* chains) {
+    const int n = assets.front()->faceRes, probes = int(assets.size());
+    std::vector<gpu::TextureSpec> specs;
+    if (allCompressed(assets)) {
+        specs.push_back(named(compressedCubeArraySpec(n, probes), "uLevelLayers"));
+        specs.push_back(named(distanceArraySpec(n, probes, allHalf(assets)), "uLevelDistances"));
+    } else {
+        specs.push_back(named(cubeArraySpec(n, probes), "uLevelLayers"));
+    }
+    if (!assets.front()->sky.empty()) specs.push_back(skyTextureSpec(assets.front()->sky));
+    if (chains && !chains->empty() && chains->front()->levels.size() >= 2)
+        specs.push_back(named(
+            chainArraySpec(*chains->front(), probes, chainsOfBlocks(assets, *chains->front())),
+            "uLevelChain"));
+    return specs;
+}
+
 DistanceLevelGpu DistanceLevelGpu::load(const std::string& path, const LevelIndex& index,
-                                        const DistanceAssetReader& read) {
+                                        const DistanceAssetReader& read,
+                                        gpu::TextureAllocator allocate) {
     if (index.flavour != "distance")
         throw Error(path, "flavour", "expected \"distance\", got \"" + index.flavour + "\"");
     if (index.probes.empty()) throw Error(path, "probes", "the level has no probe");
@@ -73,6 +122,7 @@ DistanceLevelGpu DistanceLevelGpu::load(const std::string& path, const LevelInde
     });
     DistanceLevelGpu g;
     g.indexPath = path;
+    g.allocate = std::move(allocate);
     const std::filesystem::path dir = std::filesystem::path(path).parent_path();
     for (const std::size_t i : order) {
         const LevelProbeEntry& e = index.probes[i];
@@ -81,28 +131,24 @@ DistanceLevelGpu DistanceLevelGpu::load(const std::string& path, const LevelInde
         checkLevelFaceRes(g.assets.back()->faceRes, g.assets.front()->faceRes, path, i);
     }
     const int n = g.assets.front()->faceRes, probes = int(g.assets.size());
-    bool half = true;
-    g.compressed = true;
-    for (const auto& a : g.assets) {
-        g.compressed = g.compressed && a->compression == DistanceCompression::Bc6h;
-        half = half && a->halfCompositeDistance;
-    }
+    const bool half = allHalf(g.assets);
+    g.compressed = allCompressed(g.assets);
     if (g.compressed) {
         g.halfDistances = half;
-        g.composites = createCompressedCubeArray(n, probes);
-        g.distances = createDistanceArray(n, probes, half);
+        g.composites = createCompressedCubeArray(n, probes, naming(g.allocate, "uLevelLayers"));
+        g.distances = createDistanceArray(n, probes, half, naming(g.allocate, "uLevelDistances"));
         for (int i = 0; i < probes; ++i) {
             uploadCompressedCube(g.composites, i, g.assets[std::size_t(i)]->compositeBlocks);
             uploadDistance(g.distances, i, g.assets[std::size_t(i)]->layers.front(), half);
         }
     } else {
         // Probes of both kinds: the compressed ones' decoded values, as their twins read.
-        g.composites = createCubeArray(n, probes);
+        g.composites = createCubeArray(n, probes, naming(g.allocate, "uLevelLayers"));
         for (int i = 0; i < probes; ++i)
             uploadCube(g.composites, i, g.assets[std::size_t(i)]->layers.front());
     }
     // The level is baked under one sky: the first probe's.
-    if (!g.assets.front()->sky.empty()) g.sky = uploadSkyTexture(g.assets.front()->sky);
+    if (!g.assets.front()->sky.empty()) g.sky = uploadSkyTexture(g.assets.front()->sky, g.allocate);
     return g;
 }
 
@@ -144,11 +190,9 @@ void DistanceLevelGpu::setChains(std::vector<std::shared_ptr<const CubeChain>> m
         all.push_back(made[i].get());
         blocks.push_back(&assets[i]->glossyBlocks);
     }
-    // BC6H when every probe's chain is its asset's compressed levels (one array holds all).
-    chainsCompressed = std::all_of(assets.begin(), assets.end(), [&](const auto& a) {
-        return chainHasBlocks(*a, *made.front());
-    });
-    chainTexture = uploadChainArrays(all, chainsCompressed ? blocks : ChainBlocks{});
+    chainsCompressed = chainsOfBlocks(assets, *made.front());
+    chainTexture = uploadChainArrays(all, chainsCompressed ? blocks : ChainBlocks{},
+                                     naming(allocate, "uLevelChain"));
     chains = std::move(made);
 }
 

@@ -11,6 +11,7 @@
 #include "components/reflection_probe/probe_volume.h"
 #include "engine/core/glsl_host.h"
 #include "engine/gpu/gl_objects.h"
+#include "engine/gpu/texture_spec.h"
 #include "engine/image/ggx_prefilter.h"
 #include "engine/math/aabb.h"
 
@@ -62,12 +63,21 @@ struct DistanceLevelGpu {
     mutable std::vector<std::shared_ptr<const CubeChain>> chains;
     mutable gpu::Texture chainTexture;
     mutable bool chainsCompressed = false; // chainTexture is BC6H (every probe's glossyBlocks)
+    // Where the textures come from (engine/gpu/texture_spec.h): the runtime's own, or the
+    // host's in the unmanaged mode.
+    gpu::TextureAllocator allocate = gpu::createTexture;
 
     // The index's probes in blend order, their composites and the sky uploaded. Throws Error
     // naming the index and field: another flavour, no probe, more than maxLevelProbes(),
     // probes of different face sizes.
     static DistanceLevelGpu load(const std::string& indexPath, const LevelIndex& index,
-                                 const DistanceAssetReader& read);
+                                 const DistanceAssetReader& read,
+                                 gpu::TextureAllocator allocate = gpu::createTexture);
+    // The textures a level of `assets` allocates, with `chains` (makeChains) when a rough
+    // reflector reads them: what a host makes for the unmanaged mode.
+    static std::vector<gpu::TextureSpec>
+    textureSpecs(const std::vector<std::shared_ptr<const DistanceProbeAsset>>& assets,
+                 const std::vector<std::shared_ptr<const CubeChain>>* chains);
     // The block of `settings` (validateDistanceLevel first; throws before any change).
     void applySettings(const DistanceLevel& settings);
     // Every probe's chain, checked to be of one length (throws Error naming the probes).

@@ -21,6 +21,7 @@ struct DistanceLevelHostOptions {
     // speculaReflect is a mirror at any roughness.
     bool glossy = false;
     DistanceLevelBindings bindings{}; // texture units and the uniform-buffer binding
+    UnmanagedObjects unmanaged{};     // the host's objects (describe()); empty: managed
 };
 
 class DistanceLevelHostProbe;
@@ -32,6 +33,10 @@ public:
     // 4.5 core context.
     static DistanceLevelHostResult create(const std::string& levelIndexPath,
                                           const DistanceLevelHostOptions& options = {});
+    // The textures and buffer create() allocates for this level and these options
+    // (host_probe.h's unmanaged mode; no GL needed).
+    static HostLayout describe(const std::string& levelIndexPath,
+                               const DistanceLevelHostOptions& options = {});
     ~DistanceLevelHostProbe();
     DistanceLevelHostProbe(const DistanceLevelHostProbe&) = delete;
     DistanceLevelHostProbe& operator=(const DistanceLevelHostProbe&) = delete;
