@@ -40,6 +40,7 @@ CookOptions cookOptions(const BakeArgs& a) {
         s.rows = a.rows;
         s.nonNegative = a.nonNegative == "on";
         s.roundingReach = a.roundingReach;
+        s.compression = a.compress;
         o.flavour = s;
     } else {
         DistanceCookSettings s;
@@ -95,13 +96,13 @@ CLI::Validator multipleOfFour() {
 
 CookOptions checkedCookOptions(const BakeArgs& a) {
     refuseOtherFlavoursOptions(a);
-    if (a.compress == "bc6h" && a.flavour != "distance")
-        throw UsageError("--compress", "bc6h applies to --flavour distance (a light field "
-                                       "compresses with bc1), not to --flavour " +
+    if (a.compress == "bc6h" && a.flavour == "lightfield")
+        throw UsageError("--compress", "bc6h applies to --flavour distance or pem (a light "
+                                       "field compresses with bc1), not to --flavour " +
                                            a.flavour);
     if (a.compress == "bc1" && a.flavour != "lightfield")
-        throw UsageError("--compress", "bc1 applies to --flavour lightfield (a distance probe "
-                                       "compresses with bc6h), not to --flavour " +
+        throw UsageError("--compress", "bc1 applies to --flavour lightfield (distance and PEM "
+                                       "probes compress with bc6h), not to --flavour " +
                                            a.flavour);
     if (a.flavour == "lightfield" && a.cameras * a.imageRes > 16384)
         throw UsageError("--cameras",
@@ -266,8 +267,10 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
                          "distance: none (default: RGBA float cubes) or bc6h (the composite's "
                          "radiance in BC6H, its distance R16F where halves hold it within the "
                          "lookup's d_e, else R32F: asset format 3.0); light field: none (sRGB "
-                         "RGB8) or bc1 (DXT1; bc7 is not supported: no BC7 encoder)"),
-         "distance|lightfield")
+                         "RGB8) or bc1 (DXT1; bc7 is not supported: no BC7 encoder); pem: none "
+                         "(float RGB maps) or bc6h (every sample map and MIP level in BC6H: "
+                         "asset format 3.2)"),
+         "distance|lightfield|pem")
         ->check(CLI::IsMember({"none", "bc1", "bc6h"}));
     only(sub->add_option("--samples", a.samples,
                          "parameter samples: one inferred map per viewpoint t = k/N (default 8)"),

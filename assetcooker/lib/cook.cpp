@@ -8,6 +8,7 @@
 #include "components/reflection_probe/distance/distance_compression.h"
 #include "components/reflection_probe/distance/writer/distance_probe_writer.h"
 #include "components/reflection_probe/lightfield/writer/lightfield_probe_writer.h"
+#include "components/reflection_probe/pem/writer/pem_compression.h"
 #include "components/reflection_probe/pem/writer/pem_probe_writer.h"
 #include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
@@ -172,6 +173,12 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const PemCookSettings& s,
     PemAsset asset =
         bakeShared(o, "inferring PEMs", b, result, log, [&] { return cookPemAsset(scene, s, b); });
     result.bakeSeconds = secondsSince(start);
+    if (s.compression == "bc6h") {
+        const auto compressStart = Clock::now();
+        if (log) *log << "compressing the maps to BC6H..." << std::flush;
+        compressPemMaps(asset);
+        if (log) *log << " " << secondsSince(compressStart) << " s\n";
+    }
     asset.inputs = cookedProbeInputs(scene, cookSettingsToJson(o.flavour), asset.centre);
     writePemProbe(asset, o.out, scene.path);
     result.asset = std::move(asset);

@@ -196,6 +196,8 @@ void validatePemCookSettings(const PemCookSettings& s, const std::string& file) 
                     "'centre' needs a sub-ray through each pixel's centre: an odd supersample, "
                     "got " +
                         std::to_string(s.supersample));
+    if (s.compression != "none" && s.compression != "bc6h")
+        throw Error(file, "compression", "expected none or bc6h, got '" + s.compression + "'");
     if (s.parameter != "viewpoint" && s.parameter != "reflector")
         throw Error(file, "parameter",
                     "expected viewpoint or reflector, got '" + s.parameter + "'");

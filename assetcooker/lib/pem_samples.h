@@ -113,6 +113,9 @@ struct PemCookSettings {
     // Distance geometry: rows for the lookups the display's rounding reaches
     // (pem_rounding_rows.h; PemInferOptions::roundingReach), metres and radians. 0: off.
     float roundingReach = 1e-4f;
+    // How the maps are stored: "none" (float RGB) or "bc6h" (every level of every sample map in
+    // BC6H, pem/writer/pem_compression.h), encoded after the inference.
+    std::string compression = "none";
 };
 
 // How well one sample's map fits, measured by the cooker against the ray tracer on the

@@ -4,6 +4,7 @@
 #include "assetcooker/lib/pem_shard_files.h"
 #include "assetcooker/lib/shard_install.h"
 #include "components/reflection_probe/pem/pem_asset.h"
+#include "components/reflection_probe/pem/writer/pem_compression.h"
 #include "components/reflection_probe/pem/writer/pem_probe_writer.h"
 #include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
@@ -160,6 +161,7 @@ std::vector<std::string> installPemShards(const std::string& dir, const ShardLis
                     "no parameter sample's view holds a reflector pixel: nothing to infer a map "
                     "from");
     PemAsset asset = bake.assemble(decision, std::move(maps));
+    if (s.compression == "bc6h") compressPemMaps(asset); // as the plain bake does
     asset.inputs = cookedProbeInputs(scene, list.settings, asset.centre);
     writePemProbe(asset, (fs::path(dir) / kPemFolder).string(), list.scene);
     return warnings;

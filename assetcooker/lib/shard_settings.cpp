@@ -59,7 +59,7 @@ json settingsJson(const LightFieldCookSettings& s) {
 template <class S, class F> void pemSettingFields(S& s, F&& f) {
     auto& [samples, faceRes, supersample, regularisation, geometry, priorWeight, parameter, path,
            imageWidth, imageHeight, localLayer, localFaceRes, localSphere, mipLevels, rows,
-           nonNegative, roundingReach] = s;
+           nonNegative, roundingReach, compression] = s;
     f("samples", samples), f("face_res", faceRes), f("supersample", supersample);
     f("regularisation", regularisation), f("geometry", geometry), f("prior_weight", priorWeight);
     f("parameter", parameter), f("path", path), f("image_width", imageWidth);
@@ -67,6 +67,7 @@ template <class S, class F> void pemSettingFields(S& s, F&& f) {
     f("local_face_res", localFaceRes), f("local_sphere", localSphere);
     f("mip_levels", mipLevels), f("rows", rows);
     f("non_negative", nonNegative), f("rounding_reach", roundingReach);
+    f("compression", compression);
 }
 
 json settingsJson(const PemCookSettings& s) {
@@ -147,6 +148,8 @@ CookFlavour cookSettingsFromJson(const json& j, const std::string& file) {
     if (flavour == "pem") {
         PemCookSettings s;
         pemSettingFields(s, [&](const char* name, auto& v) {
+            // Shard lists from before --compress bc6h for PEM hold no compression: none.
+            if (std::string_view(name) == "compression" && !j.contains(name)) return;
             v = jsonMember<std::decay_t<decltype(v)>>(j, name, file, "settings.");
         });
         validatePemCookSettings(s, file);

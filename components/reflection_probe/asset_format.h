@@ -33,8 +33,10 @@ struct AssetFormat {
 // object, the seal, RGBA16F object layers. 3.0: compressed distance probes ("compression":
 // "bc6h"; the composite's radiance in BC6H, its distance in a file of its own), which a 2.x
 // runtime refuses as newer instead of misreading; every other probe is still written as 2.x.
-// 2.2 / 3.1: "inputs", the checksums of what the cooker baked the probe from.
-inline constexpr AssetFormat kProbeFormat{"specula-probe", 3, 1, "", 2, {2, 2}};
+// 2.2 / 3.1: "inputs", the checksums of what the cooker baked the probe from. 3.2: compressed
+// PEM probes ("compression": "bc6h", every sample map BC6H; a 3.1 runtime ignores the member and
+// reads the maps through its KTX2 reader's BC6H decoder).
+inline constexpr AssetFormat kProbeFormat{"specula-probe", 3, 2, "", 2, {2, 2}};
 // Level indices (level.json). 1.1: the format object.
 inline constexpr AssetFormat kLevelFormat{"specula-level", 1, 1, "level"};
 

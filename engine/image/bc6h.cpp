@@ -139,4 +139,34 @@ Image decodeBC6H(std::span<const std::uint8_t> blocks, int width, int height) {
     return image;
 }
 
+std::vector<std::uint8_t> encodeBC6HFaces(const Image& stacked, int faces) {
+    const int h = stacked.height / faces;
+    const auto faceValues = std::ptrdiff_t(stacked.width) * h * stacked.channels;
+    std::vector<std::uint8_t> blocks;
+    for (int f = 0; f < faces; ++f) {
+        Image face(stacked.width, h, stacked.channels);
+        std::copy_n(stacked.pixels.begin() + std::ptrdiff_t(f) * faceValues, faceValues,
+                    face.pixels.begin());
+        const std::vector<std::uint8_t> b = encodeBC6H(face);
+        blocks.insert(blocks.end(), b.begin(), b.end());
+    }
+    return blocks;
+}
+
+Image decodeBC6HFaces(std::span<const std::uint8_t> blocks, int width, int faceHeight, int faces) {
+    Image level(width, faceHeight * faces, 3);
+    const std::size_t faceBytes = bc6hBytes(width, faceHeight);
+    if (blocks.size() != faceBytes * std::size_t(faces))
+        throw std::invalid_argument("decodeBC6HFaces: " + std::to_string(blocks.size()) +
+                                    " bytes for " + std::to_string(faces) + " faces of " +
+                                    std::to_string(faceBytes));
+    for (int f = 0; f < faces; ++f) {
+        const Image face =
+            decodeBC6H(blocks.subspan(std::size_t(f) * faceBytes, faceBytes), width, faceHeight);
+        std::copy(face.pixels.begin(), face.pixels.end(),
+                  level.pixels.begin() + std::ptrdiff_t(f) * std::ptrdiff_t(face.pixels.size()));
+    }
+    return level;
+}
+
 } // namespace specula

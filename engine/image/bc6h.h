@@ -39,4 +39,11 @@ std::vector<std::uint16_t> decodeBC6HHalf(std::span<const std::uint8_t> blocks, 
 // The same as a 3-channel float image.
 Image decodeBC6H(std::span<const std::uint8_t> blocks, int width, int height);
 
+// A level of `faces` faces stacked top to bottom (width x faces * faceHeight, as KTX2 cube
+// levels are held in memory): each face encoded on its own, so a face whose side is no multiple
+// of 4 has padded blocks of its own, and the blocks concatenated in face order (what KTX2 stores
+// and glCompressedTexSubImage3D uploads as `faces` array layers).
+std::vector<std::uint8_t> encodeBC6HFaces(const Image& stacked, int faces);
+Image decodeBC6HFaces(std::span<const std::uint8_t> blocks, int width, int faceHeight, int faces);
+
 } // namespace specula

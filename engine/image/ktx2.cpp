@@ -108,38 +108,6 @@ int faceCount(const Ktx2Texture& t) {
     return t.cube ? 6 : 1;
 }
 
-// The faces of a stacked level (N x faces N) one by one: a face whose side is no multiple of 4
-// has blocks of its own.
-Image faceOf(const Image& level, int face, int faces) {
-    const int h = level.height / faces;
-    Image f(level.width, h, level.channels);
-    const auto rowValues = std::ptrdiff_t(level.width) * level.channels;
-    std::copy(level.pixels.begin() + std::ptrdiff_t(face) * h * rowValues,
-              level.pixels.begin() + std::ptrdiff_t(face + 1) * h * rowValues, f.pixels.begin());
-    return f;
-}
-
-std::vector<std::uint8_t> encodeFaces(const Image& level, int faces) {
-    std::vector<std::uint8_t> blocks;
-    for (int f = 0; f < faces; ++f) {
-        const std::vector<std::uint8_t> b = encodeBC6H(faceOf(level, f, faces));
-        blocks.insert(blocks.end(), b.begin(), b.end());
-    }
-    return blocks;
-}
-
-Image decodeFaces(std::span<const std::uint8_t> blocks, int w, int faceH, int faces) {
-    Image level(w, faceH * faces, 3);
-    const std::size_t faceBytes = bc6hBytes(w, faceH);
-    for (int f = 0; f < faces; ++f) {
-        const Image face =
-            decodeBC6H(blocks.subspan(std::size_t(f) * faceBytes, faceBytes), w, faceH);
-        std::copy(face.pixels.begin(), face.pixels.end(),
-                  level.pixels.begin() + std::ptrdiff_t(f) * std::ptrdiff_t(face.pixels.size()));
-    }
-    return level;
-}
-
 void appendLevel(std::string& out, const Image& image, bool half) {
     if (!half) {
         out.append(reinterpret_cast<const char*>(image.pixels.data()), image.pixels.size() * 4);
@@ -307,7 +275,7 @@ Ktx2Texture parseKtx2(const std::string& b, const std::string& name, const Ktx2R
             const auto* first = reinterpret_cast<const std::uint8_t*>(b.data()) + offset;
             t.blocks.emplace_back(first, first + length);
             if (limits.decodeBlocks)
-                t.levels.push_back(decodeFaces(t.blocks.back(), w, faceH, int(h.faces)));
+                t.levels.push_back(decodeBC6HFaces(t.blocks.back(), w, faceH, int(h.faces)));
             continue;
         }
         Image image(w, hh, l.channels);
@@ -376,7 +344,7 @@ std::string encodeKtx2(const Ktx2Texture& t, const std::string& name, const std:
             // The caller's blocks when it has them (already encoded, and what it decoded),
             // else the levels encoded here.
             const std::vector<std::uint8_t> blocks =
-                k < t.blocks.size() ? t.blocks[k] : encodeFaces(t.levels[k], faces);
+                k < t.blocks.size() ? t.blocks[k] : encodeBC6HFaces(t.levels[k], faces);
             const int w = std::max(1, base.width >> k), fh = std::max(1, base.height / faces >> k);
             if (blocks.size() != std::size_t(faces) * bc6hBytes(w, fh))
                 throw Error(name, "level " + std::to_string(k),

@@ -22,7 +22,9 @@ bake "$assets/room/room.gltf" --flavour lightfield --out "$work/lightfield_bc1" 
   --image-res 8 --compress bc1
 bake "$assets/room/room.gltf" --flavour pem --out "$work/pem" --samples 2 --face-res 8 \
   --image-size 64x48
+bake "$assets/room/room.gltf" --flavour pem --out "$work/pem_bc6h" --samples 2 --face-res 8 \
+  --image-size 64x48 --compress bc6h --mip-levels 4
 mapfile -t manifests < <(find "$work" -name manifest.json -o -name level.json | sort)
 # Every kind must be there: a bake that stopped writing one would otherwise pass unnoticed.
-[ "${#manifests[@]}" -ge 10 ] || { echo "expected at least 10 manifests, found ${#manifests[@]}"; exit 1; }
+[ "${#manifests[@]}" -ge 11 ] || { echo "expected at least 11 manifests, found ${#manifests[@]}"; exit 1; }
 /usr/bin/python3 "$root/tests/formats/validate_manifests.py" "$root/docs/formats" "${manifests[@]}"

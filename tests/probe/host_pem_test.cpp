@@ -2,11 +2,13 @@
 // mirror sphere inside the probe's box and calls speculaReflect; every pixel is held to the CPU
 // twin (PemProbeCpu on the parameter block the host set) recomputed from the same camera and
 // sphere: >= 40 dB, for box and distance geometry, at a parameter between two samples and after
-// moving it (setSettings rewrites the block only). Bad input is an error value. (Measured:
+// moving it (setSettings rewrites the block only), with float maps and with BC6H maps (sampled
+// from their blocks, the twin reading their decoding). Bad input is an error value. (Measured:
 // box 92 dB; distance 49-53 dB, where the random distance cube makes the search jump between
 // texels at the few pixels whose float ray differs by an ulp from the twin's.)
 #include "components/reflection_probe/pem/pem_host_probe.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
+#include "components/reflection_probe/pem/writer/pem_compression.h"
 #include "components/reflection_probe/pem/writer/pem_probe_writer.h"
 #include "engine/context/context.h"
 #include "engine/gpu/render_target.h"
@@ -29,7 +31,12 @@ namespace {
 
 constexpr int kW = 128, kH = 96;
 
-class HostPem : public test::ScratchDirTest, public ::testing::WithParamInterface<bool> {
+struct HostPemCase {
+    bool distance = false;
+    bool compressed = false;
+};
+
+class HostPem : public test::ScratchDirTest, public ::testing::WithParamInterface<HostPemCase> {
 protected:
     HostPem() : ScratchDirTest("specula-host-pem") {}
     static void SetUpTestSuite() { context_ = gpu::GlContext::createHeadless().release(); }
@@ -37,10 +44,11 @@ protected:
         delete context_;
         context_ = nullptr;
     }
-    std::string write(bool distanceGeometry) {
+    std::string write(bool distanceGeometry, bool compressed = false) {
         PemAsset a =
             test::randomAsset(16, 3, glm::vec3(-2.f, -1.f, -3.f), glm::vec3(2.f, 3.f, 2.f));
         if (distanceGeometry) test::addDistanceGeometry(a, 16);
+        if (compressed) compressPemMaps(a);
         writePemProbe(a, (root_ / "pem").string(), "");
         return (root_ / "pem" / "manifest.json").string();
     }
@@ -48,11 +56,18 @@ protected:
 };
 
 TEST_P(HostPem, ReflectsAsItsTwinDoesAtAnyParameter) {
-    const bool distance = GetParam();
-    const std::string manifest = write(distance);
+    const auto [distance, compressed] = GetParam();
+    const std::string manifest = write(distance, compressed);
     const PemHostResult made = PemHostProbe::create(manifest, {.settings = {.parameter = 0.3f}});
     ASSERT_TRUE(made) << made.error;
     PemHostProbe& probe = *made.probe;
+    // Compressed maps are sampled from their blocks: BPTC storage, a sixteenth of RGBA32F's
+    // bytes (3 samples x 6 faces x 16^2 texels at 1 byte).
+    GLint format = 0;
+    glGetTextureLevelParameteriv(probe.gpu().maps.id(), 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    EXPECT_EQ(GLenum(format),
+              compressed ? GLenum(GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT) : GLenum(GL_RGBA32F));
+    EXPECT_EQ(pemDistantMapBytes(probe.asset()), std::size_t(3 * 6 * 256) * (compressed ? 1 : 16));
     const glm::vec3 c = probe.asset().centre;
     const glm::vec3 eye = c + glm::vec3(0.f, 0.3f, 1.2f);
     const test::HostSphereView view{
@@ -91,10 +106,10 @@ TEST_P(HostPem, ReflectsAsItsTwinDoesAtAnyParameter) {
                 ++covered;
             }
         const ImageStats stats = compareImages(host, reference);
-        std::printf("[host-pem] %s geometry, parameter %.1f: %d sphere px: %s dB against the "
-                    "twin, max %.4f\n",
-                    distance ? "distance" : "box", parameter, covered,
-                    formatPsnr(stats.psnr).c_str(), stats.maxError);
+        std::printf("[host-pem] %s geometry, %s maps, parameter %.1f: %d sphere px: %s dB "
+                    "against the twin, max %.4f\n",
+                    distance ? "distance" : "box", compressed ? "BC6H" : "float", parameter,
+                    covered, formatPsnr(stats.psnr).c_str(), stats.maxError);
         ASSERT_GT(covered, kW * kH / 8) << "the camera must see the sphere";
         ASSERT_TRUE(stats.hasPsnr);
         EXPECT_GE(stats.psnr, 40.0);
@@ -102,8 +117,13 @@ TEST_P(HostPem, ReflectsAsItsTwinDoesAtAnyParameter) {
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
-INSTANTIATE_TEST_SUITE_P(Geometry, HostPem, ::testing::Bool(),
-                         [](const auto& info) { return info.param ? "Distance" : "Box"; });
+INSTANTIATE_TEST_SUITE_P(Geometry, HostPem,
+                         ::testing::Values(HostPemCase{false, false}, HostPemCase{true, false},
+                                           HostPemCase{false, true}, HostPemCase{true, true}),
+                         [](const auto& info) {
+                             return std::string(info.param.distance ? "Distance" : "Box") +
+                                    (info.param.compressed ? "Bc6h" : "");
+                         });
 
 using HostPemInput = HostPem;
 

@@ -5,6 +5,7 @@
 
 #include "components/reflection_probe/distance/distance_probe_asset.h" // kMaxRadiance
 #include "engine/core/error.h"
+#include "engine/image/bc6h.h"
 #include "engine/image/ktx2.h"
 
 #include <nlohmann/json.hpp>
@@ -48,16 +49,6 @@ std::string number(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", v);
     return buf;
-}
-
-// The map's faces stacked top to bottom: texel (face, i, j) at pixel (i, face * N + j).
-Image stackMap(const PemMap& m) {
-    const int n = m.faceRes;
-    Image out(n, 6 * n, 3);
-    for (int t = 0; t < PemMap::texelCount(n); ++t)
-        for (int c = 0; c < 3; ++c)
-            out.pixels[std::size_t(t) * 3 + std::size_t(c)] = m.texels[std::size_t(t)][c];
-    return out;
 }
 
 PemMap unstackMap(const Image& img, const PemAsset& a) {
@@ -134,6 +125,32 @@ void checkRadiance(const PemMap& m, const std::string& file, std::size_t k) {
         throw Error(file, "alpha",
                     "sample " + std::to_string(k) + " texel " + std::to_string(t) + " holds " +
                         number(v) + "; expected a coverage in [0, 1]");
+    }
+}
+
+// A compressed asset's sample holds one level of six faces' blocks per MIP level, an
+// uncompressed one none. (That the blocks decode to the texels is the writer's check,
+// checkPemBlocks; the reader makes the texels from them.)
+void checkBlockCounts(const PemAsset& a, const PemSampleMap& s, const std::string& file,
+                      std::size_t k) {
+    const bool bc6h = a.compression == PemCompression::Bc6h;
+    if (!bc6h && !s.blocks.empty())
+        throw Error(file, "blocks",
+                    "sample " + std::to_string(k) + " holds BC6H blocks in an uncompressed asset");
+    if (!bc6h) return;
+    if (s.blocks.size() != std::size_t(a.mipLevels))
+        throw Error(file, "blocks",
+                    "sample " + std::to_string(k) + " holds " + std::to_string(s.blocks.size()) +
+                        " levels of BC6H blocks for " + std::to_string(a.mipLevels) +
+                        " MIP level(s)");
+    for (int level = 0; level < a.mipLevels; ++level) {
+        const int n = PemMap::levelRes(a.faceRes, level);
+        if (s.blocks[std::size_t(level)].size() != 6 * bc6hBytes(n, n))
+            throw Error(file, "blocks",
+                        "sample " + std::to_string(k) + " level " + std::to_string(level) +
+                            " holds " + std::to_string(s.blocks[std::size_t(level)].size()) +
+                            " bytes of BC6H, " + std::to_string(6 * bc6hBytes(n, n)) +
+                            " expected for six faces of " + std::to_string(n));
     }
 }
 
@@ -230,13 +247,38 @@ void checkAsset(const PemAsset& a, const std::string& manifest,
                             std::to_string(a.faceRes) + " in " + std::to_string(a.mipLevels) +
                             " level(s) over the asset's box and geometry");
         checkRadiance(s.map, files[k], k);
+        checkBlockCounts(a, s, files[k], k);
     }
     checkLocal(a, manifest, localFiles);
 }
 
+// One level of a sample's map, an N x 6N RGB cube (`n` a face's side), from `file`; a
+// compressed asset's blocks are appended to `s.blocks`. A file stored otherwise than the
+// manifest says (BC6H in an uncompressed asset, or float in a compressed one) names its vkFormat.
+Image readMapLevel(const ManifestFields& r, const std::string& field,
+                   const ManifestFields::CheckedFile& file, int n, const PemAsset& a,
+                   PemSampleMap& s) {
+    // The header must declare exactly N x 6N, checked before the pixels are allocated.
+    Ktx2Texture t = r.namedFile(
+        field, [&] { return readKtx2(file.path, {.width = n, .height = n, .faces = 6}); });
+    const bool bc6h = a.compression == PemCompression::Bc6h;
+    if (t.bc6h != bc6h)
+        throw Error(file.path, "vkFormat",
+                    bc6h ? "expected BC6H blocks: the manifest's compression is \"bc6h\""
+                         : "expected float texels: the manifest states no compression");
+    Image img = std::move(t.levels.at(0));
+    if (img.channels < 3)
+        throw Error(file.path, "channels",
+                    "expected RGB, got " + std::to_string(img.channels) + " channel(s)");
+    if (bc6h) s.blocks.push_back(std::move(t.blocks.at(0)));
+    return img;
+}
+
 // Levels 1 .. levels-1 of a sample's map from its "mips" files, each exactly its size.
 void readPemLevels(const ManifestFields& r, const json& sample, const std::string& path,
-                   const fs::path& dir, int levels, PemMap& map) {
+                   const fs::path& dir, const PemAsset& a, PemSampleMap& s) {
+    const int levels = a.mipLevels;
+    PemMap& map = s.map;
     map.levels = levels;
     if (levels <= 1) return;
     const json& mips = r.member(sample, "mips", path);
@@ -249,11 +291,7 @@ void readPemLevels(const ManifestFields& r, const json& sample, const std::strin
         const int n = PemMap::levelRes(map.faceRes, level);
         const ManifestFields::CheckedFile file =
             r.checkedFile(mips[std::size_t(level - 1)], field, dir, maxSampleFileBytes(n));
-        const Image img = r.namedFile(field, [&] { return readKtx2Cube(file.path, n); });
-        if (img.channels < 3)
-            throw Error(file.path, "channels",
-                        "expected RGB, got " + std::to_string(img.channels) + " channel(s)");
-        pemUnstackLevel(img, level, map);
+        pemUnstackLevel(readMapLevel(r, field, file, n, a, s), level, map);
     }
 }
 
@@ -267,12 +305,21 @@ PemAsset readPemProbe(const std::string& manifestPath) {
 
 PemAsset readPemProbe(const ProbeManifest& manifest) {
     const ManifestFields r{manifest.path};
-    r.expectFlavour(manifest.json, "pem");
+    const FormatVersion version = r.expectFlavour(manifest.json, "pem");
     const json& m = manifest.json;
     const fs::path dir = fs::path(manifest.path).parent_path();
 
     PemAsset a;
     a.manifestPath = manifest.path;
+    if (m.contains("compression")) {
+        if (r.string(m, "compression", "") != "bc6h")
+            throw Error(manifest.path, "compression", "expected \"bc6h\" (or no member)");
+        if (version.major < 3 || (version.major == 3 && version.minor < 2))
+            throw Error(manifest.path, "compression",
+                        "needs asset format 3.2 or newer; the manifest states " +
+                            std::to_string(version.major) + "." + std::to_string(version.minor));
+        a.compression = PemCompression::Bc6h;
+    }
     a.centre = r.vec3(m, "centre", "", kMaxCoordinate);
     if (m.contains("sky_source")) a.skySource = r.string(m, "sky_source", "");
     a.parameterKind = r.string(m, "parameter_kind", "");
@@ -338,13 +385,8 @@ PemAsset readPemProbe(const ProbeManifest& manifest) {
             r.checkedFile(j, path, dir, maxSampleFileBytes(a.faceRes));
         s.file = file.name;
         s.checksum = file.checksum;
-        // The header must declare exactly N x 6N, checked before the pixels are allocated.
-        const Image img = r.namedFile(path, [&] { return readKtx2Cube(file.path, a.faceRes); });
-        if (img.channels < 3)
-            throw Error(file.path, "channels",
-                        "expected RGB, got " + std::to_string(img.channels) + " channel(s)");
-        s.map = unstackMap(img, a);
-        readPemLevels(r, j, path, dir, a.mipLevels, s.map);
+        s.map = unstackMap(readMapLevel(r, path, file, a.faceRes, a, s), a);
+        readPemLevels(r, j, path, dir, a, s);
         if (a.localLayer) {
             const std::string localPath = path + "local.";
             const ManifestFields::CheckedFile local = r.checkedFile(

@@ -14,9 +14,13 @@
 // L x 6L in the same layout, RGBA: premultiplied local radiance and coverage alpha. An asset
 // with MIP levels ("mip_levels": L > 1) adds sample_NN_mipK.ktx2 per sample and level k >= 1,
 // max(N >> k, 1) x 6 max(N >> k, 1) in the same layout, listed in the sample's "mips".
+// A compressed asset ("compression": "bc6h", asset format 3.2) stores every level of every
+// sample map as a BC6H KTX2 cube instead (vkFormat 131, each face's blocks row by row); the
+// local layer (coverage alpha) and the distance cube stay float.
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/pem/pem_lookup_cpu.h"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,10 +29,18 @@
 
 namespace specula {
 
+// How the distant maps are stored: float RGB, or BC6H blocks (1 byte a texel against the GPU's
+// 16 of RGBA32F; `specula-cook bake --flavour pem --compress bc6h`).
+enum class PemCompression { None, Bc6h };
+
 struct PemSampleMap {
     float parameter = 0.f;      // where on the parameter axis this map was inferred, in [0, 1]
     PemMap map;                 // faceRes and box equal to the asset's: the distant layer
     std::string file, checksum; // set by the reader/writer
+    // Bc6h: blocks[k] level k's six faces' BC6H blocks (faces in order, a face's blocks row by
+    // row: what KTX2 stores and the GPU upload copies), and `map` holds their decoding (what
+    // the GPU samples and the CPU twin reads). Empty for None.
+    std::vector<std::vector<std::uint8_t>> blocks;
     // The local layer when the asset has one (faceRes localFaceRes, local = the asset's
     // sphere, alpha in [0, 1]); faceRes 0 otherwise.
     PemMap local;
@@ -65,6 +77,7 @@ struct PemAsset {
     // copies), 1 .. PemMap::maxLevels(faceRes); each sample's map.levels equals it. Manifests
     // without "mip_levels" hold level 0 alone.
     int mipLevels = 1;
+    PemCompression compression = PemCompression::None; // "compression"; absent: None
 };
 
 // Most samples a manifest may list (each is a full cube map).
@@ -79,7 +92,9 @@ inline constexpr int kMaxPemSamples = 1024;
 // missing or wrong-sized one names the manifest and "samples[k].local.file"), RGB as the maps',
 // alpha in [0, 1]; MIP levels: every sample's "mips" lists one file per level past 0, each exactly
 // its level's size (a missing one names the manifest and "samples[k].mips[i].file", a mis-sized one
-// its file). Errors name the file and the field.
+// its file); compression "bc6h": every sample and MIP file BC6H blocks (a float one names its file
+// and "vkFormat"), "compression" in a manifest older than 3.2 refused. Errors name the file and
+// the field.
 PemAsset readPemProbe(const ProbeManifest& manifest);
 PemAsset readPemProbe(const std::string& manifestPath);
 

@@ -14,8 +14,6 @@ inline constexpr const char* kDistanceFile = "distance.ktx2";
 
 std::string sampleFileName(std::size_t k); // sample_NN.ktx2
 std::string localFileName(std::size_t k);  // local_NN.ktx2
-// The map's faces stacked top to bottom: texel (face, i, j) at pixel (i, face * N + j).
-Image stackMap(const PemMap& m);
 // A local map stacked as the distant ones, RGBA: premultiplied RGB and coverage.
 Image stackLocal(const PemMap& m);
 // The distance cube's faces stacked as the maps' are, one channel.

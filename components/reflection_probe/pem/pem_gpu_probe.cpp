@@ -3,6 +3,7 @@
 #include "components/reflection_probe/host_probe.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"
 #include "engine/core/error.h"
+#include "engine/image/bc6h.h"
 
 #include <vector>
 
@@ -16,9 +17,30 @@ std::size_t mapBytes(const PemAsset& a, bool withLocal) {
     const std::size_t local = withLocal ? std::size_t(PemMap::texelCount(a.localFaceRes)) *
                                               a.samples.size() * 4 * sizeof(float)
                                         : 0;
-    return std::size_t(PemMap::texelCount(a.faceRes, a.mipLevels)) * a.samples.size() * 4 *
-               sizeof(float) +
-           distance + local;
+    return pemDistantMapBytes(a) + distance + local;
+}
+
+// Sample `s`'s distant map, level `level` (of side `size`), into array layers 6s .. 6s+5 of
+// `tex`: a compressed asset's blocks as they are, else RGBA32F (alpha 1) through `rgba`.
+void uploadMapLevel(GLuint tex, const PemAsset& a, std::size_t s, int level, int size,
+                    std::vector<float>& rgba) {
+    const PemSampleMap& sample = a.samples[s];
+    if (a.compression == PemCompression::Bc6h) {
+        const std::vector<std::uint8_t>& blocks = sample.blocks.at(std::size_t(level));
+        glCompressedTextureSubImage3D(tex, level, 0, 0, 6 * int(s), size, size, 6,
+                                      GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT, GLsizei(blocks.size()),
+                                      blocks.data());
+        return;
+    }
+    const PemMap& m = sample.map;
+    const std::size_t offset = std::size_t(PemMap::levelOffset(a.faceRes, level));
+    const std::size_t count = std::size_t(PemMap::texelCount(size));
+    for (std::size_t t = 0; t < count; ++t)
+        for (int c = 0; c < 4; ++c)
+            rgba[t * 4 + std::size_t(c)] = c < 3 ? m.texels[offset + t][c] : 1.f;
+    // Faces are contiguous blocks in cube order: one upload of six layers per level.
+    glTextureSubImage3D(tex, level, 0, 0, 6 * int(s), size, size, 6, GL_RGBA, GL_FLOAT,
+                        rgba.data());
 }
 
 // Every sample's six faces as array layers 6s .. 6s+5 of one RGBA32F array, the distant maps
@@ -40,19 +62,19 @@ gpu::Texture uploadMaps(const PemAsset& a, bool local, const gpu::TextureAllocat
     const int levels = spec.levels;
     std::vector<float> rgba(std::size_t(PemMap::texelCount(n)) * 4);
     for (std::size_t s = 0; s < a.samples.size(); ++s) {
-        const PemMap& m = local ? a.samples[s].local : a.samples[s].map;
-        for (int level = 0; level < levels; ++level) {
-            const int size = PemMap::levelRes(n, level);
-            const std::size_t offset = std::size_t(PemMap::levelOffset(n, level));
-            const std::size_t count = std::size_t(PemMap::texelCount(size));
-            for (std::size_t t = 0; t < count; ++t)
-                for (int c = 0; c < 4; ++c)
-                    rgba[t * 4 + std::size_t(c)] =
-                        c < 3 ? m.texels[offset + t][c] : (local ? m.alpha[t] : 1.f);
-            // Faces are contiguous blocks in cube order: one upload of six layers per level.
-            glTextureSubImage3D(tex, level, 0, 0, 6 * int(s), size, size, 6, GL_RGBA, GL_FLOAT,
-                                rgba.data());
+        if (!local) {
+            for (int level = 0; level < levels; ++level)
+                uploadMapLevel(tex, a, s, level, PemMap::levelRes(n, level), rgba);
+            continue;
         }
+        // The local layer: one level, premultiplied RGB and coverage.
+        const PemMap& m = a.samples[s].local;
+        for (std::size_t t = 0; t < m.alpha.size(); ++t) {
+            for (int c = 0; c < 3; ++c)
+                rgba[t * 4 + std::size_t(c)] = m.texels[t][c];
+            rgba[t * 4 + 3] = m.alpha[t];
+        }
+        glTextureSubImage3D(tex, 0, 0, 0, 6 * int(s), n, n, 6, GL_RGBA, GL_FLOAT, rgba.data());
     }
     // The shader reads with texelFetch at levels and indices it picks and clamps itself
     // (pemFetchMap): no filtering, no wrapping. A mipmapped NEAREST minification filter with
@@ -88,7 +110,12 @@ gpu::TextureSpec PemGpuProbe::mapsSpec(const PemAsset& a, bool local) {
     // The distant maps' MIP levels are the texture's own levels (texelFetch reads level k);
     // the local layer has one.
     const int n = local ? a.localFaceRes : a.faceRes;
-    return {local ? "uPemLocal" : "uPemMaps", GL_TEXTURE_2D_ARRAY,    GL_RGBA32F, n, n,
+    // A compressed asset's distant maps are sampled from their BC6H blocks (texelFetch
+    // decodes them); the local layer holds coverage alpha, which BC6H has not.
+    const GLenum format = !local && a.compression == PemCompression::Bc6h
+                              ? GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT
+                              : GL_RGBA32F;
+    return {local ? "uPemLocal" : "uPemMaps", GL_TEXTURE_2D_ARRAY,    format, n, n,
             6 * int(a.samples.size()),        local ? 1 : a.mipLevels};
 }
 
@@ -121,6 +148,17 @@ void PemGpuProbe::bindTo(GLuint program, const PemBindings& b, bool withLocal) c
     if (withLocal && local) bindSampler(program, "uPemLocal", b.local, local.id());
     block.bind(b.params);
     bindUniformBlock(program, "PemParamsUniforms", b.params);
+}
+
+std::size_t pemDistantMapBytes(const PemAsset& a) {
+    std::size_t bytes = 0;
+    for (int level = 0; level < a.mipLevels; ++level) {
+        const int n = PemMap::levelRes(a.faceRes, level);
+        bytes += a.compression == PemCompression::Bc6h
+                     ? 6 * bc6hBytes(n, n)
+                     : std::size_t(PemMap::texelCount(n)) * 4 * sizeof(float);
+    }
+    return bytes * a.samples.size();
 }
 
 } // namespace specula

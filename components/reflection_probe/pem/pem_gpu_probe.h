@@ -1,6 +1,7 @@
 #pragma once
 // A parameterized-environment-map probe on the GPU: every sample map of the asset as one RGBA32F
-// texture array (six layers per sample, every MIP level, NEAREST: the lookup filters itself), a
+// texture array (six layers per sample, every MIP level, NEAREST: the lookup filters itself; BC6H
+// blocks as they are for a compressed asset, 1 byte a texel against 16), a
 // distance-geometry asset's distance cube as six R32F layers, the local layer's maps when it has
 // one, and the blend of the two samples nearest the parameter as one uniform block. A parameter
 // edit rewrites the block only; the textures are uploaded once. Specula's own PemStore
@@ -44,5 +45,9 @@ struct PemGpuProbe {
     // units and binding point and points `program`'s samplers and block at them.
     void bindTo(GLuint program, const PemBindings& b, bool local) const;
 };
+
+// GPU bytes of the asset's distant maps as stored (every sample, every MIP level): RGBA32F
+// 16 bytes a texel, BC6H 1 (the partial blocks of levels under 4^2 count whole).
+std::size_t pemDistantMapBytes(const PemAsset& asset);
 
 } // namespace specula

@@ -3,6 +3,7 @@
 #include "components/reflection_probe/manifest_fields.h"
 #include "components/reflection_probe/pem/pem_asset_internal.h"
 #include "components/reflection_probe/pem/pem_map_levels.h"
+#include "components/reflection_probe/pem/writer/pem_compression.h"
 #include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/image/ktx2.h"
 
@@ -25,6 +26,14 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
     }
     checkAsset(asset, (fs::path(dir) / "manifest.json").string(), files,
                (fs::path(dir) / kDistanceFile).string(), localFiles);
+    checkPemBlocks(asset, files);
+    const bool compressed = asset.compression == PemCompression::Bc6h;
+    // A level of a sample's map as a cube: float RGB, or the sample's BC6H blocks of it.
+    const auto writeLevel = [&](const std::string& path, const PemSampleMap& s, int level) {
+        Ktx2Texture t{.cube = true, .bc6h = compressed, .levels = {pemStackLevel(s.map, level)}};
+        if (compressed) t.blocks = {s.blocks.at(std::size_t(level))};
+        writeKtx2(path, t);
+    };
 
     writeProbeFolder(dir, sourceScene, [&](const fs::path& tmp) {
         json samples = json::array();
@@ -32,14 +41,14 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
             throwIfCancelled(dir); // a signal between files wins; nothing is committed
             const std::string name = sampleFileName(k);
             const std::string path = (tmp / name).string();
-            writeKtx2Cube(path, stackMap(asset.samples[k].map));
+            writeLevel(path, asset.samples[k], 0);
             json sample = {{"parameter", asset.samples[k].parameter},
                            {"file", name},
                            {"checksum", fileChecksum(path)}};
             for (int level = 1; level < asset.mipLevels; ++level) {
                 const std::string mip = pemLevelFileName(k, level);
                 const std::string mipPath = (tmp / mip).string();
-                writeKtx2Cube(mipPath, pemStackLevel(asset.samples[k].map, level));
+                writeLevel(mipPath, asset.samples[k], level);
                 sample["mips"].push_back({{"file", mip}, {"checksum", fileChecksum(mipPath)}});
             }
             if (asset.localLayer) {
@@ -51,7 +60,8 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
             samples.push_back(std::move(sample));
         }
 
-        json manifest = probeManifestHeader("pem", sourceScene, asset.inputs);
+        json manifest = probeManifestHeader("pem", sourceScene, asset.inputs, compressed);
+        if (compressed) manifest["compression"] = "bc6h";
         manifest["geometry"] = asset.geometry;
         if (asset.localLayer)
             manifest["local_layer"] = {{"face_res", asset.localFaceRes},
@@ -79,8 +89,11 @@ void writePemProbe(const PemAsset& asset, const std::string& dir, const std::str
              {"path", asset.path},
              {"face_res", asset.faceRes},
              {"box", {{"min", vec3Json(asset.boxMin)}, {"max", vec3Json(asset.boxMax)}}},
-             {"face_layout", "KTX2 cube map per sample (faceCount 6, float RGB), faces +X -X "
-                             "+Y -Y +Z -Z, RGB radiance"},
+             {"face_layout", compressed ? "KTX2 cube map per sample and MIP level (faceCount "
+                                          "6, BC6H blocks), faces +X -X +Y -Y +Z -Z, RGB "
+                                          "radiance"
+                                        : "KTX2 cube map per sample (faceCount 6, float RGB), "
+                                          "faces +X -X +Y -Y +Z -Z, RGB radiance"},
              {"samples", samples}});
         return manifest;
     });
