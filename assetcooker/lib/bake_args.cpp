@@ -240,7 +240,9 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a) {
         sub->add_option("--max-mib-per-probe", a.maxMibPerProbe,
                         "measured plan: the most MiB a probe's textures may take on the GPU (cube "
                         "maps and sky); "
-                        "candidates over it are left out, and the smallest is used when none fits"),
+                        "every candidate is also weighed with its composite in BC6H (--compress bc6h), so "
+                        "the plan picks face size and format; candidates over it are left out, "
+                        "and the smallest is used when none fits"),
         "distance")
         ->check(cli::finiteRange(0.01, 1e6));
     only(sub->add_option("--glossy", a.glossy,

@@ -79,6 +79,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
                                             o.cellSize.value_or(markupCellSize(scene.markup)));
     b.proxy = o.proxy;
     std::string planJson, planLine; // the line goes to the log once the probe is written
+    bool planCompressed = false;    // the measured plan chose BC6H under a memory budget
     if (s.planned || s.recordPlan) {
         EffectPlan plan = planEffects(scene.registry, scene.markup, b.centre, b.reflectorReach, {},
                                       o.markupProbe);
@@ -93,6 +94,8 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
             m.eyes = sceneEyes(scene);
             m.viewShare = kDefaultViewShare;
             m.maxMibPerProbe = s.maxMibPerProbe.value_or(0.0);
+            m.formats =
+                planFormatsFor(s.compression == DistanceCompression::Bc6h, m.maxMibPerProbe);
             // The second sample only measures the noise (`specula-cook plan` reports it): the
             // cook keeps its time for the choice.
             m.measureNoise = false;
@@ -109,6 +112,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
             plan = applyMeasurement(plan, measured);
         }
         if (s.planned) applyPlan(plan, b);
+        planCompressed = s.planned && plan.compressed;
         if (s.recordPlan) planJson = plan.toJson().dump();
     }
     throwIfCancelled(o.out);
@@ -128,7 +132,7 @@ void cookWith(ProbeScene& scene, const CookOptions& o, const DistanceCookSetting
         throwIfCancelled(o.out);
     }
     asset.effectPlan = planJson;
-    if (s.compression == DistanceCompression::Bc6h) {
+    if (s.compression == DistanceCompression::Bc6h || planCompressed) {
         const auto compressStart = Clock::now();
         if (log) *log << "compressing the composite to BC6H..." << std::flush;
         compressComposite(asset); // about a second a 256^2 cube, no progress of its own

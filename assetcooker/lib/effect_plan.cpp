@@ -385,8 +385,10 @@ nlohmann::json EffectPlan::toJson() const {
     j["user_needs"] = userNeeds;
     j["features"] = features;
     if (!lookupMethod.empty())
-        j["lookup"] = {
-            {"method", lookupMethod}, {"tolerance", lookupTolerance}, {"face_res", faceRes}};
+        j["lookup"] = {{"method", lookupMethod},
+                       {"tolerance", lookupTolerance},
+                       {"face_res", faceRes},
+                       {"compression", compressed ? "bc6h" : "none"}};
     if (!measurement.is_null()) j["measured"] = measurement;
     return j;
 }

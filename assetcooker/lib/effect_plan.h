@@ -73,6 +73,7 @@ struct EffectPlan {
     int faceRes = 0;
     std::string lookupMethod;
     float lookupTolerance = 0.f;
+    bool compressed = false; // the composite in BC6H (written as "lookup": {"compression"})
     nlohmann::json measurement;
     std::string measurementText;
 

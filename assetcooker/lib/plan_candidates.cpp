@@ -1,5 +1,6 @@
 #include "plan_candidates.h"
 
+#include "components/reflection_probe/distance/distance_compression.h"
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "components/reflection_probe/distance/distance_textures.h"
 #include "engine/core/error.h"
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <tuple>
 
 namespace specula {
@@ -43,6 +45,25 @@ std::string fixed(double v, int digits) {
     return b;
 }
 
+// Why the winner's format: what its twin in the other format (same method, d_e, resolution
+// and layers) reaches or takes; empty when the plan weighed one format.
+template <class Fits>
+std::string formatReason(const std::vector<PlanCandidate>& cs, const PlanCandidate& w,
+                         const Fits& fits) {
+    for (const PlanCandidate& c : cs) {
+        if (c.compressed == w.compressed || c.method != w.method || c.tolerance != w.tolerance ||
+            c.faceRes != w.faceRes || c.objectLayers != w.objectLayers || !c.measured())
+            continue;
+        const std::string mine = w.compressed ? "BC6H" : "float",
+                          other = c.compressed ? "BC6H" : "float";
+        return "; stored " + mine + " (" + fixed(w.mib, 1) + " MiB, " + fixed(w.psnr, 2) +
+               " dB): " + other + " " +
+               (fits(c) ? "reaches " + fixed(c.psnr, 2) + " dB in " + fixed(c.mib, 1) + " MiB"
+                        : "takes " + fixed(c.mib, 1) + " MiB");
+    }
+    return "";
+}
+
 } // namespace
 
 std::string PlanCandidate::label() const {
@@ -52,7 +73,26 @@ std::string PlanCandidate::label() const {
         std::snprintf(b, sizeof b, " d_e=%g", double(tolerance));
         s += b;
     }
-    return s + " " + std::to_string(faceRes) + "^2";
+    return s + " " + std::to_string(faceRes) + "^2" + (compressed ? " bc6h" : "");
+}
+
+void applyPlanFormats(std::vector<PlanCandidate>& candidates, PlanFormats formats) {
+    if (formats == PlanFormats::Float) return;
+    std::vector<PlanCandidate> out;
+    for (const PlanCandidate& c : candidates) {
+        if (formats == PlanFormats::FloatAndBc6h) out.push_back(c);
+        out.push_back(c);
+        out.back().compressed = true;
+    }
+    candidates = std::move(out);
+}
+
+const DistanceProbeAsset& PlanAssets::of(const PlanCandidate& c) const {
+    const bool fullRes = c.faceRes == full.faceRes;
+    if (!c.compressed) return fullRes ? full : half;
+    const DistanceProbeAsset* a = fullRes ? fullBc6h : halfBc6h;
+    if (!a) throw std::logic_error("PlanAssets: " + c.label() + " without its compressed probe");
+    return *a;
 }
 
 std::vector<PlanCandidate> candidateSet(const DistanceProbeAsset& full,
@@ -84,15 +124,17 @@ std::vector<PlanCandidate> candidateSet(const DistanceProbeAsset& full,
     return out;
 }
 
-void scoreCandidates(std::vector<PlanCandidate>& candidates, const DistanceProbeAsset& full,
-                     const DistanceProbeAsset& half, const std::vector<PlanRay>& rays,
-                     const CostModel& model) {
+void scoreCandidates(std::vector<PlanCandidate>& candidates, const PlanAssets& assets,
+                     const std::vector<PlanRay>& rays, const CostModel& model) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::vector<double> sq(rays.size());
     std::vector<int> fetches(rays.size());
     for (PlanCandidate& c : candidates) {
-        const DistanceProbeAsset& a = c.faceRes == full.faceRes ? full : half;
-        c.mib = double(cubeArrayBytes(c.faceRes, 1 + c.objectLayers) +
+        const DistanceProbeAsset& a = assets.of(c);
+        const std::size_t composite =
+            c.compressed ? compositeBytes(a) : cubeArrayBytes(c.faceRes, 1);
+        c.mib = double(composite +
+                       (c.objectLayers > 0 ? cubeArrayBytes(c.faceRes, c.objectLayers) : 0) +
                        (a.sky.empty() ? 0 : skyTextureBytes(a.sky))) /
                 (1024.0 * 1024.0);
         std::unique_ptr<CpuDistanceProbe> twin;
@@ -213,6 +255,7 @@ int choosePlanCandidate(std::vector<PlanCandidate>& cs, const ErrorBudget& budge
                   (fits(c) ? "reaches " + fixed(c.psnr, 2) + " dB / rmse " + fixed(c.rmse, 4)
                            : "takes " + fixed(c.mib, 1) + " MiB");
     }
+    reason += formatReason(cs, w, fits);
     return win;
 }
 

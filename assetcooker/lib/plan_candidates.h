@@ -16,7 +16,10 @@ struct PlanCandidate {
     std::string method;    // envmap, boxproj, avgdist, bisection, secant, march, layered
     float tolerance = 0.f; // d_e, metres; 0 where the method does not search
     int faceRes = 0;
-    int objectLayers = 0;  // baked and uploaded object layers (0: the composite alone)
+    int objectLayers = 0; // baked and uploaded object layers (0: the composite alone)
+    // The composite stored compressed (`--compress bc6h`: BC6H radiance, R16F or R32F
+    // distance), scored on the compressed copy of its probe: what the format costs in accuracy.
+    bool compressed = false;
     bool analytic = false; // what the analytic plan would run
     // Measured on the rays (NaN when the configuration could not run; `note` says why).
     double psnr = 0.0, rmse = 0.0, fetches = 0.0;
@@ -25,7 +28,7 @@ struct PlanCandidate {
     bool meets = false;
     std::string note;
 
-    std::string label() const; // "secant d_e=0.03 256^2"
+    std::string label() const; // "secant d_e=0.03 256^2", "... 256^2 bc6h"
     bool measured() const { return !std::isnan(rmse); }
 };
 
@@ -36,12 +39,33 @@ struct PlanCandidate {
 std::vector<PlanCandidate> candidateSet(const DistanceProbeAsset& full,
                                         const DistanceProbeAsset& half, bool layered);
 
-// Scores every candidate on `rays` (the asset of its resolution), filling psnr, rmse,
-// fetches, mib and cost. Per-ray errors are summed in ray order: the same rays give the
-// same figures, bit for bit, whatever the threads.
-void scoreCandidates(std::vector<PlanCandidate>& candidates, const DistanceProbeAsset& full,
-                     const DistanceProbeAsset& half, const std::vector<PlanRay>& rays,
-                     const CostModel& model);
+// Which texel formats of the composite the plan weighs: float alone (the default), float and
+// BC6H (a memory budget lets the plan pick the format), or BC6H alone (the user asked for it).
+enum class PlanFormats { Float, FloatAndBc6h, Bc6h };
+
+// `candidates` in the formats asked for: unchanged for Float, each also compressed right after
+// it for FloatAndBc6h, each compressed instead for Bc6h.
+void applyPlanFormats(std::vector<PlanCandidate>& candidates, PlanFormats formats);
+
+// The probes candidates are scored on: the cook's resolution and half of it (the same probe
+// when one resolution is weighed), and their compressed copies (compressComposite) when the
+// plan weighs BC6H.
+struct PlanAssets {
+    const DistanceProbeAsset& full;
+    const DistanceProbeAsset& half;
+    const DistanceProbeAsset* fullBc6h = nullptr;
+    const DistanceProbeAsset* halfBc6h = nullptr;
+    // Throws std::logic_error for a compressed candidate without its compressed probe.
+    const DistanceProbeAsset& of(const PlanCandidate& c) const;
+};
+
+// Scores every candidate on `rays` (the asset of its resolution and format), filling psnr,
+// rmse, fetches, mib and cost. Per-ray errors are summed in ray order: the same rays give the
+// same figures, bit for bit, whatever the threads. The cost model knows fetches and layers, not
+// formats: a compressed candidate is predicted from its own fetches (its search steps on the
+// stored distances), as if sampling BC6H cost what sampling float does.
+void scoreCandidates(std::vector<PlanCandidate>& candidates, const PlanAssets& assets,
+                     const std::vector<PlanRay>& rays, const CostModel& model);
 
 // The choice: with a budget, the cheapest candidate meeting it; without, the cheapest within
 // kNoBudgetSlackDb of the best PSNR. Cheapest: the lowest predicted cost at the precision

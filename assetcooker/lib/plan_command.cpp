@@ -56,6 +56,7 @@ int runPlan(const PlanArgs& a, std::ostream& out) {
         m.eyes = sceneEyes(scene);
         m.viewShare = a.viewShare;
         m.maxMibPerProbe = a.maxMibPerProbe.value_or(0.0);
+        m.formats = planFormatsFor(false, m.maxMibPerProbe);
         plan = applyMeasurement(plan,
                                 measurePlan(scene.registry, scene.markup, plan, centre, reach, m));
     }
@@ -113,7 +114,9 @@ void addPlanCommand(cli::ToolCli& tool) {
     sub->add_option("--max-mib-per-probe", a->maxMibPerProbe,
                     "measured plan: the most MiB a probe's textures may take on the GPU (cube maps "
                     "and sky); "
-                    "candidates over it are left out, and the smallest is used when none fits")
+                    "every candidate is also weighed with its composite in BC6H (--compress bc6h), so "
+                        "the plan picks face size and format; candidates over it are left out, "
+                        "and the smallest is used when none fits")
         ->check(cli::finiteRange(0.01, 1e6));
     sub->add_option("--face-res", a->faceRes, "measured plan: the cook's face resolution")
         ->check(CLI::Range(8, 4096));

@@ -3,6 +3,7 @@
 
 #include "assetcooker/lib/distance_bake.h"
 #include "assetcooker/lib/scene/probe_setup.h"
+#include "components/reflection_probe/distance/distance_compression.h"
 #include "engine/core/error.h"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace specula {
@@ -107,13 +109,24 @@ MeasuredPlan measurePlan(ecs::Registry& registry, const SceneMarkup& markup,
     m.candidates = candidateSet(full, half, layered);
     for (PlanCandidate& c : m.candidates)
         c.analytic = isAnalytic(c, analytic, o.faceRes);
-    scoreCandidates(m.candidates, full, half, sample.rays, m.model);
+    applyPlanFormats(m.candidates, o.formats);
+    // The compressed copies the BC6H candidates read (about a second a 256^2 cube).
+    std::optional<DistanceProbeAsset> fullBc6h, halfBc6h;
+    if (o.formats != PlanFormats::Float) {
+        fullBc6h = full;
+        compressComposite(*fullBc6h);
+        halfBc6h = half;
+        if (half.faceRes != full.faceRes) compressComposite(*halfBc6h);
+    }
+    const PlanAssets assets{full, half, fullBc6h ? &*fullBc6h : nullptr,
+                            halfBc6h ? &*halfBc6h : nullptr};
+    scoreCandidates(m.candidates, assets, sample.rays, m.model);
     m.noiseMeasured = o.measureNoise;
     if (o.measureNoise) {
         std::vector<PlanCandidate> again = m.candidates;
         ro.seed = o.seed + 1;
         const PlanRaySample other = samplePlanRays(registry, markup, ro);
-        scoreCandidates(again, full, half, other.rays, m.model);
+        scoreCandidates(again, assets, other.rays, m.model);
         auto best = [](const std::vector<PlanCandidate>& cs) {
             double b = -std::numeric_limits<double>::infinity();
             for (const PlanCandidate& c : cs)
@@ -136,6 +149,11 @@ MeasuredPlan measurePlan(ecs::Registry& registry, const SceneMarkup& markup,
     return m;
 }
 
+PlanFormats planFormatsFor(bool compress, double maxMibPerProbe) {
+    if (compress) return PlanFormats::Bc6h;
+    return maxMibPerProbe > 0.0 ? PlanFormats::FloatAndBc6h : PlanFormats::Float;
+}
+
 std::vector<glm::vec3> sceneEyes(const ProbeScene& scene) {
     try {
         return {sceneCameraView(scene, 1024, 768).eye()}; // the bench's frame
@@ -153,6 +171,7 @@ EffectPlan applyMeasurement(const EffectPlan& analytic, const MeasuredPlan& meas
     p.faceRes = w->faceRes;
     p.lookupMethod = w->method;
     p.lookupTolerance = w->tolerance;
+    p.compressed = w->compressed;
     const std::string why = "measured: " + w->label() + ", " + measured.reason;
     if (w->method == "layered") {
         p.mode = "layered";
@@ -192,6 +211,7 @@ nlohmann::json MeasuredPlan::toJson() const {
                                    {"tolerance", c.tolerance},
                                    {"face_res", c.faceRes},
                                    {"object_layers", c.objectLayers},
+                                   {"compressed", c.compressed},
                                    {"psnr_db", number(c.psnr)},
                                    {"rmse", number(c.rmse)},
                                    {"fetches", number(c.fetches)},

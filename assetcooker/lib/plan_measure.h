@@ -31,7 +31,14 @@ struct MeasuredPlanOptions {
     // The memory budget (--max-mib-per-probe): candidates whose textures take more are left
     // out (choosePlanCandidate). 0: none.
     double maxMibPerProbe = 0.0;
+    // The composite's formats weighed (plan_candidates.h): the cook weighs BC6H beside float
+    // under a memory budget, and BC6H alone when --compress bc6h asks for it.
+    PlanFormats formats = PlanFormats::Float;
 };
+
+// The formats a plan weighs for a cook: BC6H alone when the user compresses, float and BC6H
+// under a memory budget (the plan picks the format), else float.
+PlanFormats planFormatsFor(bool compress, double maxMibPerProbe);
 
 // The view points of a scene (its camera node, else the default view the sandbox and bench
 // place; empty when it has neither) and the share of rays a plan gives them by default:

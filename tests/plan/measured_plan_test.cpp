@@ -36,8 +36,11 @@ struct Room : test::CodeScene {
         reach = markupReflectorReach(reg, markup, centre, markupCellSize(markup));
         analytic = planEffects(reg, markup, centre, reach);
     }
-    MeasuredPlan measure(ErrorBudget budget = {}, std::uint32_t seed = 1) {
+    MeasuredPlan measure(ErrorBudget budget = {}, std::uint32_t seed = 1,
+                         PlanFormats formats = PlanFormats::Float, double maxMib = 0.0) {
         MeasuredPlanOptions o;
+        o.formats = formats;
+        o.maxMibPerProbe = maxMib;
         o.faceRes = 64;
         o.rays = 16384; // sampling noise about 1 dB here (the plan prints it)
         o.seed = seed;
@@ -246,4 +249,61 @@ TEST(PlanRays, ViewDrawsReflectTheEyeAboutTheNormal) {
         EXPECT_NEAR(glm::dot(r.dir, n), -glm::dot(v, n), 0.02f); // angle in = angle out
         EXPECT_LT(glm::length(glm::cross(glm::cross(v, n), glm::cross(r.dir, n))), 0.02f);
     }
+}
+
+// Under a memory budget the plan weighs the composite's format (issue 36, item 4): every
+// candidate also in BC6H, scored by the twin on the compressed probe. Compression costs little
+// accuracy and the composite takes 3 bytes a texel (BC6H + R16F) against 16 (RGBA32F); a budget the 64^2
+// float composite does not fit but its BC6H twin does picks the full resolution in BC6H over
+// the half resolution in float when BC6H is the better picture, and says why.
+TEST(MeasuredPlan, AMemoryBudgetWeighsTheFormatAndSaysWhy) {
+    Room room(true);
+    const MeasuredPlan m = room.measure({}, 1, PlanFormats::FloatAndBc6h, 0.0);
+    ASSERT_EQ(m.candidates.size() % 2, 0u);
+    double worstLoss = 0.0;
+    for (std::size_t i = 0; i + 1 < m.candidates.size(); i += 2) {
+        const PlanCandidate &f = m.candidates[i], &c = m.candidates[i + 1];
+        ASSERT_FALSE(f.compressed);
+        ASSERT_TRUE(c.compressed);
+        EXPECT_EQ(c.method, f.method);
+        EXPECT_EQ(c.faceRes, f.faceRes);
+        if (!f.measured()) continue;
+        // The composite takes 6 N^2 x 3 bytes against 6 N^2 x 16 (the room reaches 2.9 m: half
+        // distances hold); object layers are not compressed.
+        const double layers = c.objectLayers;
+        EXPECT_NEAR(c.mib / f.mib, (3.0 + 16.0 * layers) / (16.0 * (1.0 + layers)), 1e-9)
+            << c.label();
+        // Predicted from its own fetches: the search steps a little differently on half
+        // distances, nothing more (the model knows fetches, not formats).
+        EXPECT_NEAR(c.cost, f.cost, 0.05 * f.cost) << c.label();
+        worstLoss = std::max(worstLoss, f.psnr - c.psnr);
+    }
+    std::printf(
+        "[plan-format] worst PSNR loss of BC6H against float over %zu candidates: %.3f dB\n",
+        m.candidates.size() / 2, worstLoss);
+    EXPECT_LT(worstLoss, 0.3);
+
+    // 64^2 float takes 0.375 MiB, its BC6H twin 0.070, 32^2 float 0.094.
+    const MeasuredPlan capped = room.measure({}, 1, PlanFormats::FloatAndBc6h, 0.2);
+    ASSERT_NE(capped.chosen(), nullptr);
+    const PlanCandidate& w = *capped.chosen();
+    std::printf("[plan-format] under 0.2 MiB: %s (%s)\n", w.label().c_str(), capped.reason.c_str());
+    EXPECT_LE(w.mib, 0.2);
+    if (w.compressed) {
+        EXPECT_EQ(w.faceRes, 64);
+        EXPECT_NE(capped.reason.find("stored BC6H"), std::string::npos) << capped.reason;
+        EXPECT_NE(capped.reason.find("float takes 0.4 MiB"), std::string::npos) << capped.reason;
+    }
+    // Whichever won, it is the best picture that fits (within the plan's slack).
+    for (const PlanCandidate& c : capped.candidates)
+        if (c.measured() && c.mib <= 0.2) {
+            EXPECT_LE(c.psnr, w.psnr + kNoBudgetSlackDb) << c.label();
+        }
+    const EffectPlan applied = applyMeasurement(room.analytic, capped);
+    EXPECT_EQ(applied.compressed, w.compressed);
+    EXPECT_EQ(applied.toJson()["lookup"]["compression"], w.compressed ? "bc6h" : "none");
+
+    // Without a memory budget the float candidates alone are weighed.
+    for (const PlanCandidate& c : room.measure().candidates)
+        EXPECT_FALSE(c.compressed);
 }

@@ -94,3 +94,33 @@ TEST(PlanMemory, EveryDistanceSettingReachesTheShardsAndComesBack) {
     EXPECT_TRUE(plain.measuredPlan);
     EXPECT_EQ(plain.compression, DistanceCompression::None);
 }
+
+// The format as a candidate: a BC6H twin that fits where its float self does not wins over a
+// smaller float resolution with less PSNR, and the reason names both formats' figures.
+TEST(PlanMemory, TheBudgetPicksTheFormatAndTheReasonNamesTheOther) {
+    std::vector<PlanCandidate> cs = kCandidates;
+    applyPlanFormats(cs, PlanFormats::FloatAndBc6h);
+    ASSERT_EQ(cs.size(), 6u);
+    cs[1].psnr = 31.2, cs[1].mib = 4.5; // secant 256^2 bc6h
+    cs[3].psnr = 30.0, cs[3].mib = 1.2; // secant 128^2 bc6h
+    cs[5].psnr = 21.9, cs[5].mib = 1.2; // envmap 128^2 bc6h
+    EXPECT_EQ(cs[1].label(), "secant 256^2 bc6h");
+    std::string reason, warning;
+    std::vector<PlanCandidate> capped = cs;
+    EXPECT_EQ(choosePlanCandidate(capped, ErrorBudget{}, reason, warning, 8.0), 1) << reason;
+    EXPECT_NE(reason.find("stored BC6H (4.5 MiB, 31.20 dB): float takes 24.0 MiB"),
+              std::string::npos)
+        << reason;
+    // With room for float, float wins the better picture at the same cost.
+    std::vector<PlanCandidate> roomy = cs;
+    EXPECT_EQ(choosePlanCandidate(roomy, ErrorBudget{}, reason, warning, 32.0), 0) << reason;
+    EXPECT_NE(reason.find("stored float (24.0 MiB, 31.30 dB): BC6H reaches 31.20 dB in 4.5 MiB"),
+              std::string::npos)
+        << reason;
+    // BC6H alone: every candidate compressed.
+    std::vector<PlanCandidate> only = kCandidates;
+    applyPlanFormats(only, PlanFormats::Bc6h);
+    ASSERT_EQ(only.size(), 3u);
+    for (const PlanCandidate& c : only)
+        EXPECT_TRUE(c.compressed);
+}
