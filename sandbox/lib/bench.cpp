@@ -347,6 +347,8 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
                 panel.points.push_back({row.method, row.params, row.ratioToEnvmap, row.psnr});
             report.rows.push_back(row);
         }
+        appendFormatRows(scene, fr, cam, truth, budget, name, probeDir, variants, envmapMs, report,
+                         log);
         // The PEM sweep N in {4, 8, 16, 32} on the room and the concave bowl (self- and
         // inter-reflection), N = 8 elsewhere and in quick runs, or the --pem-samples given;
         // faces as the distance probes' but at most 256 (the inference goal is stated at 256^2).

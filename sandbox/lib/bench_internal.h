@@ -101,6 +101,17 @@ void appendPemMipRows(ReflectionScene& scene, FrameRenderer& fr, const std::stri
                       const CookResult& level0, BenchFrameBudget budget, double envmapMs,
                       BenchReport& report, PlotPanel& panel, std::ostream& log);
 
+// The storage-format rows of one scene (issue 36): the probe in probeDir with its composite
+// compressed (compressComposite: BC6H radiance, R16F or R32F distance) written to
+// probeDir_bc6h, and every distance method at d_e = 0.01 (or its only row) drawn from it on
+// the GPU against `truth`: rows "<params> bc6h" appended to report.rows, their GPU bytes and
+// PSNR beside the float rows'. A probe that cannot be compressed is logged and left out.
+void appendFormatRows(ReflectionScene& scene, FrameRenderer& fr, const CameraView& cam,
+                      const BenchTruth& truth, BenchFrameBudget budget,
+                      const std::string& sceneName, const std::string& probeDir,
+                      const std::vector<MethodVariant>& variants, double envmapMs,
+                      BenchReport& report, std::ostream& log);
+
 // The budget bakes faces twice the bench's per side only up to this size: the bake grows
 // with the texels (4x), and 512^2 is the largest the full bench's 256^2 doubles to.
 constexpr int kBudgetMaxFaceRes = 512;
