@@ -422,7 +422,8 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
     // frame is only known once measured, and the PEM rows are appended elsewhere).
     for (BenchRow& row : report.rows)
         for (const BenchRow& e : report.rows)
-            if (e.scene == row.scene && e.method == "envmap" && e.frameMsMedian > 0)
+            if (e.scene == row.scene && e.method == "envmap" && e.params == "-" &&
+                e.frameMsMedian > 0)
                 row.frameRatioToEnvmap = row.frameMsMedian / e.frameMsMedian;
     writeCsv(report, budgets, (fs::path(opt.outDir) / "bench.csv").string());
     writeMarkdown(report, scenes, budgets, (fs::path(opt.outDir) / "bench.md").string());

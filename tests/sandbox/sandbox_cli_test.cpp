@@ -321,7 +321,7 @@ TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
         EXPECT_TRUE(std::isfinite(frameMs) && frameMs >= ms)
             << method << " " << frameMs << " " << ms;
         EXPECT_TRUE(std::isfinite(frameRatio) && frameRatio > 0) << scene << " " << method;
-        if (method == "envmap") {
+        if (method == "envmap" && row.at("params") == "-") { // the float row: every ratio's base
             EXPECT_EQ(frameRatio, 1.0);
             EXPECT_EQ(ratio, 1.0);
             EXPECT_NEAR(fetches, 1.0, 1e-9); // one direction lookup, sky included
@@ -357,6 +357,19 @@ TEST(SpeculaSandbox, QuickBenchWritesSaneReport) {
             EXPECT_TRUE(row.at("method") == "layered" || row.at("method") == "bisection");
         }
     EXPECT_GE(references, 2);
+    // The format rows: each distance method drawn from the BC6H probe too, in fewer bytes.
+    int formatRows = 0;
+    for (const auto& row : rows) {
+        const std::string& params = row.at("params");
+        if (!params.ends_with(" bc6h")) continue;
+        ++formatRows;
+        for (const auto& twin : rows)
+            if (twin.at("scene") == row.at("scene") && twin.at("method") == row.at("method") &&
+                twin.at("params") == params.substr(0, params.size() - 5)) {
+                EXPECT_LT(num(row, "gpu_bytes"), num(twin, "gpu_bytes")) << params;
+            }
+    }
+    EXPECT_GE(formatRows, 4 * 5);   // at least envmap, boxproj and the three searches a scene
     EXPECT_EQ(perScene.size(), 4u); // room, truck_room, bowl_room, sky_only
     for (const auto& [scene, n] : perScene) {
         EXPECT_GE(n, 10) << scene;
