@@ -110,13 +110,16 @@ MeasuredPlan measurePlan(ecs::Registry& registry, const SceneMarkup& markup,
     for (PlanCandidate& c : m.candidates)
         c.analytic = isAnalytic(c, analytic, o.faceRes);
     applyPlanFormats(m.candidates, o.formats);
-    // The compressed copies the BC6H candidates read (about a second a 256^2 cube).
+    // The compressed copies the BC6H candidates read (about a second a 256^2 cube); one
+    // resolution weighed, one copy.
     std::optional<DistanceProbeAsset> fullBc6h, halfBc6h;
     if (o.formats != PlanFormats::Float) {
         fullBc6h = full;
         compressComposite(*fullBc6h);
-        halfBc6h = half;
-        if (half.faceRes != full.faceRes) compressComposite(*halfBc6h);
+        if (half.faceRes != full.faceRes) {
+            halfBc6h = half;
+            compressComposite(*halfBc6h);
+        }
     }
     const PlanAssets assets{full, half, fullBc6h ? &*fullBc6h : nullptr,
                             halfBc6h ? &*halfBc6h : nullptr};

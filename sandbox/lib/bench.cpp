@@ -211,6 +211,18 @@ Image measureProbeRow(FrameRenderer& fr, const CameraView& cam, const BenchTruth
     return img;
 }
 
+bool syncBenchProbe(FrameRenderer& fr, ReflectionScene& scene, const BenchRow& row,
+                    std::ostream& log) {
+    try {
+        fr.probes().sync(scene.registry());
+        return true;
+    } catch (const Error& e) {
+        log << "  " << row.scene << " " << row.method << " " << row.params << ": skipped ("
+            << e.what() << ")\n";
+        return false;
+    }
+}
+
 void logBenchRow(std::ostream& log, const BenchRow& row) {
     log << "  " << row.scene << " " << row.method << " " << row.params << ": "
         << num(row.msMedian, "%.3f") << " ms (x" << num(row.ratioToEnvmap, "%.2f") << "; frame "
@@ -325,15 +337,7 @@ BenchReport runBench(const BenchOptions& opt, std::ostream& log) {
                     scene.setProbe(asset, LightFieldProbe{});
                 else
                     scene.setProbe(asset, v.distance);
-                try {
-                    fr.probes().sync(scene.registry());
-                } catch (const Error& e) {
-                    // A method the asset cannot serve (layers of a scene without objects):
-                    // say so and leave the row out rather than abort the bench.
-                    log << "  " << name << " " << v.method << " " << v.params << ": skipped ("
-                        << e.what() << ")\n";
-                    continue;
-                }
+                if (!syncBenchProbe(fr, scene, row, log)) continue;
                 const Image img = measureProbeRow(fr, cam, truth, budget, row);
                 row.bakeSeconds = lf ? lf->seconds : v.planned ? planBakeSeconds : bakeSeconds;
                 row.fetchesPerPixel = lf ? lf->fetchesPerPixel : countFetches(fr, scene, cam, mask);

@@ -44,13 +44,7 @@ void appendFormatRows(ReflectionScene& scene, FrameRenderer& fr, const CameraVie
         row.method = v.method;
         row.params = v.params + " bc6h";
         scene.setProbe(manifest, v.distance);
-        try {
-            fr.probes().sync(scene.registry());
-        } catch (const Error& e) {
-            log << "  " << sceneName << " " << v.method << " " << row.params << ": skipped ("
-                << e.what() << ")\n";
-            continue;
-        }
+        if (!syncBenchProbe(fr, scene, row, log)) continue;
         measureProbeRow(fr, cam, truth, budget, row);
         row.bakeSeconds = seconds; // the compression, on top of the float probe's bake
         row.fetchesPerPixel = countFetches(fr, scene, cam, truth.mask);

@@ -36,6 +36,12 @@ struct BenchFrameBudget {
 Image measureProbeRow(FrameRenderer& fr, const CameraView& cam, const BenchTruth& truth,
                       BenchFrameBudget budget, BenchRow& row);
 
+// Syncs the probe just set on `scene` into `fr`. A method the asset cannot serve (layers of a
+// scene without objects) is logged as skipped ("  room layered d_e=0.01: skipped (...)") and
+// false returned: the bench leaves the row out rather than abort.
+bool syncBenchProbe(FrameRenderer& fr, ReflectionScene& scene, const BenchRow& row,
+                    std::ostream& log);
+
 // "  room envmap -: 0.123 ms (x1.00), PSNR 30.1 dB, 1.00 fetches/px"
 void logBenchRow(std::ostream& log, const BenchRow& row);
 

@@ -27,11 +27,7 @@ namespace {
 
 // Faces of 8, 4, 2 and 1 texels: the last two levels are partial blocks.
 PemAsset mipAsset() {
-    PemAsset a;
-    a.centre = {0.f, 1.f, 0.f};
-    a.faceRes = 8;
-    a.mipLevels = 4;
-    return test::randomPemAsset(a, 2, 23);
+    return test::randomMipPemAsset(8, 4, 2, 23);
 }
 
 class PemCompressedFiles : public test::PemFilesTest {

@@ -51,4 +51,14 @@ inline PemAsset randomPemAsset(PemAsset header, int count, unsigned seed) {
     return header;
 }
 
+// A box-geometry asset centred at (0, 1, 0) with `levels` MIP levels of faces of `faceRes`
+// (odd sizes halve as GL's levels do), `count` random samples.
+inline PemAsset randomMipPemAsset(int faceRes, int levels, int count, unsigned seed) {
+    PemAsset a;
+    a.centre = {0.f, 1.f, 0.f};
+    a.faceRes = faceRes;
+    a.mipLevels = levels;
+    return randomPemAsset(a, count, seed);
+}
+
 } // namespace specula::test

@@ -23,11 +23,7 @@ namespace {
 
 // Faces of 6, 3 and 1 texels: odd sizes halve as GL's levels do.
 PemAsset mipAsset(int levels) {
-    PemAsset a;
-    a.centre = {0.f, 1.f, 0.f};
-    a.faceRes = 6;
-    a.mipLevels = levels;
-    return test::randomPemAsset(a, 2, 17);
+    return test::randomMipPemAsset(6, levels, 2, 17);
 }
 
 class PemMipFiles : public test::PemFilesTest {
