@@ -1,4 +1,4 @@
-#include "assetcooker/lib/cli.h"
+#include "assetcooker/lib/cli/cli.h"
 
 #include <iostream>
 #include <string>

@@ -1,4 +1,4 @@
-#include "sandbox/lib/sandbox_cli.h"
+#include "sandbox/lib/cli/sandbox_cli.h"
 
 #include <iostream>
 #include <string>

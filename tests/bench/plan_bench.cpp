@@ -1,7 +1,7 @@
 // The effect plan on generated scenes of many nodes (issue 10: it was quadratic, 2,000 nodes
 // planned in 12 s). Each row builds a scene of N small boxes scattered 2-20 m around the probe,
 // then times reading the markup and planning: a figure for CI's log, not an assertion.
-#include "assetcooker/lib/effect_plan.h"
+#include "assetcooker/lib/plan/effect_plan.h"
 #include "tests/plan/code_scene.h"
 
 #include <benchmark/benchmark.h>

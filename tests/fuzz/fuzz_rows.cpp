@@ -3,7 +3,7 @@
 // probe (the seed corpus holds a valid one). The reader takes a file: each input is written
 // to one per process first. Any specula::Error is the expected refusal; anything else is a
 // finding.
-#include "assetcooker/lib/lightfield_rows.h"
+#include "assetcooker/lib/flavours/lightfield/lightfield_rows.h"
 #include "engine/core/error.h"
 
 #include <unistd.h>

@@ -7,7 +7,7 @@
 //
 // It reads through the cooker's settings readers, so it is built as replay_shards in the
 // ordinary build only (the libFuzzer build holds the runtime's readers, not the cooker).
-#include "assetcooker/lib/shard_bake.h"
+#include "assetcooker/lib/farm/shard_bake.h"
 #include "engine/core/error.h"
 
 #include <nlohmann/json.hpp>

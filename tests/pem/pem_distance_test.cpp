@@ -2,8 +2,8 @@
 // search picks the texels, the map supplies the radiance): its weights against its radiance,
 // the search against the closed-form box room, inference of an exactly representable map, the
 // prior that unseen texels fall back to, and what bad input is refused as.
-#include "assetcooker/lib/pem_geometry.h"
-#include "assetcooker/lib/pem_infer.h"
+#include "assetcooker/lib/flavours/pem/pem_geometry.h"
+#include "assetcooker/lib/flavours/pem/pem_infer.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"

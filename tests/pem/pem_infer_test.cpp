@@ -1,7 +1,7 @@
 // Inference of a parameterized environment map (issue 12, first slice): the lookup's CPU twin
 // against an independent box lookup, its weights against its radiance, and the inferred map
 // against closed forms: an analytic box room, an exactly representable map, unseen texels.
-#include "assetcooker/lib/pem_infer.h"
+#include "assetcooker/lib/flavours/pem/pem_infer.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h" // glm, which sampling.h expects

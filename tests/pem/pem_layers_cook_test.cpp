@@ -2,10 +2,10 @@
 // itself and adds the local layer, which fits the full multi-bounce truth on the manifold
 // better than one map does (the rays of a texel no longer read different bounces); the CLI's
 // --local-layer switch, and the traced layer fields against Embree.
-#include "assetcooker/lib/cli.h"
-#include "assetcooker/lib/cook.h"
-#include "assetcooker/lib/pem_layers.h"
-#include "assetcooker/lib/pem_samples.h"
+#include "assetcooker/lib/cli/cli.h"
+#include "assetcooker/lib/bake/cook.h"
+#include "assetcooker/lib/flavours/pem/pem_layers.h"
+#include "assetcooker/lib/flavours/pem/pem_samples.h"
 #include "support/scratch_dir_test.h"
 
 #include <gtest/gtest.h>

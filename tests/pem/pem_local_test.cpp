@@ -2,7 +2,7 @@
 // intersection and GL_LINEAR sampling, its weights against its radiance (linearity, alpha
 // included), the sphere fit, and the composite inference on a case the two layers represent
 // exactly while one map cannot.
-#include "assetcooker/lib/pem_layers.h"
+#include "assetcooker/lib/flavours/pem/pem_layers.h"
 #include "engine/core/glsl_host.h" // glm, which sampling.h expects
 #include "engine/image/sampling.h"
 #include "engine/math/cube_face.h"

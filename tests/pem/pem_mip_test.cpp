@@ -3,7 +3,7 @@
 // difference of an independent box exit, the rendering matrix across levels, single-level
 // maps unchanged bit for bit, and the inference of every level against the box-filtered
 // chain of a level-0 inference on the room's reflectors as Embree traces them.
-#include "assetcooker/lib/pem_samples.h"
+#include "assetcooker/lib/flavours/pem/pem_samples.h"
 #include "components/reflection_probe/pem/pem_map_levels.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"

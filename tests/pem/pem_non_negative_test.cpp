@@ -4,9 +4,9 @@
 // unconstrained answer is already non-negative both modes give the same map; and where it is
 // not, the bounded map fits the least-squares objective (data rows through the lookup twin,
 // smoothness rows) no worse than the clamped unconstrained one.
-#include "assetcooker/lib/pem_infer.h"
-#include "assetcooker/lib/pem_layers.h"
-#include "assetcooker/lib/shard_settings.h"
+#include "assetcooker/lib/flavours/pem/pem_infer.h"
+#include "assetcooker/lib/flavours/pem/pem_layers.h"
+#include "assetcooker/lib/bake/cook_settings_json.h"
 #include "pem_room.h"
 
 #include <gtest/gtest.h>

@@ -4,8 +4,8 @@
 // closed-form scene (a mirror sphere in the box room of pem_room.h, everything analytic)
 // against the antialiased image worked out here; determinism, the trace file's pixel field,
 // and supersample 1 where the two kinds of rows are the same rows.
-#include "assetcooker/lib/pem_samples.h"
-#include "assetcooker/lib/pem_shard_files.h"
+#include "assetcooker/lib/flavours/pem/pem_samples.h"
+#include "assetcooker/lib/flavours/pem/pem_shard_files.h"
 #include "components/reflection_probe/pem/pem_map_levels.h"
 #include "engine/core/error.h"
 #include "pem_fixtures.h"

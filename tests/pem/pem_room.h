@@ -2,7 +2,7 @@
 // The closed-form room of the PEM tests (pem_infer_test, pem_distance_test): a box, probe-
 // local, whose walls emit a smooth function of the point, and where a ray leaves it, computed
 // apart from the shared lookups on purpose.
-#include "assetcooker/lib/pem_infer.h"
+#include "assetcooker/lib/flavours/pem/pem_infer.h"
 #include "components/reflection_probe/pem/pem_lookup_cpu.h"
 
 #include <glm/glm.hpp>

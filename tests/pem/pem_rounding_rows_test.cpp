@@ -3,8 +3,8 @@
 // the distance geometry's search can end elsewhere for a difference of a few micrometres.
 // The GL display itself is the reference: the twin on the shader's own inputs (OUTPUT 1, 2)
 // against the traced targets, beside the cooker's fit on the tracer's inputs.
-#include "assetcooker/lib/pem_rounding_rows.h"
-#include "assetcooker/lib/pem_samples.h"
+#include "assetcooker/lib/flavours/pem/pem_rounding_rows.h"
+#include "assetcooker/lib/flavours/pem/pem_samples.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_probe_cpu.h"

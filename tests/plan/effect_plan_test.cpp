@@ -1,5 +1,5 @@
 // The effect plan on small canonical scenes whose right answer is known.
-#include "assetcooker/lib/effect_plan.h"
+#include "assetcooker/lib/plan/effect_plan.h"
 #include "plan/code_scene.h"
 
 #include <gtest/gtest.h>

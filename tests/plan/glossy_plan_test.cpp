@@ -4,7 +4,7 @@
 // is derived from the scene's geometry and theta computed here, not read back from the plan:
 // an object's parallax is asin(reach / nearest), a small occluder uncovers reach (1 / d_front
 // - 1 / d_back) of what lies behind it; reach = the cell's corner, 0.75 sqrt 3 = 1.30 m.
-#include "assetcooker/lib/effect_plan.h"
+#include "assetcooker/lib/plan/effect_plan.h"
 #include "plan/code_scene.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // Near objects packed into a bounded number of layers (plan_layer_packing.h, issue 34): by
 // hand-made coverages whose right packing is known, and on a cluttered scene of 2,000 nodes,
 // whose plan used to propose 2,000 object layers that the runtime refuses (at most 63).
-#include "assetcooker/lib/effect_plan.h"
-#include "assetcooker/lib/plan_layer_packing.h"
+#include "assetcooker/lib/plan/effect_plan.h"
+#include "assetcooker/lib/plan/plan_layer_packing.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "plan/code_scene.h"
 

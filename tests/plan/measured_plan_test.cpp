@@ -1,8 +1,8 @@
 // The measured effect plan (issue 15, item 1) on code-built scenes whose answer is known in
 // closed form: its rays against the Embree tracer, its determinism, the budget it honours,
 // and the choices an empty box room and a near object force.
-#include "assetcooker/lib/distance_bake.h"
-#include "assetcooker/lib/plan_measure.h"
+#include "assetcooker/lib/flavours/distance/distance_bake.h"
+#include "assetcooker/lib/plan/plan_measure.h"
 #include "engine/core/error.h"
 #include "engine/raytrace/ground_truth.h"
 #include "plan/code_scene.h"

@@ -1,8 +1,8 @@
 // The measured plan's error budget as text and markup, its bad input, and the d_e a measured
 // plan hands the runtime (the Planned method).
-#include "assetcooker/lib/cli.h"
-#include "assetcooker/lib/plan_budget.h"
-#include "assetcooker/lib/plan_candidates.h"
+#include "assetcooker/lib/cli/cli.h"
+#include "assetcooker/lib/plan/plan_budget.h"
+#include "assetcooker/lib/plan/plan_candidates.h"
 #include "components/reflection_probe/distance/distance_lookup_config.h"
 #include "engine/core/error.h"
 #include "plan/code_scene.h"

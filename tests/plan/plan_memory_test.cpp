@@ -2,8 +2,8 @@
 // take more is left out of the choice, even the best PSNR; the reason names the budget; when
 // none fits, the smallest is used and a warning says so. And every distance setting of a bake,
 // the plan's choice, seed and budgets included, reaches a farm's shards and comes back.
-#include "assetcooker/lib/plan_candidates.h"
-#include "assetcooker/lib/shard_settings.h"
+#include "assetcooker/lib/plan/plan_candidates.h"
+#include "assetcooker/lib/bake/cook_settings_json.h"
 
 #include <gtest/gtest.h>
 

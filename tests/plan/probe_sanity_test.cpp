@@ -1,8 +1,8 @@
 // Degenerate probe placements (issue 10): measured with Embree from the probe centre, refused
 // where a bake means nothing, warned where it is merely suspicious.
-#include "assetcooker/lib/distance_bake.h"
-#include "assetcooker/lib/lightfield_bake.h"
-#include "assetcooker/lib/probe_sanity.h"
+#include "assetcooker/lib/flavours/distance/distance_bake.h"
+#include "assetcooker/lib/flavours/lightfield/lightfield_bake.h"
+#include "assetcooker/lib/scene/probe_sanity.h"
 #include "engine/core/error.h"
 #include "plan/code_scene.h"
 

@@ -11,7 +11,7 @@
 // The room at 160x120 with 64^2 faces by default; SPECULA_DIAG_SCENE (room | truck_room),
 // SPECULA_DIAG_SIZE (WxH) and SPECULA_DIAG_FACES set another (1024x768 and 256: the full
 // bench's size, where the diagnosis behind kBracketSteps = 20 was made).
-#include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/bake/cook.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "engine/core/glsl_host.h"

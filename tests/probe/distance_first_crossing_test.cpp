@@ -6,7 +6,7 @@
 // probe holds) and f is sampled densely along each reflected ray with the same nearest-texel
 // fetch the twin reads, so each search's hit can be told apart as "the first crossing",
 // "a later crossing" or "elsewhere".
-#include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/bake/cook.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "engine/image/sampling.h"

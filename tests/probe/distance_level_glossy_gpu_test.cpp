@@ -4,7 +4,7 @@
 // shader bit for bit; and a level pays for chains only while a reflector is rough (bytes and
 // uploads counted by the store). The bundled two-room scene, its mirror moved into the
 // doorway where both probes have influence.
-#include "assetcooker/lib/level_bake.h"
+#include "assetcooker/lib/level/level_bake.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
 #include "components/reflection_probe/distance/distance_textures.h"
 #include "components/reflection_probe/distance/system/distance_level_store.h"

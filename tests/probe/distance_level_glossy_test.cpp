@@ -3,7 +3,7 @@
 // blended with the mirror level's weights. On the bundled two-room scene (rooms A and B
 // joined by a doorway, one probe each): roughness 0 is the mirror level bit for bit, and a
 // rough reflector's level lookup is closer to the GGX Embree truth than the mirror level's.
-#include "assetcooker/lib/level_bake.h"
+#include "assetcooker/lib/level/level_bake.h"
 #include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
 #include "engine/image/ggx_albedo.h"

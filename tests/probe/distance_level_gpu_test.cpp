@@ -4,7 +4,7 @@
 // influence: pixel by pixel, for every blend and for K = 1 and 4. And the level's limits:
 // more probes than one view holds, and settings a level cannot run, are errors that name
 // the file and the field.
-#include "assetcooker/lib/level_bake.h"
+#include "assetcooker/lib/level/level_bake.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
 #include "components/reflection_probe/distance/system/distance_level_store.h"
 #include "engine/context/context.h"

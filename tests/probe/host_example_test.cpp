@@ -4,7 +4,7 @@
 // (CpuDistanceProbe's glossy sample times the GGX albedo, at roughness 0 for the mirror and
 // 0.3 for the disc) recomputed here from the example's camera and geometry: >= 40 dB. Bad input
 // reaches the host as an error value naming the asset, and it exits cleanly.
-#include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/bake/cook.h"
 #include "components/reflection_probe/distance/distance_glossy_chain.h"
 #include "components/reflection_probe/distance/distance_gpu_probe.h"
 #include "components/reflection_probe/distance/distance_probe_cpu.h"

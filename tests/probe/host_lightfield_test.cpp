@@ -3,7 +3,7 @@
 // mirror on the left half of the frame and roughness 0.35 on the right; every pixel is held to
 // the CPU twin (CpuLightFieldProbe::reflectedRadiance) recomputed from the same camera and
 // sphere: >= 40 dB, for the mirror library and the glossy one. Bad input is an error value.
-#include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/bake/cook.h"
 #include "components/reflection_probe/lightfield/lightfield_host_probe.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "engine/context/context.h"

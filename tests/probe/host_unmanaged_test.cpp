@@ -6,8 +6,8 @@
 // distance probe's own textures match the description, and the host's objects outlive the
 // probe. A texture or buffer that does not fit is an error value naming the
 // asset and the texture, and no host texture is written.
-#include "assetcooker/lib/cook.h"
-#include "assetcooker/lib/level_bake.h"
+#include "assetcooker/lib/bake/cook.h"
+#include "assetcooker/lib/level/level_bake.h"
 #include "components/reflection_probe/distance/distance_host_probe.h"
 #include "components/reflection_probe/distance/distance_level_host_probe.h"
 #include "components/reflection_probe/lightfield/lightfield_host_probe.h"

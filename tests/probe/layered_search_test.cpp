@@ -7,7 +7,7 @@
 // false hit beat it), by that layer's method and by how often its f = stored distance - |l|
 // changes sign inside the layer's box span (sampled densely with the twin's nearest-texel
 // fetch).
-#include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/bake/cook.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "engine/image/sampling.h"

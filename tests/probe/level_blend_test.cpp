@@ -4,7 +4,7 @@
 // right lookups from its wrong ones (Embree's hit along the ray decides), and the three
 // blends keep their contracts (weights sum to one with the sky; where the seen probes'
 // confidence is full, a probe that does not see the hit at all gets no weight).
-#include "assetcooker/lib/level_bake.h"
+#include "assetcooker/lib/level/level_bake.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
 #include "engine/raytrace/embree_scene.h"
 #include "support/scratch_dir_test.h"

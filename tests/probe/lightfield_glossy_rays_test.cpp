@@ -4,7 +4,7 @@
 // whether a change of K between neighbouring pixels leaves a step). The CPU twin only; the
 // shader against the twin with the per-pixel K is LightFieldGlossyGpu in
 // lightfield_glossy_test.cpp.
-#include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/flavours/lightfield/lightfield_bake.h"
 #include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"
 #include "engine/core/glsl_host.h"

@@ -3,7 +3,7 @@
 // lightfield_glossy_rays_test.cpp): assets/room with a light-field probe of NUM 8, RES 64
 // baked once per suite through the cooking library, the CPU twin over it, and the reflector
 // pixels of a camera, cell-local. No GL: the twin and Embree.
-#include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/flavours/lightfield/lightfield_bake.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"

@@ -3,7 +3,7 @@
 // filter exact on a uniform light field, against brute-force GGX integrals on synthetic light
 // fields known in closed form, and against the Embree GGX ground truth in the room beside the
 // mirror lookup (roughness ignored). Then the GLOSSY shader against the twin, pixel by pixel.
-#include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/flavours/lightfield/lightfield_bake.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/lightfield/lightfield_mips.h"

@@ -1,8 +1,8 @@
 // The light-field-slab probe on the default room: the shader against its CPU twin, and
 // against the Embree ground truth (environment-only mode) beside the envmap and box
 // projection baselines. Default size NUM = 8, RES = 64 keeps every bake under a second.
-#include "assetcooker/lib/distance_bake.h"
-#include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/flavours/distance/distance_bake.h"
+#include "assetcooker/lib/flavours/lightfield/lightfield_bake.h"
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/distance/writer/distance_probe_writer.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"

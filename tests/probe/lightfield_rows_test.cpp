@@ -2,7 +2,7 @@
 // apart and assembled, in any order and any split, give the same asset, byte for byte, as
 // bakeLightFieldProbe; blocks that miss or overlap rows are refused naming them; the block
 // file round-trips and refuses a wrong header, a wrong shape and a truncated or overlong file.
-#include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/flavours/lightfield/lightfield_bake.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/core/error.h"
 #include "support/scratch_dir_test.h"

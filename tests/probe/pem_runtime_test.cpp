@@ -2,7 +2,7 @@
 // round trip (box and distance geometry) and what the reader refuses, the blend weights, the shader
 // against its CPU twin on the default room (at a sample and between two), and a parameter edit that
 // uploads the parameter block only. Components, engine and cooker only: no sandbox code.
-#include "assetcooker/lib/pem_geometry.h"
+#include "assetcooker/lib/flavours/pem/pem_geometry.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/pem/pem_asset.h"
 #include "components/reflection_probe/pem/pem_blend.h"

@@ -2,7 +2,7 @@
 // The default room with its distance probe baked once per test binary (face resolution 128
 // keeps the bake under a few seconds), a headless GL context, and a frame renderer.
 // Components, engine and the cooking API only: no sandbox code.
-#include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/bake/cook.h"
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "components/reflection_probe/distance/system/distance_store.h"
 #include "engine/context/context.h"

@@ -5,7 +5,7 @@
 // uv the shader itself interpolated (OUTPUT 4); a map of ones (or of halves at twice the
 // factor) draws the uniform roughness; and on the banded test asset (room_rough_bands.gltf)
 // each band draws what its own uniform roughness draws, unlike the mean roughness.
-#include "assetcooker/lib/lightfield_bake.h"
+#include "assetcooker/lib/flavours/lightfield/lightfield_bake.h"
 #include "components/reflection_probe/distance/distance_level_cpu.h"
 #include "components/reflection_probe/distance/system/distance_level_store.h"
 #include "components/reflection_probe/lightfield/lightfield_probe_cpu.h"

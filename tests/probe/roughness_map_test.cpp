@@ -4,7 +4,7 @@
 // tests/plan/material_reflector_test.cpp), roughnessAt is checked in closed form, the
 // effect plan takes the sharpest texel; the truth reads the map per hit, and the footprint
 // twin reading it per pixel beats the twin given the map's mean (roughness_map_truth_test.cpp).
-#include "assetcooker/lib/plan_glossy.h"
+#include "assetcooker/lib/plan/plan_glossy.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/system/reflection_probe.h"
 #include "components/reflection_probe/system/reflector_roughness.h"

@@ -3,7 +3,7 @@
 // across u four texels wide of 20 / 255 (0.078) and 102 / 255 (0.4); the map's mean is
 // 61 / 255 (0.239). The truth reads the map at every hit; the footprint twin reading it per
 // pixel is what the feature buys, against the same twin given the map's mean.
-#include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/bake/cook.h"
 #include "assetcooker/lib/scene/reflector_pixels.h"
 #include "components/reflection_probe/distance/distance_glossy_cpu.h"
 #include "components/reflection_probe/system/reflector_roughness.h"

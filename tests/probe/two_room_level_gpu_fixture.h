@@ -2,7 +2,7 @@
 // The fixture of the level GPU tests: a headless GL context for the suite, and the bundled
 // two-room scene baked as a level of distance probes at 64^2 faces, unplanned (one
 // composite a probe), into the test's scratch folder.
-#include "assetcooker/lib/level_bake.h"
+#include "assetcooker/lib/level/level_bake.h"
 #include "engine/context/context.h"
 #include "support/probe_room.h"
 #include "support/scratch_dir_test.h"

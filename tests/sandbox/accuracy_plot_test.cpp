@@ -1,9 +1,9 @@
 // The bench's pieces that need no GPU: the Pareto front, the plot, the method table.
 #include "assetcooker/lib/scene/walk_amplitude.h"
-#include "sandbox/lib/accuracy_plot.h"
-#include "sandbox/lib/bench_methods.h"
-#include "sandbox/lib/probe_source.h"
-#include "sandbox/lib/reflection_scene.h"
+#include "sandbox/lib/bench/accuracy_plot.h"
+#include "sandbox/lib/bench/bench_methods.h"
+#include "sandbox/lib/walk/probe_source.h"
+#include "sandbox/lib/render/reflection_scene.h"
 
 #include <gtest/gtest.h>
 

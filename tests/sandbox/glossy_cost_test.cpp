@@ -1,12 +1,12 @@
-// The cost columns of specula-sandbox glossy (sandbox/lib/glossy_timing.h), in-process on the
+// The cost columns of specula-sandbox glossy (sandbox/lib/bench/glossy_timing.h), in-process on the
 // room at a small size: the memory column against texture sizes worked out here from the
 // formats (RGBA32F cube faces and sky, the light field's RGBA8 atlas) and against the probe
 // stores' own count after the timed runs; a pass ratio exactly for the methods with a shader.
 // No assertion on a time: llvmpipe's figures mean nothing absolute.
 #include "components/reflection_probe/distance/distance_probe_asset.h"
-#include "sandbox/lib/glossy_bench.h"
-#include "sandbox/lib/glossy_timing.h"
-#include "sandbox/lib/reflection_scene.h"
+#include "sandbox/lib/bench/glossy_bench.h"
+#include "sandbox/lib/bench/glossy_timing.h"
+#include "sandbox/lib/render/reflection_scene.h"
 
 #include <gtest/gtest.h>
 

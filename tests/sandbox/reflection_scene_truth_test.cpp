@@ -5,7 +5,7 @@
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/system/reflection_probe.h"
 #include "components/reflection_probe/system/reflector_roughness.h"
-#include "sandbox/lib/reflection_scene.h"
+#include "sandbox/lib/render/reflection_scene.h"
 
 #include <gtest/gtest.h>
 

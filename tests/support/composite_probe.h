@@ -2,7 +2,7 @@
 // A scene cooked as one unplanned distance probe (the composite alone, no object layers) at
 // `faceRes`, read back from a scratch folder named after `tag` and the process, which is
 // removed again: the asset the CPU-twin lookup tests search.
-#include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/bake/cook.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "support/probe_room.h"
 

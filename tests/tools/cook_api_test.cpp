@@ -1,7 +1,7 @@
 // The cooking API in-process: one call per flavour turns a scene into a cooked folder whose
 // manifest a loader reads once (readCookedProbeFacts), and the markup becomes components
 // without the sandbox (attachProbeComponents).
-#include "assetcooker/lib/cook.h"
+#include "assetcooker/lib/bake/cook.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/core/error.h"
 #include "support/scratch_dir_test.h"

@@ -1,9 +1,9 @@
 // The farm simulation (farm_sim.h): the list scheduler against closed-form cases, then
 // `specula-cook farm` on the two-room level (two probes) reading the times bake-shard
 // recorded, and naming the shards that have none.
-#include "assetcooker/lib/cli.h"
-#include "assetcooker/lib/farm_sim.h"
-#include "assetcooker/lib/shard_bake.h"
+#include "assetcooker/lib/cli/cli.h"
+#include "assetcooker/lib/farm/farm_sim.h"
+#include "assetcooker/lib/farm/shard_bake.h"
 #include "engine/core/error.h"
 #include "support/scratch_dir_test.h"
 #include "tools/level_files.h"

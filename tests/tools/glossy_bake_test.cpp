@@ -2,8 +2,8 @@
 // beside the layers when the scene needs it, and the reader gives it back exactly as
 // prefilterGgx made it, refusing a level file that is corrupt, of the wrong size or another
 // probe's, naming the manifest's glossy.levels[k]. A manifest without "glossy" reads as before.
-#include "assetcooker/lib/cook.h"
-#include "assetcooker/lib/distance_bake.h"
+#include "assetcooker/lib/bake/cook.h"
+#include "assetcooker/lib/flavours/distance/distance_bake.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/distance/writer/distance_probe_writer.h"

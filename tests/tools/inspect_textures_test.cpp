@@ -2,7 +2,7 @@
 // of KTX2 files is listed with each one's format, size, levels and bytes, and --dump-exr writes
 // every level as OpenEXR holding exactly what the KTX2 holds (BC6H decoded). Refusals (a
 // folder without textures, a damaged one, --dump-exr of a scene): bad_input_test.cpp.
-#include "assetcooker/lib/cli.h"
+#include "assetcooker/lib/cli/cli.h"
 #include "engine/image/bc6h.h"
 #include "engine/image/ktx2.h"
 #include "engine/image_io/image_io.h"

@@ -5,7 +5,7 @@
 // it intact and indexed; bad probe lists are errors naming the file and field. The default
 // proxy is the room a probe stands in, also on a box room written here with a cupboard in
 // front of the probe.
-#include "assetcooker/lib/level_bake.h"
+#include "assetcooker/lib/level/level_bake.h"
 #include "components/reflection_probe/manifest_fields.h"
 #include "engine/core/error.h"
 #include "engine/scene/components.h"
@@ -45,7 +45,6 @@ protected:
         d.planned = false;
         o.cook.flavour = d;
         o.cook.progress = false;
-        o.optionsText = "face_res " + std::to_string(faceRes);
         return o;
     }
 

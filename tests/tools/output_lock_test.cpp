@@ -3,7 +3,7 @@
 // command, host and pid, and succeeds once the lock is let go; the last holder removes the lock
 // file. Two level bakes into one folder at once: the second fails at once, the first is left
 // to finish. The jobs of a `bake --slurm` run under its lock only when they name it.
-#include "assetcooker/lib/output_lock.h"
+#include "assetcooker/lib/os/output_lock.h"
 #include "engine/core/error.h"
 #include "engine/core/host_name.h"
 #include "tests/support/child_process.h"

@@ -2,9 +2,9 @@
 // the samples Embree traces at a viewpoint, a map inferred from them against a plain cube map
 // captured at the probe centre (both through the same lookup, on the samples they were made
 // for: "on the manifold"), the cooking API end to end and its CLI, and bad input.
-#include "assetcooker/lib/cli.h"
-#include "assetcooker/lib/cook.h"
-#include "assetcooker/lib/pem_samples.h"
+#include "assetcooker/lib/cli/cli.h"
+#include "assetcooker/lib/bake/cook.h"
+#include "assetcooker/lib/flavours/pem/pem_samples.h"
 #include "engine/core/error.h"
 #include "engine/core/glsl_host.h"
 #include "engine/math/cube_face.h"

@@ -2,7 +2,7 @@
 // sky-only scene without a sky is black against black (it scored 120 dB), and one sample
 // along the open camera path has nothing half-way (it printed "nan dB"). Both say "none", as
 // every PSNR of the tools does (formatPsnr); a measured fit still prints its dB.
-#include "assetcooker/lib/pem_samples.h"
+#include "assetcooker/lib/flavours/pem/pem_samples.h"
 #include "support/shell_tool.h"
 
 #include <gtest/gtest.h>

@@ -6,8 +6,8 @@
 // it and writes nothing; a shard of a scene edited since the list was written is refused; the
 // shard files round-trip every field bit for bit and name the file and field when truncated.
 // Also prints the shards' overhead against the plain bake (not asserted).
-#include "assetcooker/lib/pem_shard_files.h"
-#include "assetcooker/lib/shard_pem.h"
+#include "assetcooker/lib/flavours/pem/pem_shard_files.h"
+#include "assetcooker/lib/flavours/pem/shard_pem.h"
 #include "engine/core/error.h"
 #include "support/scratch_dir_test.h"
 #include "tools/level_files.h"

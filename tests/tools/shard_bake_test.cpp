@@ -5,9 +5,9 @@
 // shard (or a part) missing names it and writes nothing, and so does one with a part file
 // truncated or with a wrong header; an index out of range names the count; --shard-rows out
 // of range is refused naming it. Also prints the shards' overhead (not asserted).
-#include "assetcooker/lib/cli.h"
-#include "assetcooker/lib/shard_bake.h"
-#include "assetcooker/lib/shard_checksum.h"
+#include "assetcooker/lib/cli/cli.h"
+#include "assetcooker/lib/farm/shard_bake.h"
+#include "assetcooker/lib/farm/shard_checksum.h"
 #include "engine/core/error.h"
 #include "support/scratch_dir_test.h"
 #include "tools/level_files.h"
@@ -49,7 +49,6 @@ protected:
         o.cook.out = (root_ / out).string();
         o.cook.flavour = std::move(flavour);
         o.cook.progress = false;
-        o.optionsText = "test";
         return o;
     }
 

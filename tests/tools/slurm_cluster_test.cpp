@@ -7,8 +7,8 @@
 // shard cancelled with scancel is reported, and the resume submits that shard alone and gives
 // the same files; a shard that fails every time is reported by index and nothing is merged.
 // Prints the per-shard scheduling overhead (not asserted).
-#include "assetcooker/lib/shard_bake.h"
-#include "assetcooker/lib/slurm_bake.h"
+#include "assetcooker/lib/farm/shard_bake.h"
+#include "assetcooker/lib/farm/slurm_bake.h"
 #include "support/scratch_dir_test.h"
 #include "tools/level_files.h"
 
@@ -90,7 +90,6 @@ protected:
         o.cook.out = (root_ / out).string();
         o.cook.flavour = std::move(flavour);
         o.cook.progress = false;
-        o.optionsText = "test";
         return o;
     }
     static CookFlavour distance() {

@@ -10,8 +10,8 @@
 // A signal to the submitter (issue 34) cancels every job it submitted, the merge with them,
 // waits for them and writes nothing: in-process, and `bake --slurm` against fake sbatch,
 // squeue and scancel scripts in PATH (exit 130, scancel given the job ids).
-#include "assetcooker/lib/shard_bake.h"
-#include "assetcooker/lib/slurm_bake.h"
+#include "assetcooker/lib/farm/shard_bake.h"
+#include "assetcooker/lib/farm/slurm_bake.h"
 #include "components/reflection_probe/writer/probe_folder.h"
 #include "engine/core/error.h"
 #include "support/child_process.h"

@@ -3,7 +3,7 @@
 // still exits 2; Cancelled exits 130; any other Error exits 1 with one line; validators refuse
 // what the old hand-written parser refused. Every value is strict (issue 34): integers
 // decimal, numbers finite, text non-empty, --config a regular file.
-#include "assetcooker/lib/tool_cli.h"
+#include "assetcooker/lib/cli/tool_cli.h"
 #include "engine/core/error.h"
 #include "specula/version.h"
 

@@ -82,7 +82,7 @@ public:
     // The asset's sky along dir, as the shader's fetchSky reads it (black without one).
     glm::vec3 sky(glm::vec3 dir) const;
 
-    // Controlled experiments of the bench's error budget (sandbox/lib/error_budget.h): each
+    // Controlled experiments of the bench's error budget (sandbox/lib/bench/error_budget.h): each
     // removes one source of error from every lookup of the twin (radiance(), lookupHit() and
     // the rest). All off by default, where the twin reads exactly what the shader reads. Set
     // before looking up, never while another thread does.

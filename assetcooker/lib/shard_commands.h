@@ -1,9 +1,0 @@
-#pragma once
-// `specula-cook shards`, `bake-shard` and `merge`: a level's bake as shards (shard_bake.h).
-#include "assetcooker/lib/tool_cli.h"
-
-namespace specula::cook {
-
-void addShardCommands(cli::ToolCli& tool);
-
-} // namespace specula::cook
