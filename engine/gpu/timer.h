@@ -1,7 +1,7 @@
 #pragma once
 // GPU time of a pass with GL_TIME_ELAPSED queries. On a real GPU this is the time the
 // commands took on the device; on llvmpipe it is CPU rasteriser time, meaningful only as a
-// ratio to another pass measured the same way (see DESIGN.md §6).
+// ratio to another pass measured the same way (see docs/design.md §6).
 #include "engine/gpu/gl_objects.h"
 
 #include <chrono>

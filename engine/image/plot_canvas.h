@@ -1,5 +1,5 @@
 #pragma once
-// A small canvas for the project's plots (PNG figures in BENCH.md): lines, boxes and text on
+// A small canvas for the project's plots (PNG figures in docs/bench.md): lines, boxes and text on
 // an RGB float image, drawn with OpenImageIO's render_line / render_box / render_text. Text
 // needs a TrueType font from the system (DejaVu, Liberation or FreeSans); without one the
 // plot is drawn without its text.

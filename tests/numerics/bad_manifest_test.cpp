@@ -1,4 +1,4 @@
-// Bad cooked probes (DESIGN §8): every malformed manifest or image is refused with one line
+// Bad cooked probes (docs/design.md §8): every malformed manifest or image is refused with one line
 // that names the file and the field, and reading never changes the folder.
 #include "components/reflection_probe/distance/distance_probe_asset.h"
 #include "components/reflection_probe/distance/writer/distance_probe_writer.h"

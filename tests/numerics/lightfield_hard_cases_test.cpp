@@ -1,4 +1,4 @@
-// DESIGN §7 hard cases for the light-field-slab flavour, on its C++ twin: reflected rays
+// docs/design.md §7 hard cases for the light-field-slab flavour, on its C++ twin: reflected rays
 // parallel to a slab's camera plane, exact ties of the largest component (slab edges and
 // corners), reflectors on the very boundary of the cell, zero/NaN/inf directions. The light
 // field holds a distant environment (colour a function of direction only), for which the

@@ -1,5 +1,5 @@
 #pragma once
-// Shared by the numerics tests (DESIGN §7): closed-form probes beyond the plain box room,
+// Shared by the numerics tests (docs/design.md §7): closed-form probes beyond the plain box room,
 // the reference ("ideal") answer of every lookup method, and a GLSL harness that runs the
 // real shared lookup (shaders/distance_lookup.glsl.h) over a list of rays on the GPU, so each
 // hard case drives both the C++ twin and the shader through exactly the same inputs.

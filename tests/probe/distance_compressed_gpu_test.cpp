@@ -78,7 +78,7 @@ TEST_F(CompressedRoomProbe, TheFrameStaysCloseToTheFloatProbesAndTheCompositeTak
     const Image bc6hFrame = renderer_->render(cam);
     const double psnr = compareImages(bc6hFrame, floatFrame, &mask).psnr;
     std::printf("secant: BC6H composite against float, %.2f dB over the mirror pixels\n", psnr);
-    // Compression error alone (BENCH.md "Storage formats": <= 0.042 dB against the ground
+    // Compression error alone (CHANGELOG.md "Storage formats": <= 0.042 dB against the ground
     // truth on four scenes); the two frames differ by the codec's error, far below the
     // method's own (~30 dB against the truth).
     EXPECT_GT(psnr, 40.0);

@@ -120,7 +120,9 @@ def check_sections(root, files, errors):
         for i, line in enumerate(lines):
             for m in ref.finditer(line):
                 before = line[:m.start()]
-                doc = re.search(r'([\w./-]+\.md)\W*$', before)
+                # "docs/x.md §4, §9": a list of sections after one doc names that doc.
+                doc = re.search(r'([\w./-]+\.md)(?:\s*§\s?\d+[a-z]?\s*(?:,|and|or)\s*)*\W*$',
+                                before)
                 if doc:
                     path = os.path.normpath(os.path.join(root, doc.group(1)))
                     if not os.path.exists(path):

@@ -52,7 +52,7 @@ def main():
         # Mended: every breach fixed or listed as debt.
         write(root, 'README.md', '[design](docs/design.md)\n')
         write(root, 'engine/long.cpp', '//\n' * 450)
-        write(root, 'engine/refs.h', '// docs/design.md §2, Hakura §4\n')
+        write(root, 'engine/refs.h', '// docs/design.md §2, Hakura §4; docs/design.md §1 and §2\n')
         write(root, 'tests/repo/flavour_debt.txt', '# still to move\nassetcooker/lib/plan/shared.cpp\n')
         write(root, 'tests/repo/cycle_debt.txt',
               'assetcooker/lib/a -> assetcooker/lib/b\nassetcooker/lib/b -> assetcooker/lib/a\n')

@@ -1,4 +1,4 @@
-// Bad input to specula-cook (DESIGN §8): every argument of every subcommand malformed,
+// Bad input to specula-cook (docs/design.md §8): every argument of every subcommand malformed,
 // missing files, truncated and wrong-type inputs. Each must give exactly one error line that
 // names the flag or file, a non-zero exit, nothing on stdout, and leave the output folder
 // (a previously cooked probe) byte-for-byte as it was. Interrupted bakes (SIGINT, SIGTERM)

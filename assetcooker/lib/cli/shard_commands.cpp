@@ -200,7 +200,7 @@ void addShardCommands(cli::ToolCli& tool) {
         ->check(CLI::Range(1, 1000000));
     farm->add_option("--overhead", f->overhead,
                      "scheduling overhead a shard, seconds (default 0.8: the one-node Slurm "
-                     "cluster of scripts/local-slurm, BENCH.md)")
+                     "cluster of scripts/local-slurm, CHANGELOG.md)")
         ->check(CLI::Range(0.0, 1e6));
     farm->add_option("--csv", f->csv, "the table as CSV (default: the first DIR's farm.csv)");
     farm->add_option("--plot", f->plot, "wall time against nodes as an image (e.g. farm.png)");

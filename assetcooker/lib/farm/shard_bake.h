@@ -1,5 +1,5 @@
 #pragma once
-// A level's bake as a list of independent, deterministic shards (DESIGN §9), for bakes that
+// A level's bake as a list of independent, deterministic shards (docs/design.md §9), for bakes that
 // outgrow one machine. Each shard is keyed by a content hash of everything its bytes depend
 // on: the probe's input checksums (the geometry in its reach, the sky, the options text and
 // its volumes: levelProbeInputs), the flavour's full settings, the shard's kind and part.

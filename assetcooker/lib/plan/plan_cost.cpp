@@ -15,7 +15,7 @@ struct Row {
     int layers;
 };
 
-// The quiet full bench of 2026-12-03 (BENCH.md, "The safeguarded secant, a quiet full bench
+// The quiet full bench of 2026-12-03 (CHANGELOG.md, "The safeguarded secant, a quiet full bench
 // and the cost model refitted"; llvmpipe, 1024x768, 256^2 faces, 16 frames, nothing else
 // running): the room, truck_room and bowl_room rows of envmap, boxproj, avgdist, bisection,
 // secant and march at d_e 0.1 / 0.03 / 0.01 / 0.003 and layered at the four d_e (the
@@ -122,7 +122,7 @@ CostModel fit() {
         model.maxResidual = std::max(model.maxResidual, std::abs(e));
     }
     model.rmsResidual = std::sqrt(sum / double(kRows.size()));
-    model.source = "BENCH.md 2026-12-03 (llvmpipe, 1024x768, 256^2 faces, a quiet run): room, "
+    model.source = "CHANGELOG.md 2026-12-03 (llvmpipe, 1024x768, 256^2 faces, a quiet run): room, "
                    "truck_room and bowl_room";
     return model;
 }

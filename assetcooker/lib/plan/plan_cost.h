@@ -2,7 +2,7 @@
 // The measured plan's cost model: a reflector pass's time as a ratio to the classic
 // environment map's, predicted linearly from what the CPU twin counts,
 //     ratio = c0 + c1 fetches-per-ray + c2 object-layers,
-// with the constants fitted (least squares) to the bench's measured rows (BENCH.md, quoted
+// with the constants fitted (least squares) to the bench's measured rows (CHANGELOG.md, quoted
 // in plan_cost.cpp with their source). Bytes are not in the fit: every calibration row has
 // 256^2 faces and a layer count fixed by its method, so memory cannot be told apart from
 // the layers there; the plan reports them and prefers fewer among equally fast candidates.

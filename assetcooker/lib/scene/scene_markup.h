@@ -1,5 +1,5 @@
 #pragma once
-// Reads the Specula markup of a loaded glTF scene (node `extras`, DESIGN §3):
+// Reads the Specula markup of a loaded glTF scene (node `extras`, docs/design.md §3):
 //   "specula_probe": {...}           a probe at the node's world position (options inside)
 //   "specula_reflector": true|{f0}   the node's meshes (and its subtree's) are mirrors
 //   "specula_reflector": false       no mesh of the node's subtree is a mirror by its material

@@ -17,7 +17,7 @@ void roundTripLayersThroughBc6h(DistanceProbeAsset& asset);
 // Whether the composite's distances can be stored as half floats for a lookup of tolerance
 // `tolerance` (d_e, metres): each a normal half (at least 2^-14), d_inf exactly a half (the
 // sentinel must survive), and a half's step at the farthest hit, 2^(floor(log2 d_max) - 10),
-// at most d_e. Measured (BENCH.md "Storage formats"): zdm2's composite reaches 43 m, where a
+// at most d_e. Measured (CHANGELOG.md "Storage formats"): zdm2's composite reaches 43 m, where a
 // half's step is 3.1 cm against d_e = 1 cm, and half distances cost its secant lookup
 // 0.16 dB; on the room, gallery and living room (step <= 0.8 cm) at most 0.003 dB.
 bool compositeDistanceFitsHalf(const DistanceProbeAsset& asset, float tolerance);

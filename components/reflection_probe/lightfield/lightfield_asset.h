@@ -1,5 +1,5 @@
 #pragma once
-// A cooked light-field-slab probe (Yu, Yang, McMillan 2005; DESIGN §5): six slabs around a
+// A cooked light-field-slab probe (Yu, Yang, McMillan 2005; docs/design.md §5): six slabs around a
 // cubic cell of side l, each NUM x NUM cameras of RES x RES pixels with a 90 degree field of
 // view looking out along the slab axis.
 //

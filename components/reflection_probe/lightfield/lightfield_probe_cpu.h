@@ -30,7 +30,7 @@ namespace specula {
 // K = 16 everywhere for 8 / 40 / 115 fetches a pixel at r = 0.05 / 0.1 / 0.2 against 68 / 84 /
 // 118; at r >= 0.35 every pixel asks for 16 or more. A cap of 32 there gains 1.0-1.2 dB at
 // r = 0.35, 2.1 at 0.5, 3.5-3.6 at 0.75 for twice the fetches (and 0.03-0.04 dB at r = 0.2 for
-// 1.3x): the cap stays the old fixed K, 16, so the pass costs at most what BENCH.md measured.
+// 1.3x): the cap stays the old fixed K, 16, so the pass costs at most what CHANGELOG.md measured.
 inline constexpr int kLightFieldGlossyRays = 16;
 inline constexpr float kLightFieldGlossyLevelBias = -0.7925f;
 inline constexpr float kLightFieldGlossyRaysPerTexel = 2.f;

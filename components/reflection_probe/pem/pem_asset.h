@@ -67,9 +67,9 @@ struct PemAsset {
     std::shared_ptr<const PemDistanceGeometry> distance; // set iff geometry == "distance"
     std::string distanceFile, distanceChecksum;          // set by the reader
     std::vector<PemSampleMap> samples;                   // parameter strictly increasing
-    // The local layer (Hakura §5): what the reflector shows of itself, drawn over the distant
-    // layer off the reflector's hull (pem_hull.h). The cooker adds it where reflector rays see
-    // their own reflector again. Manifests without "local_layer" have none.
+    // The local layer (Hakura §4, "Layered EMs"): what the reflector shows of itself, drawn over
+    // the distant layer off the reflector's hull (pem_hull.h). The cooker adds it where reflector
+    // rays see their own reflector again. Manifests without "local_layer" have none.
     bool localLayer = false;
     int localFaceRes = 0; // 1 .. 4096 with a local layer
     PemLocalSphere localSphere;

@@ -1,6 +1,6 @@
 #pragma once
 // Which two sample maps a PEM probe blends at a parameter, and with what weight (Hakura et
-// al. 2001, §6: the samples nearest the current parameter are blended). One pure function,
+// al. 2001, §5: the samples nearest the current parameter are blended). One pure function,
 // used by the store (it uploads a, b, wb) and by the CPU twin alike.
 #include <cmath>
 #include <cstddef>

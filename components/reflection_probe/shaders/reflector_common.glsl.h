@@ -3,7 +3,7 @@
 #ifndef SPECULA_REFLECTOR_COMMON_GLSL_H
 #define SPECULA_REFLECTOR_COMMON_GLSL_H
 
-// Asset normals can be zero or NaN (DESIGN §7): fall back to the geometric normal.
+// Asset normals can be zero or NaN (docs/design.md §7): fall back to the geometric normal.
 vec3 safeNormal(vec3 n, vec3 geometric) {
     float len2 = dot(n, n);
     if (!(len2 > 1e-20f) || isnan(len2) || isinf(len2)) return geometric;

@@ -23,15 +23,6 @@ double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int
     return cookSceneInto(scene, dir, s, showProgress, log).bakeSeconds;
 }
 
-CookResult cookSceneInto(ReflectionScene& scene, const std::string& dir, const CookFlavour& flavour,
-                         bool showProgress, std::ostream* log) {
-    CookOptions o;
-    o.out = dir;
-    o.flavour = flavour;
-    o.progress = showProgress;
-    return cookProbe(scene.probeScene(), o, log);
-}
-
 PemCookSettings sandboxPemSettings(SourceBakeSize size, int samples) {
     PemCookSettings s;
     s.samples = samples;

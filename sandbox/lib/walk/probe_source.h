@@ -6,6 +6,7 @@
 #include "components/reflection_probe/walk_path.h"
 #include "engine/image/image.h"
 #include "sandbox/lib/render/reflection_scene.h"
+#include "sandbox/lib/render/scene_cook.h"
 
 #include <memory>
 #include <optional>
@@ -69,9 +70,5 @@ PemCookSettings sandboxPemSettings(SourceBakeSize size, int samples = 8);
 // layer per object). `log`: the cook's warnings (null: dropped).
 double bakeDistanceProbeInto(ReflectionScene& scene, const std::string& dir, int faceRes,
                              bool showProgress, bool planned = false, std::ostream* log = nullptr);
-
-// The cooking API (cookProbe) on the sandbox's scene: `flavour`'s probe into `dir`.
-CookResult cookSceneInto(ReflectionScene& scene, const std::string& dir, const CookFlavour& flavour,
-                         bool showProgress, std::ostream* log);
 
 } // namespace specula

@@ -187,7 +187,7 @@ DistanceProbeAsset bakeDistanceProbe(ecs::Registry& registry, const SceneMarkup&
         finish(L);
 
     // d_inf must exceed every distance a lookup can meet; D must reach every hit from any
-    // reflector point within the reach (DESIGN §4: the hit lies within (x, x + 2D)).
+    // reflector point within the reach (docs/design.md §4: the hit lies within (x, x + 2D)).
     asset.dInf = std::max(1000.f, 10.f * all.maxD);
     asset.range = 0.5f * (all.maxD + opt.reflectorReach) * 1.05f;
     setInfinity(composite.faces, asset.dInf);

@@ -24,7 +24,7 @@ struct DistanceBakeOptions {
     // World box the lookup's box projection assumes; default: the environment's bounds.
     std::optional<Aabb> proxy;
     // A layer covering at least this solid angle is marked for per-pixel rectification, a
-    // smaller one for the average-distance correction (DESIGN §4), unless `layers` says.
+    // smaller one for the average-distance correction (docs/design.md §4), unless `layers` says.
     float rectifySolidAngle = 0.379f;
     // The layers to bake, near to far, each a group of environment objects with its lookup
     // method (the effect plan). Empty: one layer per object, sorted by nearest distance.

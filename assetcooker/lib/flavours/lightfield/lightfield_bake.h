@@ -1,5 +1,5 @@
 #pragma once
-// Bakes a light-field-slab probe with Embree (DESIGN §5): six slabs of NUM x NUM cameras of
+// Bakes a light-field-slab probe with Embree (docs/design.md §5): six slabs of NUM x NUM cameras of
 // RES x RES pixels around a cubic cell. Rays, not the rasteriser, because each camera sample
 // is a line, and a line can be traced from where it leaves the cell instead of from the
 // camera plane: a reflector anywhere in the cell then sees exactly what the sample recorded,
@@ -55,7 +55,7 @@ LightFieldRows traceLightFieldRows(ecs::Registry& registry, const SceneMarkup& m
                                    const LightFieldBakeOptions& options, int slab, int j0, int j1);
 
 // Environment objects whose bounds reach into the cell or into a slab's region between the
-// cell and its extended camera plane (DESIGN §5), with how far (LightFieldIntrusion::depth:
+// cell and its extended camera plane (docs/design.md §5), with how far (LightFieldIntrusion::depth:
 // how deep inside the cell the bounds reach; negative: the gap to the cell).
 std::vector<LightFieldIntrusion> findLightFieldIntrusions(const SceneMarkup& markup,
                                                           glm::vec3 cellCentre, float cellSize);

@@ -1,5 +1,5 @@
 #pragma once
-// A block of a light-field probe's bake (DESIGN §5, §9): slab s, camera rows j in [j0, j1),
+// A block of a light-field probe's bake (docs/design.md §5, §9): slab s, camera rows j in [j0, j1),
 // traced on its own (traceLightFieldRows, lightfield_bake.h) so a probe's bake can be split
 // over machines. In the slab image (n = NUM * RES pixels a side, sRGB8) camera row j covers
 // image rows j*RES .. (j+1)*RES - 1, so a block is one contiguous byte range. Its depth

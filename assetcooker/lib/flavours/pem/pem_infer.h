@@ -1,9 +1,9 @@
 #pragma once
 // Inference of one parameterized environment map (Hakura, Snyder, Lengyel 2001, §4 "EM
-// Inference"; DESIGN §5b): rendering is linear in the texels, so the map is the least-squares
-// best match to the ray-traced radiance of the reflector's pixels as the lookup applies it.
-// The rendering matrix A comes from PemLookupCpu::weights, the same code the shader runs;
-// regularisation rows lambda * (t_a - t_b) over every pair of neighbouring texels (across
+// Inference"; docs/design.md §5b): rendering is linear in the texels, so the map is the
+// least-squares best match to the ray-traced radiance of the reflector's pixels as the lookup
+// applies it. The rendering matrix A comes from PemLookupCpu::weights, the same code the shader
+// runs; regularisation rows lambda * (t_a - t_b) over every pair of neighbouring texels (across
 // cube edges too) fill the texels no sample sees from their neighbours and keep the rest
 // from ringing. One solve per parameter sample; the samples come from Embree later.
 #include "components/reflection_probe/pem/pem_lookup_cpu.h"

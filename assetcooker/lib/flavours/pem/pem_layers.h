@@ -1,5 +1,5 @@
 #pragma once
-// The two-layer maps of Hakura, Snyder, Lengyel 2001 (§5; DESIGN §5b) on the cooker's side.
+// The two-layer maps of Hakura, Snyder, Lengyel 2001 (§4; docs/design.md §5b) on the cooker's side.
 // A reflector ray that meets its own reflector again (a concave bowl seeing itself) reads a
 // different bounce from what its neighbours read through the same texel of one map, so one
 // map cannot hold both. The distant layer (the map of pem_infer.h) is fitted to the ray

@@ -1,7 +1,7 @@
 #pragma once
 // The cooker side of parameterized environment maps (Hakura, Snyder, Lengyel 2001, §3-5;
-// DESIGN §5b): at each sample of the parameter (the viewpoint along the walk's orbit), Embree
-// traces the reflector pixels the camera sees, the ray tracer's FULL multi-bounce radiance
+// docs/design.md §5b): at each sample of the parameter (the viewpoint along the walk's orbit),
+// Embree traces the reflector pixels the camera sees, the ray tracer's FULL multi-bounce radiance
 // along each reflected ray is the target (self- and inter-reflections included: what a plain
 // environment map cannot hold), and inferPemMap fits the map the lookup reproduces it best
 // with. The maps of all samples make one PemAsset.
@@ -108,7 +108,7 @@ struct PemCookSettings {
     // Keep the inferred texels >= 0 by active-set re-solves (PemInferOptions::nonNegative)
     // instead of clamping the unconstrained solution afterwards. On by default: at 256² the
     // full PSNR gains 0-0.3 dB at level 0 and 1.6-3.1 dB with inferred MIPs, the cooker's own
-    // fit 10-15 dB, for 1.5-1.9x the inference (BENCH.md, "PEM texels bounded ... at 256²").
+    // fit 10-15 dB, for 1.5-1.9x the inference (CHANGELOG.md, "PEM texels bounded ... at 256²").
     bool nonNegative = true;
     // Distance geometry: rows for the lookups the display's rounding reaches
     // (pem_rounding_rows.h; PemInferOptions::roundingReach), metres and radians. 0: off.

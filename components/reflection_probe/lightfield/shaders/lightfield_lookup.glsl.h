@@ -1,5 +1,6 @@
 // Shared by GLSL and C++ (see engine/core/glsl_host.h): the light-field-slab lookup of Yu,
-// Yang, McMillan 2005 (DESIGN §5). The C++ copy is the CPU twin the tests hold the shader to.
+// Yang, McMillan 2005 (docs/design.md §5). The C++ copy is the CPU twin the tests hold the shader
+// to.
 //
 // Positions are cell-local (origin at the cell centre). The atlas layout is described in
 // components/reflection_probe/lightfield/lightfield_asset.h. The includer provides:

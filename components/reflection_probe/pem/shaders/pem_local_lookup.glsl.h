@@ -1,5 +1,5 @@
 // Shared by GLSL and C++ (see engine/core/glsl_host.h): the LOCAL layer of a parameterized
-// environment map (Hakura, Snyder, Lengyel 2001, §5 "layered maps"; DESIGN §5b). What a
+// environment map (Hakura, Snyder, Lengyel 2001, §4 "Layered EMs"; docs/design.md §5b). What a
 // concave reflector shows of itself (the ray leaves it and meets it again) moves with the
 // reflector, not with the environment, so it lives on a sphere fitted to the reflector: the
 // reflected ray x + t l meets that sphere at its far intersection, and the direction from the

@@ -1,12 +1,13 @@
 // Shared by GLSL and C++ (see engine/core/glsl_host.h): the lookup of a parameterized
-// environment map (Hakura, Snyder, Lengyel 2001; DESIGN §5b) with box geometry. The C++ copy
-// is both the CPU twin of the shader and, with fetches that record instead of read, the row
-// of the rendering matrix the cooker infers the map from: display and inference are one code.
+// environment map (Hakura, Snyder, Lengyel 2001; docs/design.md §5b) with box geometry. The C++
+// copy is both the CPU twin of the shader and, with fetches that record instead of read, the row of
+// the rendering matrix the cooker infers the map from: display and inference are one code.
 //
 // Positions are probe-local; the map's centre is the origin. The includer provides
 //   cubeFaceUv (engine/math/cube_face.glsl.h) and
 //   vec3 fetchTexel(int level, int face, int i, int j)   texel (column i, row j; row 0 first
-//                       stored) of `face` at MIP level `level`, 0 <= i, j < max(faceRes >> level, 1)
+//                       stored) of `face` at MIP level `level`, 0 <= i, j < max(faceRes >> level,
+//                       1)
 // and, when PEM_MIP is 1 (the map has more than one level),
 //   float pemLookupLod()   the pixel's level of detail (pem_lod.glsl.h's pemFootprintLod)
 //   int pemMapLevels()     the map's MIP levels

@@ -1,5 +1,5 @@
 #pragma once
-// Which triangles of a reflector lie on its convex hull (Hakura et al. 2001, §5: "polygons on
+// Which triangles of a reflector lie on its convex hull (Hakura et al. 2001, §4: "polygons on
 // the convex hull use the distant layer only"). A triangle is on the hull when no vertex of the
 // reflector's mesh lies in front of its plane (the counter-clockwise side, glTF's front)
 // beyond a small tolerance scaled to the mesh: a ray leaving such a triangle on its front side

@@ -1,6 +1,6 @@
 #include "sandbox/lib/flavours/lightfield/lightfield_hook.h"
 
-#include "sandbox/lib/walk/probe_source.h"
+#include "sandbox/lib/render/scene_cook.h"
 
 namespace specula {
 

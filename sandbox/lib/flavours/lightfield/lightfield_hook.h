@@ -13,7 +13,7 @@ struct LightFieldBake {
     std::string manifest;
     std::string params; // e.g. "num=16 res=64"
     double seconds = 0;
-    double fetchesPerPixel = 4; // quadrilinear: 4 bilinear fetches per ray (DESIGN §5)
+    double fetchesPerPixel = 4; // quadrilinear: 4 bilinear fetches per ray (docs/design.md §5)
 };
 
 // The bench's light-field sweep (one bake per size), into dirRoot_<params>.
