@@ -299,7 +299,7 @@ struct MirrorPixel {
 };
 
 // The mirror pixels of `cam`, found and reflected as the reflector pass and
-// sandbox/lib/walk/level_walk.cpp do.
+// sandbox/lib/flavours/distance/level_walk.cpp do.
 std::vector<MirrorPixel> mirrorPixels(const GroundTruthTracer& tracer, const CameraView& cam,
                                       const Image& mirrorMask, glm::vec3 probeCentre) {
     std::vector<MirrorPixel> out;

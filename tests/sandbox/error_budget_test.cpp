@@ -1,10 +1,11 @@
-// The bench's error budget (sandbox/lib/bench/error_budget.h) on closed-form scenes whose terms
-// are known: an empty box room (the centre sees every wall point, no depth discontinuity:
-// no disocclusion, no silhouette term) and the same room with a ball in it (walls behind the
-// ball hidden from the centre: disocclusion). The rays' truth is the closed-form reflection.
+// The bench's error budget (sandbox/lib/flavours/distance/error_budget.h) on closed-form scenes
+// whose terms are known: an empty box room (the centre sees every wall point, no depth
+// discontinuity: no disocclusion, no silhouette term) and the same room with a ball in it (walls
+// behind the ball hidden from the centre: disocclusion). The rays' truth is the closed-form
+// reflection.
 #include "components/reflection_probe/distance/distance_probe_cpu.h"
 #include "probe/analytic_probe.h"
-#include "sandbox/lib/bench/error_budget.h"
+#include "sandbox/lib/flavours/distance/error_budget.h"
 
 #include <gtest/gtest.h>
 

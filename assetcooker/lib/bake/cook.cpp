@@ -212,18 +212,6 @@ LightFieldBakeOptions lightFieldBakeOptions(const ProbeScene& scene, const CookO
     return b;
 }
 
-const char* toString(GlossyBake g) {
-    switch (g) {
-    case GlossyBake::On:
-        return "on";
-    case GlossyBake::Off:
-        return "off";
-    case GlossyBake::Auto:
-        break;
-    }
-    return "auto";
-}
-
 CookResult cookProbe(const CookOptions& options, std::ostream* log) {
     prepareOutput(options, log);
     ProbeScene scene(options.scene, options.sky);

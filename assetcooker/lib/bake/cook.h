@@ -4,7 +4,9 @@
 // plan -> bake -> write is written once. The folder is replaced atomically (probe_folder.h):
 // a cancel requested (cancelRequested) before the commit leaves it as it was and throws
 // Cancelled naming it.
+#include "assetcooker/lib/flavours/distance/distance_cook_settings.h"
 #include "assetcooker/lib/flavours/lightfield/lightfield_bake.h"
+#include "assetcooker/lib/flavours/lightfield/lightfield_cook_settings.h"
 #include "assetcooker/lib/flavours/pem/pem_samples.h"
 #include "assetcooker/lib/plan/plan_budget.h"
 #include "assetcooker/lib/scene/probe_setup.h"
@@ -16,51 +18,24 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
 namespace specula {
 
-// Whether a distance bake writes the composite's GGX prefiltered chain (glossy levels) for
-// glossy reflectors. Auto: when some reflector of the scene has a roughness > 0.
-enum class GlossyBake { Auto, On, Off };
-const char* toString(GlossyBake g); // "auto", "on", "off"
-
-// Distance-cubemap flavour.
-struct DistanceCookSettings {
-    int faceRes = 256;
-    // true: the layers and methods of the effect plan; false: one layer per object. The plan
-    // is recorded in the manifest either way when `recordPlan`.
-    bool planned = true;
-    bool recordPlan = true;
-    // Planned: measured (the candidate configurations scored against Embree, the cheapest
-    // meeting the budget; plan_measure.h) or analytic (effect_plan.h's thresholds alone).
-    bool measuredPlan = true;
-    // The measured plan's error budget (--max-error); unset: the probe node's max_error.
-    std::optional<ErrorBudget> maxError;
-    // The measured plan's memory budget (--max-mib-per-probe, MeasuredPlanOptions); unset: none.
-    std::optional<double> maxMibPerProbe;
-    std::uint32_t planSeed = 1;
-    GlossyBake glossy = GlossyBake::Auto;
-    // The chain when glossy (its levels, level 0 included: the default 6 writes 5 glossy
-    // levels, the chain a glossy lookup builds itself when an asset has none).
-    GgxPrefilterOptions prefilter;
-    // --compress bc6h: the composite stored compressed (distance_compression.h).
-    DistanceCompression compression = DistanceCompression::None;
-};
-
-// Light-field-slab flavour. The cell defaults to the probe markup's (cell_size, else 1.5 m)
-// around the probe centre.
-struct LightFieldCookSettings {
-    std::optional<glm::vec3> cellCentre;
-    std::optional<float> cellSize;
-    int cameras = 8, imageRes = 64;
-    LightFieldCompression compression = LightFieldCompression::None;
-};
-
-// The flavour is the settings' type: one flavour's settings cannot reach the other.
-// Parameterized environment maps: PemCookSettings (pem_samples.h).
+// The cooker's flavours, one line each: the flavour is the settings' type, so one flavour's
+// settings cannot reach another's. Each declares its settings once (visitSettings, in its
+// folder's *_cook_settings.h), from which the bake's flags and the settings JSON derive.
 using CookFlavour = std::variant<DistanceCookSettings, LightFieldCookSettings, PemCookSettings>;
+
+// Calls f(defaults) with every flavour's default settings, in the variant's order.
+template <class F> void forEachCookFlavour(F&& f) {
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+        (f(std::variant_alternative_t<I, CookFlavour>{}), ...);
+    }
+    (std::make_index_sequence<std::variant_size_v<CookFlavour>>{});
+}
 
 struct CookOptions {
     std::string scene;                    // .gltf/.glb; opened by cookProbe(options, log)

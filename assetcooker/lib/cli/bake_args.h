@@ -1,7 +1,8 @@
 #pragma once
 // The flags a bake is made of, shared by `specula-cook bake` and `specula-cook shards`: the
 // options themselves (with their help text and checks), the cooking options they give, and
-// the flavour's settings as text (a level's options checksum).
+// flavour's settings they give.
+#include "assetcooker/lib/cli/setting_flags.h"
 #include "assetcooker/lib/cli/tool_cli.h"
 #include "assetcooker/lib/level/level_bake.h"
 
@@ -12,36 +13,15 @@
 
 namespace specula::cook {
 
-// What the bake's flags set; defaults are the help's.
+// What the bake's flags set. The flavour's own flags are derived from its settings
+// declaration (setting_flags.h); --flavour defaults to the first flavour registered.
 struct BakeArgs {
-    std::string scene, out, flavour = "distance";
+    std::string scene, out, flavour;
     std::vector<std::string> probes; // --probe, repeatable
     std::optional<std::string> probeList, sky;
-    // distance and pem
-    std::optional<int> faceRes; // distance: 256, pem: 128
-    // distance
-    std::string layers = "plan", glossy = "auto";
-    std::string plan = "measured";        // --plan measured|analytic
-    std::optional<std::string> maxError;  // --max-error "32dB" | "rmse:0.03"
-    std::optional<double> maxMibPerProbe; // --max-mib-per-probe
-    // lightfield
-    std::optional<float> cellSize;
-    std::optional<std::string> cellCentre;
-    int cameras = 8, imageRes = 64;
-    std::string compress = "none";
     // a sharded light-field bake (shards, bake --slurm): camera rows a part shard traces
     std::optional<int> shardRows;
-    // pem
-    int samples = 8, supersample = 1, mipLevels = 1;
-    std::string imageSize = "640x480", geometry = "distance";
-    float prior = 0.05f, smoothness = 0.02f;
-    std::string parameter = "viewpoint", path = "orbit";
-    std::string localLayer = "auto";
-    std::string rows = "subray";
-    std::string nonNegative = "on";
-    float roundingReach = PemCookSettings{}.roundingReach;
-    // The options that belong to some flavours only, with their names ("distance|pem").
-    std::vector<std::pair<const CLI::Option*, std::string>> flavourOnly;
+    SettingFlags flags;
 };
 
 // Adds SCENE, --out and every flavour's flags to `sub`, and maps the library's field names

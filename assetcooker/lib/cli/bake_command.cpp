@@ -84,14 +84,15 @@ constexpr const char* kBakeFooter =
     "exit status: 0 ok, 1 the scene could not be baked, 2 bad command line, 130 cancelled\n"
     "by SIGINT/SIGTERM (DIR left as it was)\n";
 
-void printLightFieldSummary(const BakeArgs& a, const CookResult& r, double seconds,
+void printLightFieldSummary(const CookOptions& a, const CookResult& r, double seconds,
                             std::ostream& out) {
     const auto& asset = std::get<LightFieldAsset>(r.asset);
-    out << "baked light field: 6 slabs x " << a.cameras << "^2 cameras x " << a.imageRes
-        << "^2 px, cell " << r.cellSize << " m, " << toString(asset.compression) << ", "
-        << asset.diskBytes() << " bytes on disk, " << asset.gpuBytes()
-        << " bytes of GPU memory, bake " << r.bakeSeconds << " s, total " << seconds << " s -> "
-        << a.out << "/manifest.json\n";
+    const auto& settings = std::get<LightFieldCookSettings>(a.flavour);
+    out << "baked light field: 6 slabs x " << settings.cameras << "^2 cameras x "
+        << settings.imageRes << "^2 px, cell " << r.cellSize << " m, "
+        << toString(asset.compression) << ", " << asset.diskBytes() << " bytes on disk, "
+        << asset.gpuBytes() << " bytes of GPU memory, bake " << r.bakeSeconds << " s, total "
+        << seconds << " s -> " << a.out << "/manifest.json\n";
     for (int k = 0; k < 6; ++k) {
         const LightFieldSlab& s = asset.slabs[std::size_t(k)];
         out << "  slab " << slabName(k) << ": depth " << s.nearDepth << " .. " << s.farDepth
@@ -111,8 +112,9 @@ void printLightFieldSummary(const BakeArgs& a, const CookResult& r, double secon
             << " would hold it)\n";
 }
 
-void printDistanceSummary(const BakeArgs& a, const CookResult& r, double seconds,
+void printDistanceSummary(const CookOptions& a, const CookResult& r, double seconds,
                           std::ostream& out) {
+    const GlossyBake glossy = std::get<DistanceCookSettings>(a.flavour).glossy;
     const auto& asset = std::get<DistanceProbeAsset>(r.asset);
     out << "baked " << asset.layers.size() << " layers (" << asset.objectLayerCount()
         << " objects + composite) at " << asset.faceRes << "^2 x 6 in " << seconds << " s -> "
@@ -124,8 +126,8 @@ void printDistanceSummary(const BakeArgs& a, const CookResult& r, double seconds
             << asset.glossyLevels.front()[0].width << "^2 .. " << asset.glossyLevels.back()[0].width
             << "^2 x 6), prefilter " << r.prefilterSeconds << " s\n";
     else
-        out << "none (--glossy " << a.glossy
-            << (a.glossy == "auto" ? ": every reflector is a mirror" : "") << ")\n";
+        out << "none (--glossy " << toString(glossy)
+            << (glossy == GlossyBake::Auto ? ": every reflector is a mirror" : "") << ")\n";
     for (std::size_t i = 0; i < asset.layers.size(); ++i) {
         const DistanceProbeLayer& L = asset.layers[i];
         out << "  layer " << i << " " << L.name << ": d-bar " << L.avgDistance << " m, "
@@ -133,7 +135,7 @@ void printDistanceSummary(const BakeArgs& a, const CookResult& r, double seconds
     }
 }
 
-void printPemSummary(const BakeArgs& a, const CookResult& r, double seconds, std::ostream& out) {
+void printPemSummary(const CookOptions& a, const CookResult& r, double seconds, std::ostream& out) {
     const auto& asset = std::get<PemAsset>(r.asset);
     const glm::vec3 box = asset.boxMax - asset.boxMin;
     out << "baked " << asset.samples.size() << " parameterized environment maps ("
@@ -201,11 +203,11 @@ int runBake(const BakeArgs& a, const SlurmArgs& s, std::ostream& out) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (lightField)
-        printLightFieldSummary(a, r, seconds, out);
+        printLightFieldSummary(options, r, seconds, out);
     else if (a.flavour == "pem")
-        printPemSummary(a, r, seconds, out);
+        printPemSummary(options, r, seconds, out);
     else
-        printDistanceSummary(a, r, seconds, out);
+        printDistanceSummary(options, r, seconds, out);
     return cli::kExitOk;
 }
 

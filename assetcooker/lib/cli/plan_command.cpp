@@ -1,5 +1,6 @@
 #include "assetcooker/lib/cli/plan_command.h"
 
+#include "assetcooker/lib/cli/setting_flags.h"
 #include "assetcooker/lib/plan/plan_measure.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "engine/core/error.h"
@@ -13,29 +14,28 @@ namespace specula::cook {
 
 namespace {
 
+// The bake's settings this command takes: the measured plan's (the distance flavour's
+// declaration, so a flag means here what it means to `bake`).
+const std::vector<std::string> kBakeFlags = {"--plan", "--max-error", "--max-mib-per-probe",
+                                             "--face-res"};
+
 struct PlanArgs {
     std::string scene;
-    std::optional<std::string> probe, sky, maxError;
+    std::optional<std::string> probe, sky;
     std::optional<float> maxErrorDeg, cellSize;
-    std::optional<double> maxMibPerProbe;
-    std::string plan = "measured";
-    int faceRes = 256, rays = 32768;
+    int rays = 32768;
     float viewShare = kDefaultViewShare;
     std::uint32_t seed = 1;
     bool json = false;
+    SettingFlags flags;
 };
 
 int runPlan(const PlanArgs& a, std::ostream& out) {
     const auto start = std::chrono::steady_clock::now();
-    // The flag is checked before the scene is opened: a usage error names it.
-    std::optional<ErrorBudget> budget;
-    if (a.maxError) {
-        try {
-            budget = parseErrorBudget(*a.maxError, "", "--max-error");
-        } catch (const Error& e) {
-            throw UsageError("--max-error", e.message());
-        }
-    }
+    // The flags are checked before the scene is opened: a usage error names them.
+    const auto settings =
+        std::get<DistanceCookSettings>(a.flags.settings(DistanceCookSettings::kFlavour, a.scene));
+    const std::string kind = settings.measuredPlan ? "measured" : "analytic";
     PlanThresholds t;
     if (a.maxErrorDeg) t.maxErrorDeg = *a.maxErrorDeg;
     ProbeScene scene(a.scene, a.sky.value_or(""));
@@ -45,17 +45,17 @@ int runPlan(const PlanArgs& a, std::ostream& out) {
     const float cell = a.cellSize.value_or(markupCellSize(scene.markup));
     const float reach = markupReflectorReach(scene.registry, scene.markup, centre, cell);
     EffectPlan plan = planEffects(scene.registry, scene.markup, centre, reach, t);
-    if (a.plan == "measured") {
+    if (settings.measuredPlan) {
         MeasuredPlanOptions m;
-        m.faceRes = a.faceRes;
+        m.faceRes = settings.faceRes;
         m.rays = a.rays;
         m.seed = a.seed;
-        m.budget = budget ? *budget : markupErrorBudget(scene.markup, 0);
+        m.budget = settings.maxError ? *settings.maxError : markupErrorBudget(scene.markup, 0);
         m.sky = scene.sky.empty() ? nullptr : &scene.sky;
         m.cellSize = cell;
         m.eyes = sceneEyes(scene);
         m.viewShare = a.viewShare;
-        m.maxMibPerProbe = a.maxMibPerProbe.value_or(0.0);
+        m.maxMibPerProbe = settings.maxMibPerProbe.value_or(0.0);
         m.formats = planFormatsFor(false, m.maxMibPerProbe);
         plan = applyMeasurement(plan,
                                 measurePlan(scene.registry, scene.markup, plan, centre, reach, m));
@@ -64,13 +64,13 @@ int runPlan(const PlanArgs& a, std::ostream& out) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (a.json) {
         nlohmann::json j = plan.toJson();
-        j["plan_kind"] = a.plan;
+        j["plan_kind"] = kind;
         j["plan_seconds"] = seconds;
         out << j.dump(2) << "\n";
     } else {
         char line[96];
         std::snprintf(line, sizeof line, "plan time  %.2f s (%s, scene loading included)\n",
-                      seconds, a.plan.c_str());
+                      seconds, kind.c_str());
         out << plan.toText() << line;
     }
     return cli::kExitOk;
@@ -105,22 +105,7 @@ void addPlanCommand(cli::ToolCli& tool) {
         ->check(cli::vec3Text());
     tool.allowEmpty(
         sub->add_option("--sky", a->sky, "equirectangular panorama (default and '': a black sky)"));
-    sub->add_option("--plan", a->plan, "measured (default) or analytic")
-        ->check(CLI::IsMember({"measured", "analytic"}));
-    sub->add_option(
-        "--max-error", a->maxError,
-        "measured plan: the error budget, a PSNR (\"32dB\") or an RMSE (\"rmse:0.03\")\n"
-        "over reflector rays (default: the markup's max_error, else none)");
-    sub->add_option(
-           "--max-mib-per-probe", a->maxMibPerProbe,
-           "measured plan: the most MiB a probe's textures may take on the GPU (cube maps "
-           "and sky); "
-           "every candidate is also weighed with its composite in BC6H (--compress bc6h), so "
-           "the plan picks face size and format; candidates over it are left out, "
-           "and the smallest is used when none fits")
-        ->check(cli::finiteRange(0.01, 1e6));
-    sub->add_option("--face-res", a->faceRes, "measured plan: the cook's face resolution")
-        ->check(CLI::Range(8, 4096));
+    a->flags.add(tool, sub, DistanceCookSettings::kFlavour, kBakeFlags);
     sub->add_option("--rays", a->rays, "measured plan: reflector rays sampled")
         ->check(CLI::Range(64, 1 << 20));
     sub->add_option("--cell-size", a->cellSize,

@@ -82,10 +82,10 @@ public:
     // The asset's sky along dir, as the shader's fetchSky reads it (black without one).
     glm::vec3 sky(glm::vec3 dir) const;
 
-    // Controlled experiments of the bench's error budget (sandbox/lib/bench/error_budget.h): each
-    // removes one source of error from every lookup of the twin (radiance(), lookupHit() and
-    // the rest). All off by default, where the twin reads exactly what the shader reads. Set
-    // before looking up, never while another thread does.
+    // Controlled experiments of the bench's error budget
+    // (sandbox/lib/flavours/distance/error_budget.h): each removes one source of error from every
+    // lookup of the twin (radiance(), lookupHit() and the rest). All off by default, where the twin
+    // reads exactly what the shader reads. Set before looking up, never while another thread does.
     struct Experiment {
         // The method's own way to the hit (a search to d_e with its step budget, one step at
         // d-bar, the box wall, or none at all for envmap) replaced by the exact first

@@ -6,7 +6,7 @@
 #include "sandbox/lib/bench/accuracy_plot.h"
 #include "sandbox/lib/bench/bench.h"
 #include "sandbox/lib/bench/bench_methods.h"
-#include "sandbox/lib/bench/error_budget.h"
+#include "sandbox/lib/flavours/distance/error_budget.h"
 #include "sandbox/lib/render/frame_renderer.h"
 #include "sandbox/lib/render/reflection_scene.h"
 

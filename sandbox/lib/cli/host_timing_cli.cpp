@@ -1,7 +1,7 @@
 // specula-sandbox host: the command line of runHostTiming (host_timing.h).
 #include "assetcooker/lib/cli/tool_cli.h"
-#include "sandbox/lib/bench/host_timing.h"
 #include "sandbox/lib/cli/created_output_folder.h"
+#include "sandbox/lib/flavours/distance/host_timing.h"
 #include "sandbox/lib/render/reflection_scene.h"
 
 #include <memory>

@@ -4,8 +4,8 @@
 #include "engine/core/regular_file.h"
 #include "sandbox/lib/cli/added_reflector_flag.h"
 #include "sandbox/lib/cli/created_output_folder.h"
+#include "sandbox/lib/flavours/distance/level_walk.h"
 #include "sandbox/lib/render/reflection_scene.h"
-#include "sandbox/lib/walk/level_walk.h"
 
 #include <memory>
 #include <sstream>

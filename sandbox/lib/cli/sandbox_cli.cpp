@@ -6,10 +6,10 @@
 #include "sandbox/lib/bench/bench.h"
 #include "sandbox/lib/bench/bench_methods.h"
 #include "sandbox/lib/bench/glossy_bench.h"
-#include "sandbox/lib/bench/host_timing.h"
 #include "sandbox/lib/cli/added_reflector_flag.h"
 #include "sandbox/lib/cli/created_output_folder.h"
-#include "sandbox/lib/walk/level_walk.h"
+#include "sandbox/lib/flavours/distance/host_timing.h"
+#include "sandbox/lib/flavours/distance/level_walk.h"
 #include "sandbox/lib/walk/walk.h"
 
 #include <exception>

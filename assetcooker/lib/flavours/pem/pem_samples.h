@@ -5,6 +5,7 @@
 // along each reflected ray is the target (self- and inter-reflections included: what a plain
 // environment map cannot hold), and inferPemMap fits the map the lookup reproduces it best
 // with. The maps of all samples make one PemAsset.
+#include "assetcooker/lib/flavours/pem/pem_cook_settings.h"
 #include "assetcooker/lib/flavours/pem/pem_infer.h"
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/pem/pem_asset.h"
@@ -56,68 +57,6 @@ PemSamples tracePemSamples(const GroundTruthTracer& tracer, const CameraView& ca
                            glm::vec3 probeCentre, const PemSampleOptions& o,
                            const std::string& file);
 
-// The PEM flavour's cook settings (cook.h's CookFlavour). Parameter "viewpoint": the camera
-// moves along the walk's camera orbit (path "orbit", walkOrbitCameraView), the reflectors stay
-// put. Parameter "reflector": the reflectors move along the walk path "orbit", "line" or
-// "figure8" (walk_path.h) before the scene camera (the orbit at t = 0): the paper's "relative
-// motion of objects". Path "camera" (a glTF camera animation) is refused: not read yet.
-struct PemCookSettings {
-    int samples = 8;     // parameter samples t = k / samples, k = 0 .. samples-1; 1 .. 1024
-    int faceRes = 128;   // 1 .. 1024
-    int supersample = 1; // rays per pixel side, 1 .. 16
-    float regularisation = 0.02f;
-    // The map's geometry: "box" (the ray meets the environment's bounding box) or "distance"
-    // (the ray is rectified against the environment's distance cube at the centre, traced
-    // by Embree at faceRes: objects inside the box sit where they are, from any viewpoint).
-    std::string geometry = "distance";
-    // Weight of the rows pulling every texel towards the radiance captured at the centre
-    // (the distance geometry's capture): texels the camera does not see fall back to what
-    // an ordinary cube map holds there instead of to their neighbours alone. 0: no prior.
-    // 0.05 measured on the room (320x240, 8 viewpoints): half-way 18.4 -> 19.7 dB full,
-    // on the samples 46.3 -> 41.3 dB.
-    float priorWeight = 0.05f;
-    std::string parameter = "viewpoint";
-    std::string path = "orbit";
-    // The camera image the samples are traced through: a PEM is inferred for the pixels the
-    // renderer draws, so bake at the frame size it will be drawn at (the walk's default
-    // 640 x 480). With supersample 1 the rows are exactly the rasteriser's pixel centres.
-    int imageWidth = 640, imageHeight = 480;
-    // The local layer (pem_layers.h): "auto" adds it when some reflector ray off the hull
-    // meets its own reflector again at any sample (measured), "on" always, "off" never.
-    std::string localLayer = "auto";
-    int localFaceRes = 0; // its cube's face resolution; 0: faceRes
-    // The local sphere: "bound" (the off-hull reflector points' bounding sphere) or "fit" (the
-    // least-squares sphere through them: a bowl's own sphere; fitPemLocalSphere). Measured on
-    // the bowl room (N=8, on / half-way dB against the full truth, cooker's fit): 160x120 with
-    // 64^2 faces bound 29.3 / 13.1, fit 28.9 / 13.3 (one map 28.2 / 13.1); 120x90 with 24^2
-    // faces bound 28.0 / 13.8, fit 24.4 / 13.3 (one map 21.0 / 12.9). Rays from different
-    // points that meet the bowl at one point see different things there; the exact sphere
-    // sends them all to one texel, a sphere off the bowl's centre spreads them.
-    std::string localSphere = "bound";
-    // MIP levels of the distant maps, all inferred together (PemInferOptions::mipLevels), 1 ..
-    // PemMap::maxLevels(faceRes); 1: level 0 alone, as before MIP levels existed.
-    int mipLevels = 1;
-    // The rendering matrix's data rows (PemRows), against the antialiased image (each
-    // displayed pixel's mean radiance over its sub-rays, Hakura §4): "pixel", the mean of
-    // the sub-rays' lookups; "centre" (an odd supersample), the lookup of the pixel's centre
-    // ray, as the rasteriser draws it; or "subray", one row per traced ray against its own
-    // radiance (the default: the bench's truth is one ray a pixel, against which centre rows
-    // lose on level 0 while they win against the antialiased image, pem_pixel_rows_test).
-    // All the same with supersample 1.
-    std::string rows = "subray";
-    // Keep the inferred texels >= 0 by active-set re-solves (PemInferOptions::nonNegative)
-    // instead of clamping the unconstrained solution afterwards. On by default: at 256² the
-    // full PSNR gains 0-0.3 dB at level 0 and 1.6-3.1 dB with inferred MIPs, the cooker's own
-    // fit 10-15 dB, for 1.5-1.9x the inference (CHANGELOG.md, "PEM texels bounded ... at 256²").
-    bool nonNegative = true;
-    // Distance geometry: rows for the lookups the display's rounding reaches
-    // (pem_rounding_rows.h; PemInferOptions::roundingReach), metres and radians. 0: off.
-    float roundingReach = 1e-4f;
-    // How the maps are stored: "none" (float RGB) or "bc6h" (every level of every sample map in
-    // BC6H, pem/writer/pem_compression.h), encoded after the inference.
-    std::string compression = "none";
-};
-
 // How well one sample's map fits, measured by the cooker against the ray tracer on the
 // reflector rays (no Fresnel: the maps hold incident radiance). PSNR with peak 1 over RGB.
 struct PemSampleFit {
@@ -138,12 +77,6 @@ struct PemSampleFit {
     // The camera saw no reflector pixel at this sample: it has no map in the asset (rays 0).
     bool leftOut = false;
 };
-
-// Throws Error naming the field ("samples", "face_res", "supersample", "regularisation",
-// "image_size", "geometry", "prior_weight" (needs the distance geometry), "parameter", "path"
-// (orbit or camera for the viewpoint, a walk path for the reflector),
-// "local_layer", "local_face_res", "local_sphere", "mip_levels", "rows").
-void validatePemCookSettings(const PemCookSettings& s, const std::string& file);
 
 // What the cooking API gives every baker: the probe centre, a progress callback (fraction of
 // the parameter samples done), a cancel poll, where placement warnings go.

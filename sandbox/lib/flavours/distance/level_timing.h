@@ -3,7 +3,7 @@
 // every blend and K = 1, 2, 4, timed against one probe's envmap pass.
 #include "components/reflection_probe/distance/distance_probe.h"
 #include "engine/math/camera.h"
-#include "sandbox/lib/walk/level_walk.h"
+#include "sandbox/lib/flavours/distance/level_walk.h"
 
 #include <string>
 #include <vector>

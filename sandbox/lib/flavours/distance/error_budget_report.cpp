@@ -1,6 +1,6 @@
 // The error budget's figure and tables: error_budget.png, bench.csv's budget columns and
 // bench.md's budget table (declared in error_budget.h).
-#include "sandbox/lib/bench/error_budget.h"
+#include "sandbox/lib/flavours/distance/error_budget.h"
 
 #include "engine/image/plot_canvas.h"
 

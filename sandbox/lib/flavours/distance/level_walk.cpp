@@ -1,4 +1,4 @@
-#include "sandbox/lib/walk/level_walk.h"
+#include "sandbox/lib/flavours/distance/level_walk.h"
 #include "assetcooker/lib/scene/reflector_roughness_maps.h"
 
 #include "assetcooker/lib/level/level_bake.h"
@@ -16,9 +16,9 @@
 #include "engine/image_io/compare.h"
 #include "engine/image_io/contact_sheet.h"
 #include "engine/image_io/image_io.h"
+#include "sandbox/lib/flavours/distance/level_timing.h"
 #include "sandbox/lib/render/reflection_scene.h"
 #include "sandbox/lib/walk/chase_path.h"
-#include "sandbox/lib/walk/level_timing.h"
 
 #include <algorithm>
 #include <array>

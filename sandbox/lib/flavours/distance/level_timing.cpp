@@ -1,4 +1,4 @@
-#include "sandbox/lib/walk/level_timing.h"
+#include "sandbox/lib/flavours/distance/level_timing.h"
 
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/distance/distance_level.h"

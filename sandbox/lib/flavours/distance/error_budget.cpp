@@ -1,4 +1,4 @@
-#include "sandbox/lib/bench/error_budget.h"
+#include "sandbox/lib/flavours/distance/error_budget.h"
 
 #include "assetcooker/lib/scene/probe_setup.h"
 #include "components/reflection_probe/distance/distance_compression.h"

@@ -1,4 +1,4 @@
-#include "sandbox/lib/bench/host_timing.h"
+#include "sandbox/lib/flavours/distance/host_timing.h"
 
 #include "components/reflection_probe/distance/distance_host_probe.h"
 #include "engine/context/context.h"
