@@ -232,4 +232,19 @@ ProbeInputs cookedProbeInputs(const ProbeScene& scene, const nlohmann::json& set
     return sceneProbeInputs(scene, options.dump());
 }
 
+std::vector<std::string> cookFlavourNames() {
+    std::vector<std::string> names;
+    forEachCookFlavour(
+        [&](const auto& s) { names.push_back(std::decay_t<decltype(s)>::kFlavour); });
+    return names;
+}
+
+std::string cookFlavourList() {
+    const std::vector<std::string> names = cookFlavourNames();
+    std::string out;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    return out;
+}
+
 } // namespace specula

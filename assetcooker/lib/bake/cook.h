@@ -29,6 +29,10 @@ namespace specula {
 // folder's *_cook_settings.h), from which the bake's flags and the settings JSON derive.
 using CookFlavour = std::variant<DistanceCookSettings, LightFieldCookSettings, PemCookSettings>;
 
+// The flavours' names (kFlavour) in the variant's order, and as "a, b or c".
+std::vector<std::string> cookFlavourNames();
+std::string cookFlavourList();
+
 // Calls f(defaults) with every flavour's default settings, in the variant's order.
 template <class F> void forEachCookFlavour(F&& f) {
     [&]<std::size_t... I>(std::index_sequence<I...>) {

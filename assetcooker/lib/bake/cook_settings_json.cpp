@@ -21,10 +21,8 @@ json cookSettingsToJson(const CookFlavour& flavour) {
 CookFlavour cookSettingsFromJson(const json& j, const std::string& file) {
     const std::string name = jsonMember<std::string>(j, "flavour", file, "settings.");
     std::optional<CookFlavour> out;
-    std::string names;
     forEachCookFlavour([&](const auto& defaults) {
         using S = std::decay_t<decltype(defaults)>;
-        names += std::string(names.empty() ? "" : ", ") + S::kFlavour;
         if (name != S::kFlavour) return;
         S s = defaults;
         settingsFromJson(j, s, file, "settings.");
@@ -32,7 +30,8 @@ CookFlavour cookSettingsFromJson(const json& j, const std::string& file) {
         out = s;
     });
     if (!out)
-        throw Error(file, "settings.flavour", "expected one of " + names + ", got '" + name + "'");
+        throw Error(file, "settings.flavour",
+                    "expected " + cookFlavourList() + ", got '" + name + "'");
     return *out;
 }
 

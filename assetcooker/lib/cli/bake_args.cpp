@@ -16,14 +16,13 @@ CookOptions checkedCookOptions(const BakeArgs& a) {
     return o;
 }
 
-int checkedShardRows(const BakeArgs& a) {
+int checkedShardRows(const BakeArgs& a, const CookOptions& options) {
     if (!a.shardRows) return 0;
     if (a.flavour != "lightfield")
         throw UsageError("--shard-rows",
                          "applies to --flavour lightfield (a " + a.flavour +
                              " probe is one shard: its bake is a GPU raster, not rays)");
-    const int cameras =
-        std::get<LightFieldCookSettings>(a.flags.settings(a.flavour, a.scene)).cameras;
+    const int cameras = std::get<LightFieldCookSettings>(options.flavour).cameras;
     if (*a.shardRows < 1 || *a.shardRows > cameras)
         throw UsageError("--shard-rows", "expected 1 .. NUM = --cameras " +
                                              std::to_string(cameras) + ", got " +

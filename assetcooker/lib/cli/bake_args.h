@@ -34,9 +34,9 @@ void addBakeOptions(cli::ToolCli& tool, CLI::App* sub, BakeArgs& a);
 CookOptions checkedCookOptions(const BakeArgs& a);
 
 // The --shard-rows of a sharded bake: 0 when not given (NUM: one part a slab), else checked
-// against --cameras (1 .. NUM) and the flavour (light field only). Throws UsageError naming
-// --shard-rows.
-int checkedShardRows(const BakeArgs& a);
+// against the light field's --cameras in `options` (checkedCookOptions: 1 .. NUM) and the
+// flavour (light field only). Throws UsageError naming --shard-rows.
+int checkedShardRows(const BakeArgs& a, const CookOptions& options);
 // Adds --shard-rows to `sub` (its help names the part shards).
 CLI::Option* addShardRowsOption(CLI::App* sub, std::optional<int>& rows);
 

@@ -47,17 +47,6 @@ std::string accepted(const SettingInfo& info) {
 
 } // namespace
 
-std::vector<std::string> cookFlavourNames() {
-    std::vector<std::string> names;
-    forEachCookFlavour(
-        [&](const auto& s) { names.push_back(std::decay_t<decltype(s)>::kFlavour); });
-    return names;
-}
-
-std::string cookFlavourList() {
-    return joined(cookFlavourNames(), ", ", " or ");
-}
-
 void SettingFlags::add(cli::ToolCli& tool, CLI::App* sub, const std::string& flavour,
                        const std::vector<std::string>& only) {
     // Every flag each flavour declares, with its help and its default in that flavour.

@@ -40,8 +40,4 @@ private:
     std::map<std::string, Flag> flags_; // by flag; a map: the options bind to `text`
 };
 
-// The flavours' names in registration order, and as "a, b or c".
-std::vector<std::string> cookFlavourNames();
-std::string cookFlavourList();
-
 } // namespace specula::cook

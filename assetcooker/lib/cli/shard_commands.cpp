@@ -85,7 +85,7 @@ int runShards(const BakeArgs& a, std::ostream& out) {
     const OutputLock lock(options.out, "shards", FileLockMode::Exclusive);
     ProbeScene scene(options.scene, options.sky);
     const LevelCookOptions sharded = shardedCookOptions(a, options, scene, "SCENE");
-    const int rows = checkedShardRows(a);
+    const int rows = checkedShardRows(a, options);
     const ShardList list = writeShardList(scene, sharded, &out, rows);
     out << describeShards(list) << " -> " << shardListPath(a.out) << "\n";
     return cli::kExitOk;

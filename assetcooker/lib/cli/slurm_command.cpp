@@ -49,8 +49,8 @@ void addSlurmOptions(CLI::App* bake, SlurmArgs& s) {
 int runSlurmBake(const BakeArgs& args, const SlurmArgs& s, std::ostream& out) {
     BakeArgs a = args;
     a.shardRows = s.shardRows;
-    const int rows = checkedShardRows(a);
     const CookOptions options = checkedCookOptions(a);
+    const int rows = checkedShardRows(a, options);
     // A signal cancels the jobs submitted so far (bakeOnSlurm), never leaving them to merge.
     const SignalGuard guard;
     const OutputLock lock(options.out, "bake --slurm", FileLockMode::Exclusive);
